@@ -1,0 +1,70 @@
+#pragma once
+// A robot type (config/robots/*.cfg) read into plain data. A new robot type is
+// a new config file: physics builds the body from these values, the vision
+// emulator takes its size for occlusion, the referee its radius for placement.
+#include <string>
+#include <vector>
+
+#include "ubersim/config.hpp"
+
+namespace ubersim {
+
+enum class DriveKind { Omni, Differential };
+enum class DriveModel { Jointed, Planar };
+
+struct WheelConfig {
+  double angle = 0;      // rad, direction from the robot centre to the wheel (0 = forward)
+  double distance = 0;   // m, robot centre to the wheel's contact point
+  // Unit vector (robot frame) along which the wheel drives the robot: tangential
+  // for omni wheels, forward for differential drive.
+  double drive_x = 0, drive_y = 0;
+};
+
+struct RobotTypeConfig {
+  std::string name;
+  DriveKind drive = DriveKind::Omni;
+  DriveModel model = DriveModel::Jointed;
+
+  double mass = 0;                   // kg, whole robot
+  double moment_of_inertia = 0;      // kg m^2 about the vertical axis
+  double radius = 0;                 // m
+  double height = 0;                 // m
+  double center_of_mass_height = 0;  // m
+  double front_distance = 0;         // m, centre to the flat front face (kicker, dribbler)
+
+  std::vector<WheelConfig> wheels;
+  double wheel_radius = 0;            // m
+  double wheel_width = 0;             // m
+  double wheel_mass = 0;              // kg (jointed model only)
+  double wheel_friction = 0;          // unitless, along the rolling direction
+  double wheel_lateral_friction = 0;  // unitless, across it (small for omni rollers)
+  double motor_max_torque = 0;        // N m at the wheel
+  double motor_max_speed = 0;         // rad/s at the wheel
+  std::vector<double> caster_positions;  // m, x y pairs (differential drive)
+
+  double max_speed = 0;                 // m/s, commands are clamped to it
+  double max_angular_speed = 0;         // rad/s
+  double max_acceleration = 0;          // m/s^2, on-board limit, 0 = none
+  double max_angular_acceleration = 0;  // rad/s^2, 0 = none
+
+  double dribbler_max_speed = 0;        // rad/s of the roller, 0 = no dribbler
+  double dribbler_roller_radius = 0;    // m
+  double dribbler_height = 0;           // m, roller axis above the ground
+  double dribbler_width = 0;            // m
+  double dribbler_max_torque = 0;       // N m on the roller
+
+  double kick_max_speed = 0;            // m/s, 0 = no kicker
+  double chip_max_speed = 0;            // m/s, 0 = cannot chip
+  double chip_default_angle = 0;        // rad
+  double kicker_recharge_time = 0;      // s
+  double kicker_width = 0;              // m, width of the kicker face the ball must touch
+
+  bool has_dribbler() const { return dribbler_max_speed > 0; }
+  bool has_kicker() const { return kick_max_speed > 0 || chip_max_speed > 0; }
+};
+
+// Reads every key of a robot file (and rejects any other). Throws ConfigError.
+RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& name);
+RobotTypeConfig load_robot_config(const std::string& config_dir, const std::string& name);
+
+}  // namespace ubersim

@@ -1,0 +1,98 @@
+#include "ubersim/robot_config.hpp"
+
+#include <cmath>
+
+#include "ubersim/config_paths.hpp"
+
+namespace ubersim {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+}  // namespace
+
+RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& name) {
+  RobotTypeConfig r;
+  r.name = name;
+  const std::string drive = config.string("DRIVE");
+  if (drive == "omni") r.drive = DriveKind::Omni;
+  else if (drive == "differential") r.drive = DriveKind::Differential;
+  else config.fail("DRIVE", "expected 'omni' or 'differential', got '" + drive + "'");
+  const std::string model = config.string("DRIVE_MODEL");
+  if (model == "jointed") r.model = DriveModel::Jointed;
+  else if (model == "planar") r.model = DriveModel::Planar;
+  else config.fail("DRIVE_MODEL", "expected 'jointed' or 'planar', got '" + model + "'");
+
+  r.mass = config.real_in("MASS", 0.01, 100.0);
+  r.moment_of_inertia = config.real_in("MOMENT_OF_INERTIA", 1e-6, 100.0);
+  r.radius = config.real_in("RADIUS", 0.01, 1.0);
+  r.height = config.real_in("HEIGHT", 0.01, 1.0);
+  r.center_of_mass_height = config.real_in("CENTER_OF_MASS_HEIGHT", 0.0, r.height);
+  r.front_distance = config.real_in("FRONT_DISTANCE", 0.0, r.radius);
+
+  const auto angles = config.reals("WHEEL_ANGLES_DEG");
+  const std::size_t expected_wheels = r.drive == DriveKind::Differential ? 2 : 0;
+  if (expected_wheels != 0 && angles.size() != expected_wheels) {
+    config.fail("WHEEL_ANGLES_DEG", "a differential drive has exactly 2 wheels, got " +
+                                        std::to_string(angles.size()));
+  }
+  if (r.drive == DriveKind::Omni && angles.size() < 3) {
+    config.fail("WHEEL_ANGLES_DEG",
+                "an omni drive needs at least 3 wheels, got " + std::to_string(angles.size()));
+  }
+  const double wheel_distance = config.real_in("WHEEL_DISTANCE", 0.001, r.radius);
+  for (double angle_deg : angles) {
+    WheelConfig w;
+    w.angle = angle_deg * kDegToRad;
+    w.distance = wheel_distance;
+    if (r.drive == DriveKind::Omni) {
+      // Positive wheel speed pushes the robot counter-clockwise about its centre.
+      w.drive_x = -std::sin(w.angle);
+      w.drive_y = std::cos(w.angle);
+    } else {
+      w.drive_x = 1.0;
+      w.drive_y = 0.0;
+    }
+    r.wheels.push_back(w);
+  }
+  r.wheel_radius = config.real_in("WHEEL_RADIUS", 0.001, 0.5);
+  r.wheel_width = config.real_in("WHEEL_WIDTH", 0.001, 0.5);
+  r.wheel_mass = config.real_in("WHEEL_MASS", 0.001, 10.0);
+  r.wheel_friction = config.real_in("WHEEL_FRICTION", 0.0, 10.0);
+  r.wheel_lateral_friction = config.real_in("WHEEL_LATERAL_FRICTION", 0.0, 10.0);
+  r.motor_max_torque = config.real_in("MOTOR_MAX_TORQUE", 0.0, 100.0);
+  r.motor_max_speed = config.real_in("MOTOR_MAX_SPEED", 0.0, 10000.0);
+  if (r.drive == DriveKind::Differential) {
+    r.caster_positions = config.reals("CASTER_POSITIONS");
+    if (r.caster_positions.empty() || r.caster_positions.size() % 2 != 0) {
+      config.fail("CASTER_POSITIONS", "expected x y pairs (m)");
+    }
+  }
+
+  r.max_speed = config.real_in("MAX_SPEED", 0.0, 20.0);
+  r.max_angular_speed = config.real_in("MAX_ANGULAR_SPEED", 0.0, 200.0);
+  r.max_acceleration = config.real_in("MAX_ACCELERATION", 0.0, 100.0);
+  r.max_angular_acceleration = config.real_in("MAX_ANGULAR_ACCELERATION", 0.0, 1000.0);
+
+  r.dribbler_max_speed = config.real_in("DRIBBLER_MAX_SPEED", 0.0, 10000.0);
+  r.dribbler_roller_radius = config.real_in("DRIBBLER_ROLLER_RADIUS", 0.0, 0.1);
+  r.dribbler_height = config.real_in("DRIBBLER_HEIGHT", 0.0, r.height);
+  r.dribbler_width = config.real_in("DRIBBLER_WIDTH", 0.0, 2 * r.radius);
+  r.dribbler_max_torque = config.real_in("DRIBBLER_MAX_TORQUE", 0.0, 10.0);
+
+  r.kick_max_speed = config.real_in("KICK_MAX_SPEED", 0.0, 20.0);
+  r.chip_max_speed = config.real_in("CHIP_MAX_SPEED", 0.0, 20.0);
+  r.chip_default_angle = config.real_in("CHIP_DEFAULT_ANGLE_DEG", 0.0, 89.0) * kDegToRad;
+  r.kicker_recharge_time = config.real_in("KICKER_RECHARGE_TIME", 0.0, 60.0);
+  r.kicker_width = config.real_in("KICKER_WIDTH", 0.0, 2 * r.radius);
+
+  config.require_all_used();
+  return r;
+}
+
+RobotTypeConfig load_robot_config(const std::string& config_dir, const std::string& name) {
+  const auto path = resolve_config(config_dir, "robots", name);
+  return load_robot_config(ConfigFile::load(path), path.stem().string());
+}
+
+}  // namespace ubersim

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Runs a command so that its LCM multicast traffic can reach nothing else:
+#   * in a network namespace of its own (loopback up, multicast routed to lo)
+#     when this user may create one (root, or unprivileged user namespaces);
+#   * otherwise on a UDP port of its own, derived from the test name.
+# Either way LCM_DEFAULT_URL is set with ttl=0, so nothing leaves the host.
+# Usage: run_isolated.sh TEST_NAME COMMAND [ARGS...]
+set -euo pipefail
+name=$1
+shift
+port=$((20000 + $(printf '%s' "$name" | cksum | cut -d' ' -f1) % 20000))
+export LCM_DEFAULT_URL="udpm://239.255.76.67:${port}?ttl=0"
+
+namespace_ok() {
+  command -v unshare >/dev/null && command -v ip >/dev/null || return 1
+  unshare -n true 2>/dev/null && return 0
+  unshare -rn true 2>/dev/null && return 0
+  return 1
+}
+
+if [ "${UBERSIM_NO_NETNS:-0}" != 1 ] && namespace_ok; then
+  flag=-n
+  unshare -n true 2>/dev/null || flag=-rn
+  exec unshare "$flag" bash -c '
+    ip link set lo up
+    ip route add 224.0.0.0/4 dev lo
+    exec "$@"' isolated "$@"
+fi
+# No namespace: stay on our own port. Multicast needs some route; the
+# default route serves, and ttl=0 keeps packets on this host.
+exec "$@"

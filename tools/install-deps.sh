@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Installs exactly the Debian packages ubersim needs that are missing; does
+# nothing when all are there, so it is safe to run any number of times.
+# Usage: tools/install-deps.sh [--print]   (--print: only list what is missing)
+set -euo pipefail
+
+packages=(
+  # build
+  cmake g++ make pkg-config
+  # LCM (lcm.pc needs glib's development files; lcm-spy needs Java and jchart2d)
+  liblcm-dev liblcm-bin liblcm-java libglib2.0-dev default-jdk-headless libjchart2d-java
+  # physics and maths
+  libode-dev libeigen3-dev
+  # logging, command lines, tests, benchmarks
+  libspdlog-dev libfmt-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+  # isolated multicast tests (unshare, ip)
+  util-linux iproute2
+  # optional DDS bridge
+  cyclonedds-dev cyclonedds-tools
+  # plots for the validation report
+  gnuplot-nox
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$package" 2>/dev/null || true)
+  [ "$status" = "install ok installed" ] || missing+=("$package")
+done
+
+if [ "${1:-}" = "--print" ]; then
+  printf '%s\n' "${missing[@]}"
+  exit 0
+fi
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
