@@ -4,7 +4,9 @@
 
 namespace ubersim {
 
-const char* team_name(Team team) { return team == Team::Yellow ? "yellow" : "blue"; }
+const char* team_name(Team team) {
+  return team == Team::Yellow ? "yellow" : "blue";
+}
 
 bool parse_team(const std::string& text, Team& team) {
   if (text == "yellow" || text == "YELLOW" || text == "y" || text == "0") {
@@ -20,17 +22,28 @@ bool parse_team(const std::string& text, Team& team) {
 
 const char* base_channel_name(Channel channel) {
   switch (channel) {
-    case Channel::Vision: return "VISION";
-    case Channel::VisionGeometry: return "VISION_GEOMETRY";
-    case Channel::RadioYellow: return "RADIO_YELLOW";
-    case Channel::RadioBlue: return "RADIO_BLUE";
-    case Channel::RadioFeedbackYellow: return "RADIO_FEEDBACK_YELLOW";
-    case Channel::RadioFeedbackBlue: return "RADIO_FEEDBACK_BLUE";
-    case Channel::SimCommands: return "SIM_COMMANDS";
-    case Channel::SimState: return "SIM_STATE";
-    case Channel::SimControl: return "SIM_CONTROL";
-    case Channel::SimControlAck: return "SIM_CONTROL_ACK";
-    case Channel::SimGeometry: return "SIM_GEOMETRY";
+    case Channel::Vision:
+      return "VISION";
+    case Channel::VisionGeometry:
+      return "VISION_GEOMETRY";
+    case Channel::RadioYellow:
+      return "RADIO_YELLOW";
+    case Channel::RadioBlue:
+      return "RADIO_BLUE";
+    case Channel::RadioFeedbackYellow:
+      return "RADIO_FEEDBACK_YELLOW";
+    case Channel::RadioFeedbackBlue:
+      return "RADIO_FEEDBACK_BLUE";
+    case Channel::SimCommands:
+      return "SIM_COMMANDS";
+    case Channel::SimState:
+      return "SIM_STATE";
+    case Channel::SimControl:
+      return "SIM_CONTROL";
+    case Channel::SimControlAck:
+      return "SIM_CONTROL_ACK";
+    case Channel::SimGeometry:
+      return "SIM_GEOMETRY";
   }
   throw std::invalid_argument("unknown channel");
 }

@@ -142,9 +142,9 @@ void ConfigFile::parse_into(const std::string& text, const std::string& name,
     std::string key = raw.substr(first, equals - first);
     key.erase(key.find_last_not_of(" \t") + 1);
     if (!valid_key(key)) {
-      throw ConfigError(name, line_number,
-                        "expected a key of letters, digits and '_' before '=', found '" + key +
-                            "'");
+      throw ConfigError(
+          name, line_number,
+          "expected a key of letters, digits and '_' before '=', found '" + key + "'");
     }
     std::vector<std::string> values = tokenize(raw.substr(equals + 1), name, line_number);
     if (values.empty()) {
@@ -181,9 +181,13 @@ void ConfigFile::parse_into(const std::string& text, const std::string& name,
   base_chain.pop_back();
 }
 
-bool ConfigFile::has(const std::string& key) const { return entries_.count(key) != 0; }
+bool ConfigFile::has(const std::string& key) const {
+  return entries_.count(key) != 0;
+}
 
-std::vector<std::string> ConfigFile::keys() const { return order_; }
+std::vector<std::string> ConfigFile::keys() const {
+  return order_;
+}
 
 std::string ConfigFile::where(const std::string& key) const {
   const auto found = entries_.find(key);
@@ -199,7 +203,8 @@ void ConfigFile::fail(const std::string& key, const std::string& what) const {
 const ConfigEntry& ConfigFile::entry(const std::string& key, const char* expected) const {
   const auto found = entries_.find(key);
   if (found == entries_.end()) {
-    throw ConfigError(path_, 0, std::string("missing required key '") + key + "' (" + expected + ")");
+    throw ConfigError(path_, 0,
+                      std::string("missing required key '") + key + "' (" + expected + ")");
   }
   used_[key] = true;
   return found->second;

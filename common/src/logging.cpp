@@ -9,10 +9,14 @@ void setup_logging(const std::string& process_name, int verbosity) {
   auto logger = spdlog::stderr_color_mt(process_name);
   logger->set_pattern("[%H:%M:%S.%e] [%n] [%^%l%$] %v");
   spdlog::level::level_enum level = spdlog::level::info;
-  if (verbosity >= 2) level = spdlog::level::trace;
-  else if (verbosity == 1) level = spdlog::level::debug;
-  else if (verbosity == -1) level = spdlog::level::warn;
-  else if (verbosity <= -2) level = spdlog::level::err;
+  if (verbosity >= 2)
+    level = spdlog::level::trace;
+  else if (verbosity == 1)
+    level = spdlog::level::debug;
+  else if (verbosity == -1)
+    level = spdlog::level::warn;
+  else if (verbosity <= -2)
+    level = spdlog::level::err;
   logger->set_level(level);
   logger->flush_on(spdlog::level::info);
   spdlog::set_default_logger(logger);

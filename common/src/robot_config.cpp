@@ -15,13 +15,19 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
   RobotTypeConfig r;
   r.name = name;
   const std::string drive = config.string("DRIVE");
-  if (drive == "omni") r.drive = DriveKind::Omni;
-  else if (drive == "differential") r.drive = DriveKind::Differential;
-  else config.fail("DRIVE", "expected 'omni' or 'differential', got '" + drive + "'");
+  if (drive == "omni")
+    r.drive = DriveKind::Omni;
+  else if (drive == "differential")
+    r.drive = DriveKind::Differential;
+  else
+    config.fail("DRIVE", "expected 'omni' or 'differential', got '" + drive + "'");
   const std::string model = config.string("DRIVE_MODEL");
-  if (model == "jointed") r.model = DriveModel::Jointed;
-  else if (model == "planar") r.model = DriveModel::Planar;
-  else config.fail("DRIVE_MODEL", "expected 'jointed' or 'planar', got '" + model + "'");
+  if (model == "jointed")
+    r.model = DriveModel::Jointed;
+  else if (model == "planar")
+    r.model = DriveModel::Planar;
+  else
+    config.fail("DRIVE_MODEL", "expected 'jointed' or 'planar', got '" + model + "'");
 
   r.mass = config.real_in("MASS", 0.01, 100.0);
   r.moment_of_inertia = config.real_in("MOMENT_OF_INERTIA", 1e-6, 100.0);
@@ -33,8 +39,8 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
   const auto angles = config.reals("WHEEL_ANGLES_DEG");
   const std::size_t expected_wheels = r.drive == DriveKind::Differential ? 2 : 0;
   if (expected_wheels != 0 && angles.size() != expected_wheels) {
-    config.fail("WHEEL_ANGLES_DEG", "a differential drive has exactly 2 wheels, got " +
-                                        std::to_string(angles.size()));
+    config.fail("WHEEL_ANGLES_DEG",
+                "a differential drive has exactly 2 wheels, got " + std::to_string(angles.size()));
   }
   if (r.drive == DriveKind::Omni && angles.size() < 3) {
     config.fail("WHEEL_ANGLES_DEG",

@@ -40,8 +40,10 @@ ScenarioConfig load_scenario_config(const ConfigFile& config, const std::string&
         }
       } catch (const std::exception&) {
         config.fail(key, "expected a real number for " +
-                             std::string(i == 0 ? "x" : i == 1 ? "y" : "heading") + ", got '" +
-                             values[static_cast<std::size_t>(i) + 1] + "'");
+                             std::string(i == 0   ? "x"
+                                         : i == 1 ? "y"
+                                                  : "heading") +
+                             ", got '" + values[static_cast<std::size_t>(i) + 1] + "'");
       }
     }
     robot.x = numbers[0];

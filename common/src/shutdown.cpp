@@ -50,9 +50,17 @@ ShutdownSignal::~ShutdownSignal() {
   g_installed = false;
 }
 
-bool ShutdownSignal::requested() const { return g_requested; }
-int ShutdownSignal::fd() const { return g_pipe[0]; }
-int ShutdownSignal::signal_number() const { return g_signal; }
-void ShutdownSignal::request() { on_signal(0); }
+bool ShutdownSignal::requested() const {
+  return g_requested;
+}
+int ShutdownSignal::fd() const {
+  return g_pipe[0];
+}
+int ShutdownSignal::signal_number() const {
+  return g_signal;
+}
+void ShutdownSignal::request() {
+  on_signal(0);
+}
 
 }  // namespace ubersim

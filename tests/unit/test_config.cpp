@@ -28,8 +28,9 @@ void expect_config_error(F action, const std::vector<std::string>& pieces) {
 class TempDir {
  public:
   TempDir() {
-    path_ = std::filesystem::temp_directory_path() /
-            ("ubersim_config_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++));
+    path_ =
+        std::filesystem::temp_directory_path() /
+        ("ubersim_config_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++));
     std::filesystem::create_directories(path_);
   }
   ~TempDir() { std::filesystem::remove_all(path_); }
@@ -86,7 +87,8 @@ TEST(Config, WrongTypeNamesFileLineAndExpectation) {
 
 TEST(Config, WrongLengthNamesExpectedCount) {
   const auto config = ConfigFile::parse("POS = 1 2\n", "f.cfg");
-  expect_config_error([&] { config.reals("POS", 3); }, {"f.cfg:1", "POS", "expected 3 values", "got 2"});
+  expect_config_error([&] { config.reals("POS", 3); },
+                      {"f.cfg:1", "POS", "expected 3 values", "got 2"});
   expect_config_error([&] { config.real("POS"); }, {"f.cfg:1", "expected 1 value"});
 }
 

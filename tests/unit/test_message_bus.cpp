@@ -1,12 +1,11 @@
 // The typed bus over real LCM (the in-process memq:// provider).
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <ubersim/radio_packet_t.hpp>
 
 #include "ubersim/message_bus.hpp"
 #include "ubersim/shutdown.hpp"
-
-#include <csignal>
 
 TEST(MessageBus, DeliversTypedMessagesToCallables) {
   ubersim::MessageBus bus("memq://");

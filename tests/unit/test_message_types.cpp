@@ -13,7 +13,6 @@
 #include <ubersim/team_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
 #include <ubersim/vision_geometry_t.hpp>
-
 #include <vector>
 
 namespace {
@@ -183,7 +182,8 @@ TEST(MessageTypes, SimControl) {
   control.speed_factor = 4.0;
   control.seed = 1234567890123LL;
   const auto decoded = round_trip(control);
-  EXPECT_EQ(decoded.action, +ubersim::sim_control_t::SETUP);  // + : LCM constants have no out-of-class definition
+  EXPECT_EQ(decoded.action,
+            +ubersim::sim_control_t::SETUP);  // + : LCM constants have no out-of-class definition
   EXPECT_EQ(decoded.robots[0].robot_type, "diff_drive_cmdragons02");
   EXPECT_DOUBLE_EQ(decoded.ball.linear_velocity[1], 2.0);
   EXPECT_EQ(decoded.seed, 1234567890123LL);

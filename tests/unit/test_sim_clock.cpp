@@ -14,7 +14,8 @@ TEST(SimClock, AdvancesRejectsStaleAndDetectsReset) {
   EXPECT_EQ(clock.update(1.0, 240), SimClock::Update::Advanced);
   EXPECT_EQ(clock.update(0.5, 120), SimClock::Update::Rejected);  // out of order
   EXPECT_DOUBLE_EQ(clock.now(), 1.0);
-  EXPECT_EQ(clock.update(std::numeric_limits<double>::quiet_NaN(), 241), SimClock::Update::Rejected);
+  EXPECT_EQ(clock.update(std::numeric_limits<double>::quiet_NaN(), 241),
+            SimClock::Update::Rejected);
   EXPECT_EQ(clock.update(-1.0, 241), SimClock::Update::Rejected);
   EXPECT_EQ(clock.update(0.0, 0), SimClock::Update::Reset);
   EXPECT_DOUBLE_EQ(clock.now(), 0.0);

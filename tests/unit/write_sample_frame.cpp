@@ -1,12 +1,11 @@
 // Writes one encoded vision_frame_t to a file (for the Java decode test), or
 // publishes it on VISION a few times a second (to look at in lcm-spy).
-#include <ubersim/vision_frame_t.hpp>
-
 #include <chrono>
 #include <fstream>
 #include <iostream>
 #include <string>
 #include <thread>
+#include <ubersim/vision_frame_t.hpp>
 #include <vector>
 
 #include "ubersim/cli.hpp"
@@ -24,7 +23,8 @@ int main(int argc, char** argv) {
     std::vector<uint8_t> bytes(static_cast<size_t>(frame.getEncodedSize()));
     frame.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
     std::ofstream(argv[2], std::ios::binary)
-        .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+        .write(reinterpret_cast<const char*>(bytes.data()),
+               static_cast<std::streamsize>(bytes.size()));
     return 0;
   }
   if (argc == 3 && std::string(argv[1]) == "--publish") {

@@ -10,7 +10,7 @@ namespace ubersim {
 
 enum class Team : int { Yellow = 0, Blue = 1 };
 inline constexpr std::array<Team, 2> kTeams{Team::Yellow, Team::Blue};
-const char* team_name(Team team);               // "yellow" / "blue"
+const char* team_name(Team team);                      // "yellow" / "blue"
 bool parse_team(const std::string& text, Team& team);  // accepts yellow/blue/y/b/0/1
 
 enum class Channel {
@@ -26,11 +26,17 @@ enum class Channel {
   SimControlAck,        // sim_control_ack_t, physics -> referee and tools
   SimGeometry,          // field_geometry_t, physics -> vision emulator and tools
 };
-inline constexpr std::array<Channel, 11> kAllChannels{
-    Channel::Vision,      Channel::VisionGeometry,      Channel::RadioYellow,
-    Channel::RadioBlue,   Channel::RadioFeedbackYellow, Channel::RadioFeedbackBlue,
-    Channel::SimCommands, Channel::SimState,            Channel::SimControl,
-    Channel::SimControlAck, Channel::SimGeometry};
+inline constexpr std::array<Channel, 11> kAllChannels{Channel::Vision,
+                                                      Channel::VisionGeometry,
+                                                      Channel::RadioYellow,
+                                                      Channel::RadioBlue,
+                                                      Channel::RadioFeedbackYellow,
+                                                      Channel::RadioFeedbackBlue,
+                                                      Channel::SimCommands,
+                                                      Channel::SimState,
+                                                      Channel::SimControl,
+                                                      Channel::SimControlAck,
+                                                      Channel::SimGeometry};
 
 // The name a channel has with no prefix and no override, e.g. "RADIO_YELLOW".
 const char* base_channel_name(Channel channel);

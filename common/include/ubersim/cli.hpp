@@ -25,7 +25,7 @@ struct CommonOptions {
   int quiet = 0;
 
   int verbosity() const { return verbose - quiet; }
-  ChannelNames channels() const;     // throws std::invalid_argument on a bad override
+  ChannelNames channels() const;    // throws std::invalid_argument on a bad override
   std::string config_root() const;  // config_dir or the built-in default
 };
 

@@ -1,8 +1,7 @@
 #pragma once
 // A field config (config/fields/*.cfg) read into plain data.
-#include <ubersim/field_geometry_t.hpp>
-
 #include <string>
+#include <ubersim/field_geometry_t.hpp>
 
 #include "ubersim/config.hpp"
 
@@ -10,21 +9,21 @@ namespace ubersim {
 
 struct FieldConfig {
   std::string name;
-  double field_length = 0;         // m
-  double field_width = 0;          // m
-  double boundary_width = 0;       // m
-  double line_width = 0;           // m
-  double goal_width = 0;           // m
-  double goal_depth = 0;           // m
-  double goal_height = 0;          // m
-  double goal_wall_thickness = 0;  // m
-  double wall_height = 0;          // m
-  double wall_thickness = 0;       // m
-  double center_circle_radius = 0; // m
-  double penalty_area_depth = 0;   // m
-  double penalty_area_width = 0;   // m
-  double wall_restitution = 0;     // unitless
-  double wall_friction = 0;        // unitless
+  double field_length = 0;          // m
+  double field_width = 0;           // m
+  double boundary_width = 0;        // m
+  double line_width = 0;            // m
+  double goal_width = 0;            // m
+  double goal_depth = 0;            // m
+  double goal_height = 0;           // m
+  double goal_wall_thickness = 0;   // m
+  double wall_height = 0;           // m
+  double wall_thickness = 0;        // m
+  double center_circle_radius = 0;  // m
+  double penalty_area_depth = 0;    // m
+  double penalty_area_width = 0;    // m
+  double wall_restitution = 0;      // unitless
+  double wall_friction = 0;         // unitless
 
   // Inner faces of the boundary walls: |x| <= half_length_to_wall(), same for y.
   double half_length_to_wall() const { return field_length / 2 + boundary_width; }

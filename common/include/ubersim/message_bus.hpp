@@ -3,9 +3,8 @@
 // subscribe and prints-and-drops undecodable messages on its own; here every
 // subscription decodes itself, so a malformed message is counted, logged
 // (throttled) and dropped, and a handler is any callable.
-#include <lcm/lcm-cpp.hpp>
-
 #include <functional>
+#include <lcm/lcm-cpp.hpp>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -55,9 +54,9 @@ class MessageBus {
       Msg message;
       const int used = message.decode(buffer->data, 0, static_cast<int>(buffer->data_size));
       if (used < 0 || static_cast<uint32_t>(used) != buffer->data_size) {
-        bus->bad_input_.warn("decode:" + channel, "dropped a message on " + channel +
-                                                      " that does not decode as " +
-                                                      Msg::getTypeName());
+        bus->bad_input_.warn(
+            "decode:" + channel,
+            "dropped a message on " + channel + " that does not decode as " + Msg::getTypeName());
         return;
       }
       handler(message);

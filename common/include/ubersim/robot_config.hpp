@@ -13,8 +13,8 @@ enum class DriveKind { Omni, Differential };
 enum class DriveModel { Jointed, Planar };
 
 struct WheelConfig {
-  double angle = 0;      // rad, direction from the robot centre to the wheel (0 = forward)
-  double distance = 0;   // m, robot centre to the wheel's contact point
+  double angle = 0;     // rad, direction from the robot centre to the wheel (0 = forward)
+  double distance = 0;  // m, robot centre to the wheel's contact point
   // Unit vector (robot frame) along which the wheel drives the robot: tangential
   // for omni wheels, forward for differential drive.
   double drive_x = 0, drive_y = 0;
@@ -33,13 +33,13 @@ struct RobotTypeConfig {
   double front_distance = 0;         // m, centre to the flat front face (kicker, dribbler)
 
   std::vector<WheelConfig> wheels;
-  double wheel_radius = 0;            // m
-  double wheel_width = 0;             // m
-  double wheel_mass = 0;              // kg (jointed model only)
-  double wheel_friction = 0;          // unitless, along the rolling direction
-  double wheel_lateral_friction = 0;  // unitless, across it (small for omni rollers)
-  double motor_max_torque = 0;        // N m at the wheel
-  double motor_max_speed = 0;         // rad/s at the wheel
+  double wheel_radius = 0;               // m
+  double wheel_width = 0;                // m
+  double wheel_mass = 0;                 // kg (jointed model only)
+  double wheel_friction = 0;             // unitless, along the rolling direction
+  double wheel_lateral_friction = 0;     // unitless, across it (small for omni rollers)
+  double motor_max_torque = 0;           // N m at the wheel
+  double motor_max_speed = 0;            // rad/s at the wheel
   std::vector<double> caster_positions;  // m, x y pairs (differential drive)
 
   double max_speed = 0;                 // m/s, commands are clamped to it
@@ -47,17 +47,17 @@ struct RobotTypeConfig {
   double max_acceleration = 0;          // m/s^2, on-board limit, 0 = none
   double max_angular_acceleration = 0;  // rad/s^2, 0 = none
 
-  double dribbler_max_speed = 0;        // rad/s of the roller, 0 = no dribbler
-  double dribbler_roller_radius = 0;    // m
-  double dribbler_height = 0;           // m, roller axis above the ground
-  double dribbler_width = 0;            // m
-  double dribbler_max_torque = 0;       // N m on the roller
+  double dribbler_max_speed = 0;      // rad/s of the roller, 0 = no dribbler
+  double dribbler_roller_radius = 0;  // m
+  double dribbler_height = 0;         // m, roller axis above the ground
+  double dribbler_width = 0;          // m
+  double dribbler_max_torque = 0;     // N m on the roller
 
-  double kick_max_speed = 0;            // m/s, 0 = no kicker
-  double chip_max_speed = 0;            // m/s, 0 = cannot chip
-  double chip_default_angle = 0;        // rad
-  double kicker_recharge_time = 0;      // s
-  double kicker_width = 0;              // m, width of the kicker face the ball must touch
+  double kick_max_speed = 0;        // m/s, 0 = no kicker
+  double chip_max_speed = 0;        // m/s, 0 = cannot chip
+  double chip_default_angle = 0;    // rad
+  double kicker_recharge_time = 0;  // s
+  double kicker_width = 0;          // m, width of the kicker face the ball must touch
 
   bool has_dribbler() const { return dribbler_max_speed > 0; }
   bool has_kicker() const { return kick_max_speed > 0 || chip_max_speed > 0; }

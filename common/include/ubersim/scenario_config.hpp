@@ -28,8 +28,8 @@ struct ScenarioConfig {
   std::string name;
   std::string field;
   std::string ball;
-  double ball_x = 0;  // m
-  double ball_y = 0;  // m
+  double ball_x = 0;                   // m
+  double ball_y = 0;                   // m
   std::vector<RobotPlacement> robots;  // sorted by team, then id
 };
 

@@ -12,9 +12,9 @@ class ShutdownSignal {
   ShutdownSignal& operator=(const ShutdownSignal&) = delete;
 
   bool requested() const;
-  int fd() const;     // readable once a signal arrived
+  int fd() const;  // readable once a signal arrived
   int signal_number() const;
-  void request();     // as if a signal had arrived (for tests and fatal errors)
+  void request();  // as if a signal had arrived (for tests and fatal errors)
 };
 
 }  // namespace ubersim
