@@ -17,7 +17,7 @@ std::filesystem::path resolve_config(const std::filesystem::path& config_dir,
                                      const std::string& kind, const std::string& name) {
   const bool is_path = name.find('/') != std::string::npos ||
                        (name.size() > 4 && name.compare(name.size() - 4, 4, ".cfg") == 0);
-  const std::filesystem::path path =
+  std::filesystem::path path =
       is_path ? std::filesystem::path(name) : config_dir / kind / (name + ".cfg");
   if (std::filesystem::is_regular_file(path)) return path;
 
