@@ -1,0 +1,55 @@
+#pragma once
+// One team's feedback (return) channel, in sim time. At FEEDBACK_RATE the
+// robots' reports (ball on the dribbler, kicker charged) are sampled from the
+// ground truth; each packet may be lost whole, each robot's report may be lost
+// on its own, and what gets through reaches the team's control software
+// FEEDBACK_LATENCY (+ jitter, order kept) later.
+//
+// Unlike commands (which physics holds until t_apply), feedback is published by
+// this emulator itself, on the first SIM_STATE at or after its delivery time:
+// t_sent is that SIM_STATE's time, so it lies within one physics step after
+// t_measured + latency.
+#include <cstdint>
+#include <ubersim/radio_feedback_t.hpp>
+#include <ubersim/sim_state_t.hpp>
+#include <vector>
+
+#include "ubersim/delay_line.hpp"
+#include "ubersim/radio/link_random.hpp"
+#include "ubersim/radio/radio_profile.hpp"
+
+namespace ubersim::radio {
+
+struct FeedbackLinkStats {
+  std::uint64_t sampled = 0;       // packets the robots sent
+  std::uint64_t lost_packets = 0;  // lost whole
+  std::uint64_t lost_reports = 0;  // single robot reports lost
+  std::uint64_t delivered = 0;     // packets published to the team
+};
+
+class FeedbackLink {
+ public:
+  static constexpr double kTimeEpsilon = 1e-6;  // s
+
+  FeedbackLink(const RadioProfile& profile, Team team, std::uint64_t seed);
+
+  // Called with every accepted SIM_STATE (its time is `state.sim_time`): samples
+  // the team's robots when a feedback period is due, and returns every packet
+  // whose delivery time has come, oldest first, with t_sent set.
+  std::vector<radio_feedback_t> on_sim_state(const sim_state_t& state);
+  void reset();
+
+  const FeedbackLinkStats& stats() const { return stats_; }
+
+ private:
+  void sample(const sim_state_t& state);
+
+  RadioProfile profile_;
+  Team team_;
+  LinkRandom random_;
+  double next_sample_;
+  DelayLine<radio_feedback_t> in_flight_;
+  FeedbackLinkStats stats_;
+};
+
+}  // namespace ubersim::radio

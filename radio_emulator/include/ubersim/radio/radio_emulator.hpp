@@ -1,0 +1,85 @@
+#pragma once
+// The radio emulator without its transport: both teams' links, fed with
+// SIM_STATE and radio packets, handing what gets through to sinks. The program
+// (main.cpp) wires it to LCM; tests can drive it in-process.
+//
+// Sim time of a packet's arrival is the time of the latest SIM_STATE seen, so
+// with physics paced in real time the arrival time has a granularity of one
+// physics step (4.2 ms at 240 Hz).
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <ubersim/radio_feedback_t.hpp>
+#include <ubersim/radio_packet_t.hpp>
+#include <ubersim/sim_commands_t.hpp>
+#include <ubersim/sim_state_t.hpp>
+
+#include "ubersim/logging.hpp"
+#include "ubersim/radio/command_link.hpp"
+#include "ubersim/radio/command_validator.hpp"
+#include "ubersim/radio/feedback_link.hpp"
+#include "ubersim/radio/radio_profile.hpp"
+#include "ubersim/sim_clock.hpp"
+
+namespace ubersim::radio {
+
+struct TeamReport {
+  std::uint64_t packets_received = 0;
+  std::array<std::uint64_t, kProblemCount> problems{};  // by Problem
+  CommandLinkStats commands;
+  FeedbackLinkStats feedback;
+
+  std::uint64_t problem(Problem p) const { return problems[static_cast<int>(p)]; }
+};
+
+class RadioEmulator {
+ public:
+  struct Sinks {
+    std::function<void(const sim_commands_t&)> commands;
+    std::function<void(Team, const radio_feedback_t&)> feedback;
+  };
+
+  // seed_override replaces both profiles' SEED (the --seed option).
+  RadioEmulator(const std::array<RadioProfile, 2>& profiles,
+                std::optional<std::uint64_t> seed_override, Sinks sinks);
+
+  void on_sim_state(const sim_state_t& state);
+  // A packet that came on `channel_team`'s radio channel.
+  void on_radio_packet(Team channel_team, const radio_packet_t& packet);
+
+  TeamReport report(Team team) const;
+  std::string summary(Team team) const;  // one line for the log
+  std::uint64_t rejected_sim_states() const { return rejected_sim_states_; }
+  std::uint64_t resets() const { return resets_; }
+  ThrottledLog& warnings() { return warnings_; }
+
+ private:
+  struct TeamLink {
+    TeamLink(const RadioProfile& team_profile, Team team, std::uint64_t seed)
+        : profile(team_profile),
+          commands(team_profile, team, seed),
+          feedback(team_profile, team, seed) {}
+    RadioProfile profile;
+    CommandLink commands;
+    FeedbackLink feedback;
+    RobotsOnField robots;
+    std::uint64_t packets_received = 0;
+    std::array<std::uint64_t, kProblemCount> problems{};
+  };
+
+  TeamLink& link(Team team) { return links_[static_cast<int>(team)]; }
+  const TeamLink& link(Team team) const { return links_[static_cast<int>(team)]; }
+  void record(Team team, const Finding& finding);
+  void publish_commands(const std::optional<sim_commands_t>& message);
+
+  std::array<TeamLink, 2> links_;
+  Sinks sinks_;
+  SimClock clock_;
+  ThrottledLog warnings_;
+  std::uint64_t rejected_sim_states_ = 0;
+  std::uint64_t resets_ = 0;
+};
+
+}  // namespace ubersim::radio

@@ -1,0 +1,103 @@
+// ubersim_radio: the radio emulator process. Listens where each team's real
+// radio server would (RADIO_YELLOW / RADIO_BLUE) and forwards what an
+// emulated radio link lets through to physics on SIM_COMMANDS; returns the
+// robots' feedback on RADIO_FEEDBACK_<TEAM>. See /work/notes/radio.md.
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <optional>
+#include <ubersim/radio_packet_t.hpp>
+#include <ubersim/sim_state_t.hpp>
+
+#include "ubersim/cli.hpp"
+#include "ubersim/config.hpp"
+#include "ubersim/logging.hpp"
+#include "ubersim/message_bus.hpp"
+#include "ubersim/radio/radio_emulator.hpp"
+#include "ubersim/radio/radio_profile.hpp"
+#include "ubersim/shutdown.hpp"
+
+namespace {
+
+struct Options {
+  ubersim::CommonOptions common;
+  std::string profile = "cmdragons02";
+  std::string yellow_profile;
+  std::string blue_profile;
+  std::optional<std::uint64_t> seed;
+};
+
+int run(const Options& options) {
+  using namespace ubersim;
+  const std::string config_dir = options.common.config_root();
+  const auto load = [&](const std::string& override_name) {
+    return radio::load_radio_profile(config_dir,
+                                     override_name.empty() ? options.profile : override_name);
+  };
+  const std::array<radio::RadioProfile, 2> profiles{load(options.yellow_profile),
+                                                    load(options.blue_profile)};
+  const ChannelNames channels = options.common.channels();
+
+  ShutdownSignal shutdown;
+  MessageBus bus(with_receive_buffer(options.common.lcm_url));
+  const std::string commands_channel = channels(Channel::SimCommands);
+  const std::array<std::string, 2> feedback_channels{channels.radio_feedback(Team::Yellow),
+                                                     channels.radio_feedback(Team::Blue)};
+  radio::RadioEmulator emulator(
+      profiles, options.seed,
+      {[&](const sim_commands_t& message) { bus.publish(commands_channel, message); },
+       [&](Team team, const radio_feedback_t& message) {
+         bus.publish(feedback_channels[static_cast<int>(team)], message);
+       }});
+
+  bus.subscribe<sim_state_t>(channels(Channel::SimState),
+                             [&](const sim_state_t& state) { emulator.on_sim_state(state); });
+  for (Team team : kTeams) {
+    bus.subscribe<radio_packet_t>(channels.radio(team), [&emulator, team](const radio_packet_t& p) {
+      emulator.on_radio_packet(team, p);
+    });
+  }
+
+  for (Team team : kTeams) {
+    const auto& p = profiles[static_cast<int>(team)];
+    spdlog::info(
+        "{}: {} -> {} with profile {} ({} Hz, latency {:.4f} s, jitter {:.4f} s, loss {} / robot "
+        "{}, timeout {} s); feedback {} Hz on {}",
+        team_name(team), channels.radio(team), commands_channel, p.name, p.max_packet_rate,
+        p.command.latency, p.command.latency_jitter, p.command.packet_loss, p.command.robot_loss,
+        p.command_timeout, p.feedback_rate, channels.radio_feedback(team));
+  }
+  spdlog::info("sim time from {}; LCM {}", channels(Channel::SimState), options.common.lcm_url);
+
+  while (!shutdown.requested()) bus.wait_and_handle(200, &shutdown);
+
+  for (Team team : kTeams) spdlog::info("{}", emulator.summary(team));
+  spdlog::info("malformed LCM messages dropped: {}; out-of-order SIM_STATEs ignored: {}",
+               bus.malformed_count(), emulator.rejected_sim_states());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  CLI::App app{"ubersim radio emulator: each team's radio link (rate limit, latency, loss)"};
+  ubersim::add_common_options(app, options.common);
+  app.add_option("--profile", options.profile,
+                 "radio profile for both teams: config/radio/NAME.cfg or a path")
+      ->capture_default_str();
+  app.add_option("--yellow-profile", options.yellow_profile, "profile for the yellow team only");
+  app.add_option("--blue-profile", options.blue_profile, "profile for the blue team only");
+  app.add_option("--seed", options.seed, "seed of every random draw (default: the profiles' SEED)");
+  CLI11_PARSE(app, argc, argv);
+
+  ubersim::setup_logging("radio", options.common.verbosity());
+  try {
+    return run(options);
+  } catch (const ubersim::ConfigError& error) {
+    spdlog::error("{}", error.what());
+    return 2;
+  } catch (const std::exception& error) {
+    spdlog::error("{}", error.what());
+    return 1;
+  }
+}

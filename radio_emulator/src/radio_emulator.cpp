@@ -1,0 +1,114 @@
+#include "ubersim/radio/radio_emulator.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <ubersim/team_t.hpp>
+
+namespace ubersim::radio {
+namespace {
+
+std::uint64_t seed_of(const RadioProfile& profile, std::optional<std::uint64_t> seed_override) {
+  return seed_override ? *seed_override : profile.seed;
+}
+
+}  // namespace
+
+RadioEmulator::RadioEmulator(const std::array<RadioProfile, 2>& profiles,
+                             std::optional<std::uint64_t> seed_override, Sinks sinks)
+    : links_{TeamLink(profiles[0], Team::Yellow, seed_of(profiles[0], seed_override)),
+             TeamLink(profiles[1], Team::Blue, seed_of(profiles[1], seed_override))},
+      sinks_(std::move(sinks)) {}
+
+void RadioEmulator::on_sim_state(const sim_state_t& state) {
+  switch (clock_.update(state.sim_time, state.step)) {
+    case SimClock::Update::Rejected:
+      ++rejected_sim_states_;
+      warnings_.warn("sim_state",
+                     "ignored a SIM_STATE that goes back in time or is not finite (t=" +
+                         std::to_string(state.sim_time) + " s)");
+      return;
+    case SimClock::Update::Reset:
+      ++resets_;
+      spdlog::info("sim time went back to {:.3f} s: world reset, radio links start afresh",
+                   state.sim_time);
+      for (auto& team_link : links_) {
+        team_link.commands.reset();
+        team_link.feedback.reset();
+      }
+      break;
+    case SimClock::Update::Advanced:
+      break;
+  }
+
+  for (auto& team_link : links_) team_link.robots.clear();
+  for (const auto& robot : state.robots) {
+    if (robot.team != team_t::YELLOW && robot.team != team_t::BLUE) continue;
+    links_[robot.team].robots[robot.robot_id] = robot.num_wheels;
+  }
+
+  for (Team team : kTeams) {
+    TeamLink& team_link = link(team);
+    publish_commands(team_link.commands.poll(clock_.now()));
+    for (const auto& feedback : team_link.feedback.on_sim_state(state)) {
+      if (sinks_.feedback) sinks_.feedback(team, feedback);
+    }
+  }
+}
+
+void RadioEmulator::on_radio_packet(Team channel_team, const radio_packet_t& packet) {
+  TeamLink& team_link = link(channel_team);
+  ++team_link.packets_received;
+  if (!clock_.started()) {
+    record(channel_team, {Problem::NoSimTime, -1, "no SIM_STATE yet: is physics running?"});
+    return;
+  }
+  Validated validated =
+      validate_packet(packet, channel_team, team_link.profile.limits, team_link.robots);
+  for (const auto& finding : validated.findings) record(channel_team, finding);
+  if (!validated.packet_ok || validated.packet.commands.empty()) return;
+  publish_commands(team_link.commands.offer(std::move(validated.packet), clock_.now()));
+}
+
+void RadioEmulator::publish_commands(const std::optional<sim_commands_t>& message) {
+  if (message && sinks_.commands) sinks_.commands(*message);
+}
+
+void RadioEmulator::record(Team team, const Finding& finding) {
+  ++link(team).problems[static_cast<int>(finding.problem)];
+  std::string message =
+      std::string("dropped from ") + team_name(team) + " radio: " + problem_name(finding.problem);
+  if (finding.robot_id >= 0) message += " (robot " + std::to_string(finding.robot_id) + ")";
+  if (!finding.detail.empty()) message += ": " + finding.detail;
+  warnings_.warn(std::string(team_name(team)) + ":" + problem_name(finding.problem), message);
+}
+
+TeamReport RadioEmulator::report(Team team) const {
+  const TeamLink& team_link = link(team);
+  TeamReport r;
+  r.packets_received = team_link.packets_received;
+  r.problems = team_link.problems;
+  r.commands = team_link.commands.stats();
+  r.feedback = team_link.feedback.stats();
+  return r;
+}
+
+std::string RadioEmulator::summary(Team team) const {
+  const TeamReport r = report(team);
+  std::string text =
+      std::string(team_name(team)) + " (profile " + link(team).profile.name + "): received " +
+      std::to_string(r.packets_received) + ", superseded " + std::to_string(r.commands.superseded) +
+      ", transmitted " + std::to_string(r.commands.transmitted) + ", lost " +
+      std::to_string(r.commands.lost_packets) + " packets + " +
+      std::to_string(r.commands.lost_entries) + " robot entries, forwarded " +
+      std::to_string(r.commands.forwarded_packets) + "; feedback sent " +
+      std::to_string(r.feedback.sampled) + ", lost " + std::to_string(r.feedback.lost_packets) +
+      ", delivered " + std::to_string(r.feedback.delivered);
+  for (int p = 0; p < kProblemCount; ++p) {
+    if (r.problems[p] == 0) continue;
+    text += "; " + std::string(problem_name(static_cast<Problem>(p))) + ": " +
+            std::to_string(r.problems[p]);
+  }
+  return text;
+}
+
+}  // namespace ubersim::radio
