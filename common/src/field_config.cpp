@@ -23,6 +23,7 @@ FieldConfig load_field_config(const ConfigFile& config, const std::string& name)
   f.center_circle_radius = config.real_in("CENTER_CIRCLE_RADIUS", 0.0, f.field_width / 2);
   f.penalty_area_depth = config.real_in("PENALTY_AREA_DEPTH", 0.0, f.field_length / 2);
   f.penalty_area_width = config.real_in("PENALTY_AREA_WIDTH", 0.0, f.field_width);
+  f.penalty_mark_distance = config.real_in("PENALTY_MARK_DISTANCE", 0.0, f.field_length / 2);
   f.wall_restitution = config.real_in("WALL_RESTITUTION", 0.0, 1.0);
   f.wall_friction = config.real_in("WALL_FRICTION", 0.0, 10.0);
   if (f.goal_depth > f.boundary_width + f.wall_thickness && f.boundary_width > 0) {
@@ -56,6 +57,7 @@ field_geometry_t FieldConfig::to_message(double ball_radius) const {
   m.penalty_area_depth = penalty_area_depth;
   m.penalty_area_width = penalty_area_width;
   m.ball_radius = ball_radius;
+  m.penalty_mark_distance = penalty_mark_distance;
   return m;
 }
 

@@ -22,6 +22,7 @@ struct FieldConfig {
   double center_circle_radius = 0;  // m
   double penalty_area_depth = 0;    // m
   double penalty_area_width = 0;    // m
+  double penalty_mark_distance = 0;  // m, goal line of the attacked goal to the penalty mark
   double wall_restitution = 0;      // unitless
   double wall_friction = 0;         // unitless
 
