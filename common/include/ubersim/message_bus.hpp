@@ -52,7 +52,14 @@ class MessageBus {
     std::function<void(const Msg&)> handler;
     void on_message(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
       Msg message;
-      const int used = message.decode(buffer->data, 0, static_cast<int>(buffer->data_size));
+      int used = -1;
+      try {
+        used = message.decode(buffer->data, 0, static_cast<int>(buffer->data_size));
+      } catch (const std::exception&) {
+        // lcm-gen's decode resizes arrays to the length the bytes claim before
+        // reading them: a negative or huge length throws length_error/bad_alloc.
+        used = -1;
+      }
       if (used < 0 || static_cast<uint32_t>(used) != buffer->data_size) {
         bus->bad_input_.warn(
             "decode:" + channel,
