@@ -1,0 +1,96 @@
+#pragma once
+// The vision emulator without its process around it: feed it every SIM_STATE
+// and SIM_GEOMETRY, publish what it hands back. All timing is in sim time
+// (DESIGN.md, Time), so the output depends only on the profile, the seed and
+// the stream of states, never on how fast physics runs or on the wall clock.
+//
+// Per state: check it (a bad one is counted and skipped), follow sim time
+// (an older step is out of order and skipped; a step back to 0..2 is a reset),
+// let each camera capture if one of its instants falls on this step, then
+// release every frame whose publication time has come, oldest first.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <ubersim/field_geometry_t.hpp>
+#include <ubersim/sim_state_t.hpp>
+#include <ubersim/vision_frame_t.hpp>
+#include <ubersim/vision_geometry_t.hpp>
+#include <vector>
+
+#include "ubersim/delay_line.hpp"
+#include "ubersim/sim_clock.hpp"
+#include "ubersim/vision/camera_detector.hpp"
+#include "ubersim/vision/capture_schedule.hpp"
+#include "ubersim/vision/random_source.hpp"
+#include "ubersim/vision/robot_sizes.hpp"
+#include "ubersim/vision/vision_profile.hpp"
+
+namespace ubersim::vision {
+
+struct VisionStats {
+  std::uint64_t states_used = 0;          // advanced sim time (resets included)
+  std::uint64_t states_invalid = 0;       // content check failed: skipped
+  std::uint64_t states_out_of_order = 0;  // older than one already used: skipped
+  std::uint64_t states_repeated = 0;      // same step again (physics paused): ignored
+  std::uint64_t resets = 0;
+  std::uint64_t frames_captured = 0;
+  std::uint64_t frames_published = 0;
+  std::uint64_t frames_dropped_at_reset = 0;  // pending frames of a world that was reset
+  std::uint64_t capture_instants_missed = 0;  // no state arrived for them
+  std::uint64_t geometry_invalid = 0;
+};
+
+class VisionEmulator {
+ public:
+  enum class Verdict { Used, Reset, Repeated, OutOfOrder, Invalid };
+  struct Outcome {
+    Verdict verdict = Verdict::Used;
+    std::string problem;                 // why an invalid state was skipped
+    std::vector<vision_frame_t> frames;  // to publish now, in order
+  };
+
+  VisionEmulator(VisionProfile profile, RobotSizes robot_sizes);
+
+  Outcome on_sim_state(const sim_state_t& state);
+
+  // Returns true when the geometry was new (different from the last one).
+  // An invalid geometry is counted and ignored (returns false).
+  bool on_field_geometry(const field_geometry_t& geometry);
+  const std::optional<field_geometry_t>& field() const { return field_; }
+
+  // Field plus the camera calibrations as the vision system believes them;
+  // the field is empty (name "") until one is known.
+  vision_geometry_t geometry_message() const;
+
+  const VisionProfile& profile() const { return profile_; }
+  const VisionStats& stats() const { return stats_; }
+  double sim_time() const { return clock_.now(); }
+  std::size_t camera_count() const { return cameras_.size(); }
+  const CameraDetector& camera(std::size_t index) const { return cameras_.at(index).detector; }
+
+ private:
+  struct Camera {
+    CameraDetector detector;
+    CaptureSchedule schedule;
+    RandomSource latency_random;
+    DelayLine<vision_frame_t> pending;
+    double period = 0;
+  };
+
+  const WorldSnapshot& snapshot(const sim_state_t& state);
+  double release_time(Camera& camera, double t_capture);
+  void restart_after_reset();
+  void check_step_fits(const sim_state_t& state);
+
+  VisionProfile profile_;
+  RobotSizes robot_sizes_;
+  std::vector<Camera> cameras_;
+  SimClock clock_;
+  std::optional<field_geometry_t> field_;
+  double ball_radius_;
+  WorldSnapshot world_;
+  bool step_checked_ = false;
+  VisionStats stats_;
+};
+
+}  // namespace ubersim::vision

@@ -1,0 +1,70 @@
+#pragma once
+// A vision emulator profile (config/vision/*.cfg) read into plain data: frame
+// rate, latency, noise, detection and confidence model, and N pinhole cameras
+// with their true pose and the calibration error the vision system believes.
+// Keys and units are listed in config/vision/cmdragons02.cfg and the notes.
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ubersim/config.hpp"
+
+namespace ubersim::vision {
+
+struct CameraProfile {
+  int id = 0;
+  double frame_rate = 0;  // Hz
+  double phase = 0;       // s, captures at phase + n / frame_rate (sim time)
+  // True pose: centre (m) and roll, pitch, yaw (rad) relative to looking
+  // straight down with image columns along field +x and rows along field -y.
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d roll_pitch_yaw = Eigen::Vector3d::Zero();
+  double focal_length = 0;  // px
+  int image_width = 0;      // px
+  int image_height = 0;     // px
+  double principal_x = 0;   // px
+  double principal_y = 0;   // px
+  // Calibration error: what the vision system believes minus the truth.
+  Eigen::Vector3d position_error = Eigen::Vector3d::Zero();        // m
+  Eigen::Vector3d roll_pitch_yaw_error = Eigen::Vector3d::Zero();  // rad
+  double focal_length_error = 0;                                   // px
+
+  double period() const { return 1.0 / frame_rate; }
+};
+
+struct VisionProfile {
+  std::string name;
+  std::uint64_t seed = 0;
+
+  double latency = 0;          // s, capture -> publication on VISION
+  double latency_jitter = 0;   // s, standard deviation added to the latency
+  double processing_time = 0;  // s, t_sent - t_capture
+  double geometry_period = 1;  // s of wall-clock time between VISION_GEOMETRY messages
+
+  double robot_sigma_x = 0;            // m
+  double robot_sigma_y = 0;            // m
+  double robot_sigma_orientation = 0;  // rad
+  double ball_sigma_x = 0;             // m
+  double ball_sigma_y = 0;             // m
+
+  double robot_detection_probability = 1;  // per robot per camera frame
+  double ball_detection_probability = 1;   // per ball per camera frame
+  double robot_confidence = 1;             // mean confidence of a robot detection
+  double ball_confidence = 1;              // mean of a fully visible ball (x visible fraction)
+  double confidence_sigma = 0;             // spread of every confidence
+  double false_ball_rate = 0;              // 1/s per robot in a camera's view
+  double false_ball_spread = 0;            // m, around the point in front of the dribbler
+  double false_ball_confidence = 0;        // mean confidence of a false ball
+  double ball_min_visible_fraction = 0;    // a ball less visible than this is not reported
+  double ball_radius = 0.0215;             // m, until SIM_GEOMETRY names the ball in use
+
+  std::vector<CameraProfile> cameras;
+};
+
+// Reads every key of a profile (and rejects any other). Throws ConfigError.
+VisionProfile load_vision_profile(const ConfigFile& config, const std::string& name);
+// `name` is a profile name under <config_dir>/vision/ or a path to a .cfg file.
+VisionProfile load_vision_profile(const std::string& config_dir, const std::string& name);
+
+}  // namespace ubersim::vision

@@ -1,0 +1,45 @@
+// ubersim_vision: the overhead-camera vision server, emulated (see vision_process.hpp).
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <exception>
+
+#include "ubersim/cli.hpp"
+#include "ubersim/config.hpp"
+#include "ubersim/logging.hpp"
+#include "ubersim/shutdown.hpp"
+#include "ubersim/vision/vision_process.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "ubersim vision emulator: turns ground truth on SIM_STATE into detection frames on "
+      "VISION (rate, latency, noise, dropouts, cameras) as the team's real vision server would"};
+  ubersim::CommonOptions common;
+  ubersim::add_common_options(app, common);
+  ubersim::vision::VisionProcessOptions options;
+  app.add_option("--profile", options.profile,
+                 "emulator profile: a name under <config-dir>/vision/ or a .cfg path")
+      ->capture_default_str();
+  std::uint64_t seed = 0;
+  app.add_option("--seed", seed, "seed for every random draw (overrides the profile's SEED)");
+  app.add_option("--field", options.field,
+                 "field config to assume until physics reports one on SIM_GEOMETRY");
+  CLI11_PARSE(app, argc, argv);
+  if (app.count("--seed") > 0) options.seed = seed;
+
+  ubersim::setup_logging("vision", common.verbosity());
+  try {
+    options.lcm_url = common.lcm_url;
+    options.channels = common.channels();
+    options.config_dir = common.config_root();
+    ubersim::ShutdownSignal shutdown;
+    return ubersim::vision::run_vision_process(options, shutdown);
+  } catch (const ubersim::ConfigError& error) {
+    spdlog::error("{}", error.what());
+    return 2;
+  } catch (const std::exception& error) {
+    spdlog::error("{}", error.what());
+    return 1;
+  }
+}

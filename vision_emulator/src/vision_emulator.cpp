@@ -1,0 +1,180 @@
+#include "ubersim/vision/vision_emulator.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "ubersim/vision/sim_state_check.hpp"
+
+namespace ubersim::vision {
+namespace {
+
+// Whether `duration` is a whole number of steps of `dt` (to a microsecond).
+bool whole_steps(double duration, double dt) {
+  const double steps = duration / dt;
+  return std::abs(steps - std::round(steps)) * dt <= CaptureSchedule::kTolerance;
+}
+
+std::vector<char> encoded(const field_geometry_t& geometry) {
+  std::vector<char> bytes(static_cast<std::size_t>(geometry.getEncodedSize()));
+  geometry.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+}  // namespace
+
+VisionEmulator::VisionEmulator(VisionProfile profile, RobotSizes robot_sizes)
+    : profile_(std::move(profile)),
+      robot_sizes_(std::move(robot_sizes)),
+      ball_radius_(profile_.ball_radius) {
+  cameras_.reserve(profile_.cameras.size());
+  for (const CameraProfile& c : profile_.cameras) {
+    cameras_.push_back(Camera{CameraDetector(c, profile_, profile_.seed),
+                              CaptureSchedule(c.frame_rate, c.phase),
+                              RandomSource(profile_.seed, 2 * static_cast<std::uint64_t>(c.id) + 1),
+                              DelayLine<vision_frame_t>{}, c.period()});
+  }
+}
+
+bool VisionEmulator::on_field_geometry(const field_geometry_t& geometry) {
+  if (!find_field_geometry_problem(geometry).empty()) {
+    ++stats_.geometry_invalid;
+    return false;
+  }
+  const bool changed = !field_ || encoded(*field_) != encoded(geometry);
+  field_ = geometry;
+  ball_radius_ = geometry.ball_radius;
+  return changed;
+}
+
+vision_geometry_t VisionEmulator::geometry_message() const {
+  vision_geometry_t message{};
+  message.t_sent = clock_.now();
+  if (field_) message.field = *field_;
+  message.num_cameras = static_cast<std::int32_t>(cameras_.size());
+  for (const Camera& camera : cameras_) {
+    message.cameras.push_back(camera.detector.believed().to_calibration(camera.detector.id()));
+  }
+  return message;
+}
+
+const WorldSnapshot& VisionEmulator::snapshot(const sim_state_t& state) {
+  world_.sim_time = state.sim_time;
+  world_.ball_present = state.ball_present;
+  world_.ball =
+      Eigen::Vector3d(state.ball.position[0], state.ball.position[1], state.ball.position[2]);
+  world_.ball_radius = ball_radius_;
+  world_.robots.clear();
+  world_.footprints.clear();
+  for (const robot_state_t& r : state.robots) {
+    WorldSnapshot::Robot robot;
+    robot.team = r.team;
+    robot.id = r.robot_id;
+    robot.position = Eigen::Vector2d(r.x, r.y);
+    robot.orientation = r.orientation;
+    robot.size = robot_sizes_.get(r.robot_type);
+    world_.robots.push_back(robot);
+    RobotFootprint footprint;
+    footprint.center = robot.position;
+    footprint.forward = Eigen::Vector2d(std::cos(r.orientation), std::sin(r.orientation));
+    footprint.radius = robot.size.radius;
+    footprint.height = robot.size.height;
+    footprint.front_distance = robot.size.front_distance;
+    world_.footprints.push_back(footprint);
+  }
+  return world_;
+}
+
+double VisionEmulator::release_time(Camera& camera, double t_capture) {
+  // Jitter never makes a frame leave before it was processed.
+  const double latency =
+      std::max(profile_.processing_time,
+               profile_.latency + camera.latency_random.gaussian(profile_.latency_jitter));
+  return t_capture + latency;
+}
+
+void VisionEmulator::restart_after_reset() {
+  ++stats_.resets;
+  for (Camera& camera : cameras_) {
+    // Frames of the world before the reset would show robots where they no longer are.
+    stats_.frames_dropped_at_reset += camera.pending.size();
+    camera.pending.clear();
+    camera.schedule.restart();
+  }
+}
+
+void VisionEmulator::check_step_fits(const sim_state_t& state) {
+  if (step_checked_) return;
+  step_checked_ = true;
+  for (const Camera& camera : cameras_) {
+    const CameraProfile& c = profile_.cameras[static_cast<std::size_t>(camera.detector.id())];
+    if (!whole_steps(camera.period, state.dt) || !whole_steps(c.phase, state.dt)) {
+      spdlog::warn(
+          "camera {}: its capture instants ({} Hz, phase {} s) fall between physics steps of "
+          "{} s; each is served by the first step after it (up to one step late)",
+          c.id, c.frame_rate, c.phase, state.dt);
+    }
+  }
+}
+
+VisionEmulator::Outcome VisionEmulator::on_sim_state(const sim_state_t& state) {
+  Outcome outcome;
+  outcome.problem = find_sim_state_problem(state);
+  if (!outcome.problem.empty()) {
+    ++stats_.states_invalid;
+    outcome.verdict = Verdict::Invalid;
+    return outcome;
+  }
+  if (clock_.started() && state.step == clock_.step() && state.sim_time == clock_.now()) {
+    ++stats_.states_repeated;  // physics repeats its state while paused
+    outcome.verdict = Verdict::Repeated;
+    return outcome;
+  }
+  switch (clock_.update(state.sim_time, state.step)) {
+    case SimClock::Update::Rejected:
+      ++stats_.states_out_of_order;
+      outcome.verdict = Verdict::OutOfOrder;
+      return outcome;
+    case SimClock::Update::Reset:
+      restart_after_reset();
+      outcome.verdict = Verdict::Reset;
+      break;
+    case SimClock::Update::Advanced:
+      break;
+  }
+  ++stats_.states_used;
+  check_step_fits(state);
+
+  bool have_snapshot = false;
+  for (Camera& camera : cameras_) {
+    const auto capture = camera.schedule.on_state(state.sim_time);
+    if (!capture) continue;
+    if (!have_snapshot) {
+      snapshot(state);
+      have_snapshot = true;
+    }
+    stats_.capture_instants_missed += static_cast<std::uint64_t>(capture->missed_instants);
+    ++stats_.frames_captured;
+    camera.pending.push(release_time(camera, state.sim_time),
+                        camera.detector.capture(world_, capture->frame_number));
+  }
+
+  std::vector<std::pair<double, vision_frame_t>> due;
+  for (Camera& camera : cameras_) {
+    // "Reaches" to a microsecond, so a latency of whole steps is never a step late by rounding.
+    for (auto& item : camera.pending.pop_due(state.sim_time + CaptureSchedule::kTolerance)) {
+      due.push_back(std::move(item));
+    }
+  }
+  // Oldest publication time first; cameras in id order where they tie.
+  std::stable_sort(due.begin(), due.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  outcome.frames.reserve(due.size());
+  for (auto& item : due) outcome.frames.push_back(std::move(item.second));
+  stats_.frames_published += outcome.frames.size();
+  return outcome;
+}
+
+}  // namespace ubersim::vision

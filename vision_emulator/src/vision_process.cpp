@@ -1,0 +1,127 @@
+#include "ubersim/vision/vision_process.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <functional>
+#include <ubersim/sim_control_t.hpp>
+
+#include "ubersim/cli.hpp"
+#include "ubersim/field_config.hpp"
+#include "ubersim/logging.hpp"
+#include "ubersim/message_bus.hpp"
+#include "ubersim/shutdown.hpp"
+#include "ubersim/vision/vision_emulator.hpp"
+
+namespace ubersim::vision {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+void log_start(const VisionProfile& profile, const VisionProcessOptions& options) {
+  spdlog::info("profile '{}', seed {}, {} camera(s), latency {} s (jitter {} s), processing {} s",
+               profile.name, profile.seed, profile.cameras.size(), profile.latency,
+               profile.latency_jitter, profile.processing_time);
+  for (const CameraProfile& c : profile.cameras) {
+    spdlog::info("camera {}: {} Hz, phase {} s, at ({}, {}, {}) m, f {} px, {}x{} px", c.id,
+                 c.frame_rate, c.phase, c.position.x(), c.position.y(), c.position.z(),
+                 c.focal_length, c.image_width, c.image_height);
+  }
+  spdlog::info("subscribing {} and {}; publishing {} and {}", options.channels(Channel::SimState),
+               options.channels(Channel::SimGeometry), options.channels(Channel::Vision),
+               options.channels(Channel::VisionGeometry));
+}
+
+void log_summary(const VisionStats& s, std::uint64_t undecodable) {
+  spdlog::info(
+      "summary: frames published {}, captured {}, dropped at reset {}; sim states used {}, "
+      "invalid {}, out of order {}, repeated {}, undecodable {}; resets {}; capture instants "
+      "missed {}; invalid geometry {}",
+      s.frames_published, s.frames_captured, s.frames_dropped_at_reset, s.states_used,
+      s.states_invalid, s.states_out_of_order, s.states_repeated, undecodable, s.resets,
+      s.capture_instants_missed, s.geometry_invalid);
+}
+
+}  // namespace
+
+int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal& shutdown) {
+  VisionProfile profile = load_vision_profile(options.config_dir, options.profile);
+  if (options.seed) profile.seed = *options.seed;
+  log_start(profile, options);
+  const auto geometry_period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(profile.geometry_period));
+
+  VisionEmulator emulator(profile, RobotSizes::from_config_dir(options.config_dir));
+  if (!options.field.empty()) {
+    emulator.on_field_geometry(
+        load_field_config(options.config_dir, options.field).to_message(profile.ball_radius));
+  }
+
+  MessageBus bus(with_receive_buffer(options.lcm_url));
+  ThrottledLog bad_content;
+  const std::string vision_channel = options.channels(Channel::Vision);
+  const std::string geometry_channel = options.channels(Channel::VisionGeometry);
+  Clock::time_point next_geometry = Clock::now();
+  auto publish_geometry = [&] {
+    if (!emulator.field()) return;  // nothing to say about the field yet
+    bus.publish(geometry_channel, emulator.geometry_message());
+    next_geometry = Clock::now() + geometry_period;
+  };
+
+  bus.subscribe<sim_state_t>(
+      options.channels(Channel::SimState),
+      std::function<void(const sim_state_t&)>([&](const sim_state_t& state) {
+        auto outcome = emulator.on_sim_state(state);
+        using Verdict = VisionEmulator::Verdict;
+        switch (outcome.verdict) {
+          case Verdict::Invalid:
+            bad_content.warn("invalid", "skipped a SIM_STATE: " + outcome.problem);
+            break;
+          case Verdict::OutOfOrder:
+            bad_content.warn("out_of_order", "skipped a SIM_STATE older than one already used");
+            break;
+          case Verdict::Reset:
+            spdlog::info("sim time went back to {} s: simulation reset, pending frames dropped",
+                         state.sim_time);
+            break;
+          default:
+            break;
+        }
+        for (const vision_frame_t& frame : outcome.frames) bus.publish(vision_channel, frame);
+      }));
+  bus.subscribe<field_geometry_t>(
+      options.channels(Channel::SimGeometry),
+      std::function<void(const field_geometry_t&)>([&](const field_geometry_t& geometry) {
+        const auto before = emulator.stats().geometry_invalid;
+        if (emulator.on_field_geometry(geometry)) {
+          spdlog::info("field '{}' ({} x {} m), ball radius {} m", geometry.name,
+                       geometry.field_length, geometry.field_width, geometry.ball_radius);
+          publish_geometry();
+        } else if (emulator.stats().geometry_invalid != before) {
+          bad_content.warn("geometry", "ignored an invalid SIM_GEOMETRY");
+        }
+      }));
+
+  // Ask physics for the field now rather than waiting for its next periodic message.
+  sim_control_t request{};
+  request.request_id = 1;
+  request.sender = "ubersim_vision";
+  request.action = sim_control_t::REQUEST_GEOMETRY;
+  bus.publish(options.channels(Channel::SimControl), request);
+  publish_geometry();
+
+  while (!shutdown.requested()) {
+    const auto wait =
+        std::chrono::duration_cast<std::chrono::milliseconds>(next_geometry - Clock::now());
+    bus.wait_and_handle(static_cast<int>(std::clamp<std::int64_t>(wait.count(), 0, 100)),
+                        &shutdown);
+    if (Clock::now() >= next_geometry) {
+      publish_geometry();
+      if (!emulator.field()) next_geometry = Clock::now() + geometry_period;
+    }
+  }
+  log_summary(emulator.stats(), bus.malformed_count());
+  return 0;
+}
+
+}  // namespace ubersim::vision
