@@ -1,0 +1,384 @@
+// ubersim_referee: sets up the field and controls the simulation over
+// SIM_CONTROL, reporting what the physics server answered. Exit status:
+// 0 done, 1 physics refused (its message is printed), 2 no answer / bad usage.
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <ubersim/team_t.hpp>
+
+#include "scene_io.hpp"
+#include "sim_link.hpp"
+#include "situations.hpp"
+#include "ubersim/cli.hpp"
+#include "ubersim/config.hpp"
+#include "ubersim/logging.hpp"
+#include "ubersim/robot_config.hpp"
+#include "ubersim/scenario_config.hpp"
+
+namespace {
+
+using namespace ubersim;
+using namespace ubersim::referee;
+using std::chrono::milliseconds;
+
+constexpr double kDegToRad = M_PI / 180.0;
+constexpr double kFallbackRadius = 0.09;  // m, SSL maximum, for a type whose config is missing
+
+int8_t wire_team(Team team) {
+  return team == Team::Blue ? team_t::BLUE : team_t::YELLOW;
+}
+
+struct Options {
+  CommonOptions common;
+  double timeout_s = 2.0;
+  std::string yellow_defends = "negative";
+  // Arguments of the subcommands.
+  std::string team_text;
+  int robot_id = 0;
+  std::string robot_type;
+  double x = 0, y = 0, z = 0, heading_deg = 0;
+  std::vector<double> velocity;
+  int steps = 1;
+  double speed = 1.0;
+  std::int64_t seed = 0;
+  std::string scenario;
+};
+
+class Referee {
+ public:
+  explicit Referee(const Options& options)
+      : options_(options),
+        bus_(with_receive_buffer(options.common.lcm_url)),
+        link_(bus_, options.common.channels(), "ubersim_referee") {}
+
+  milliseconds timeout() const {
+    return milliseconds(static_cast<long>(options_.timeout_s * 1000));
+  }
+
+  Team team() const {
+    Team team{};
+    if (!parse_team(options_.team_text, team)) {
+      throw CLI::ValidationError("team",
+                                 "expected yellow or blue, got '" + options_.team_text + "'");
+    }
+    return team;
+  }
+
+  double radius_of(const std::string& type) {
+    if (auto found = radii_.find(type); found != radii_.end()) return found->second;
+    double radius = kFallbackRadius;
+    try {
+      radius = load_robot_config(options_.common.config_root(), type).radius;
+    } catch (const ConfigError& error) {
+      spdlog::warn("robot type '{}': {}; assuming radius {} m", type, error.what(), radius);
+    }
+    return radii_[type] = radius;
+  }
+
+  int send(sim_control_t control, milliseconds extra = milliseconds(0)) {
+    const auto ack = link_.request(std::move(control), timeout() + extra);
+    if (!ack.ok) {
+      std::cerr << "physics refused: " << ack.message << "\n";
+      return 1;
+    }
+    std::cout << "ok (sim time " << ack.sim_time << " s, step " << ack.step << "): " << ack.message
+              << "\n";
+    return 0;
+  }
+
+  int simple(int8_t action) {
+    sim_control_t control{};
+    control.action = action;
+    return send(control);
+  }
+
+  int step() {
+    sim_control_t control{};
+    control.action = sim_control_t::STEP;
+    control.step_count = options_.steps;
+    // Stepping takes time: allow 10 ms of wall time per step on top.
+    return send(control, milliseconds(10L * options_.steps));
+  }
+
+  int speed() {
+    sim_control_t control{};
+    control.action = sim_control_t::SET_SPEED;
+    control.speed_factor = options_.speed;
+    return send(control);
+  }
+
+  int seed() {
+    sim_control_t control{};
+    control.action = sim_control_t::SET_SEED;
+    control.seed = options_.seed;
+    return send(control);
+  }
+
+  int geometry() {
+    const auto g = link_.geometry(timeout());
+    std::cout << "field " << g.name << ": " << g.field_length << " x " << g.field_width
+              << " m, boundary " << g.boundary_width << " m, goals " << g.goal_width
+              << " m wide, ball radius " << g.ball_radius << " m\n";
+    return 0;
+  }
+
+  int state() {
+    const auto s = link_.state(timeout());
+    std::cout << "sim time " << s.sim_time << " s, step " << s.step << (s.paused ? ", paused" : "")
+              << "\nball " << s.ball.position[0] << " " << s.ball.position[1] << " "
+              << s.ball.position[2] << "\n";
+    for (const auto& r : s.robots) {
+      std::cout << (r.team == team_t::BLUE ? "blue " : "yellow ") << r.robot_id << " "
+                << r.robot_type << " " << r.x << " " << r.y << " " << r.orientation / kDegToRad
+                << " deg\n";
+    }
+    return 0;
+  }
+
+  // Adds or moves one robot; robots in its way are moved aside and stopped.
+  int place_robot(bool add) {
+    const auto state = link_.state(timeout());
+    const auto field = link_.geometry(timeout());
+    const auto before = scene_from_state(state, field.ball_radius,
+                                         [this](const std::string& t) { return radius_of(t); });
+    PlacementScene planned = before;
+    const Team which = team();
+    auto found = std::find_if(planned.robots.begin(), planned.robots.end(), [&](const auto& r) {
+      return r.team == which && r.id == options_.robot_id;
+    });
+    if (found == planned.robots.end()) {
+      if (!add) {
+        std::cerr << "no " << team_name(which) << " robot " << options_.robot_id
+                  << " on the field (use 'add' to put one there)\n";
+        return 1;
+      }
+      planned.robots.push_back(PlacedRobot{});
+      found = planned.robots.end() - 1;
+    }
+    found->team = which;
+    found->id = options_.robot_id;
+    if (add) found->radius = radius_of(options_.robot_type);
+    found->x = options_.x;
+    found->y = options_.y;
+    found->orientation = options_.heading_deg * kDegToRad;
+    found->fixed = true;
+    const std::size_t index = static_cast<std::size_t>(found - planned.robots.begin());
+    if (!separate(planned, bounds_of(field))) {
+      std::cerr << "cannot place it there without overlapping something\n";
+      return 1;
+    }
+    auto control = place_request(before, planned, false, false);
+    // The robot asked for always goes (place_request skips robots that did not move).
+    auto placed = std::find_if(control.robots.begin(), control.robots.end(), [&](const auto& p) {
+      return p.team == wire_team(which) && p.robot_id == options_.robot_id;
+    });
+    if (placed == control.robots.end()) {
+      control.robots.push_back(to_placement(planned.robots[index]));
+      control.num_robots = static_cast<int32_t>(control.robots.size());
+      placed = control.robots.end() - 1;
+    }
+    if (add) placed->robot_type = options_.robot_type;
+    if (options_.velocity.size() == 3) {
+      placed->vx = options_.velocity[0];
+      placed->vy = options_.velocity[1];
+      placed->omega = options_.velocity[2];
+    }
+    return send(control);
+  }
+
+  int remove_robot() {
+    sim_control_t control{};
+    control.action = sim_control_t::PLACE;
+    robot_placement_t p{};
+    p.team = wire_team(team());
+    p.robot_id = options_.robot_id;
+    p.present = false;
+    control.robots.push_back(p);
+    control.num_robots = 1;
+    return send(control);
+  }
+
+  int place_ball() {
+    const auto state = link_.state(timeout());
+    const auto field = link_.geometry(timeout());
+    const auto before = scene_from_state(state, field.ball_radius,
+                                         [this](const std::string& t) { return radius_of(t); });
+    PlacementScene planned = before;
+    planned.ball_x = options_.x;
+    planned.ball_y = options_.y;
+    if (options_.z <= field.ball_radius && !separate(planned, bounds_of(field))) {
+      std::cerr << "cannot place the ball there without overlapping a robot\n";
+      return 1;
+    }
+    auto control = place_request(before, planned, true, false);
+    control.ball.position[2] = options_.z;
+    for (std::size_t i = 0; i < options_.velocity.size() && i < 3; ++i) {
+      control.ball.linear_velocity[i] = options_.velocity[i];
+    }
+    return send(control);
+  }
+
+  int setup() {
+    const auto scenario = load_scenario_config(options_.common.config_root(), options_.scenario);
+    sim_control_t control{};
+    control.action = sim_control_t::SETUP;
+    for (const auto& r : scenario.robots) {
+      robot_placement_t p{};
+      p.team = wire_team(r.team);
+      p.robot_id = r.id;
+      p.robot_type = r.type;
+      p.present = true;
+      p.x = r.x;
+      p.y = r.y;
+      p.orientation = r.orientation;
+      control.robots.push_back(p);
+    }
+    control.num_robots = static_cast<int32_t>(control.robots.size());
+    control.has_ball = true;
+    control.ball.position[0] = scenario.ball_x;
+    control.ball.position[1] = scenario.ball_y;
+    return send(control);
+  }
+
+  int situation(Situation kind) {
+    const auto state = link_.state(timeout());
+    const auto field = link_.geometry(timeout());
+    const auto before = scene_from_state(state, field.ball_radius,
+                                         [this](const std::string& t) { return radius_of(t); });
+    SituationRequest request;
+    request.kind = kind;
+    if (kind == Situation::KickOff || kind == Situation::FreeKick || kind == Situation::Penalty) {
+      request.team = team();
+    }
+    request.x = options_.x;
+    request.y = options_.y;
+    FieldSides sides;
+    sides.yellow_defends = options_.yellow_defends == "positive" ? 1 : -1;
+    const auto planned = plan_situation(request, before, field, sides);
+    // Every robot is stopped in a set piece; the ball too.
+    return send(place_request(before, planned, true, true));
+  }
+
+ private:
+  const Options& options_;
+  MessageBus bus_;
+  SimLink link_;
+  std::map<std::string, double> radii_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{"ubersim referee: set up the field and control the simulation"};
+  app.require_subcommand(1);
+  add_common_options(app, o.common);
+  app.add_option("--timeout", o.timeout_s, "seconds to wait for the physics server")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--yellow-defends", o.yellow_defends, "which goal yellow defends")
+      ->check(CLI::IsMember({"negative", "positive"}))
+      ->capture_default_str();
+
+  auto team_arg = [&](CLI::App* c) {
+    c->add_option("team", o.team_text, "yellow | blue")->required();
+  };
+  auto xy_args = [&](CLI::App* c) {
+    c->add_option("x", o.x, "m")->required();
+    c->add_option("y", o.y, "m")->required();
+  };
+
+  std::map<std::string, std::function<int(Referee&)>> actions;
+  auto command = [&](const std::string& name, const std::string& help,
+                     std::function<int(Referee&)> action) {
+    actions[name] = std::move(action);
+    return app.add_subcommand(name, help);
+  };
+
+  command("ping", "check that the physics server answers",
+          [](Referee& r) { return r.simple(sim_control_t::PING); });
+  command("pause", "pause the simulation",
+          [](Referee& r) { return r.simple(sim_control_t::PAUSE); });
+  command("resume", "resume the simulation",
+          [](Referee& r) { return r.simple(sim_control_t::RESUME); });
+  command("reset", "reset to the scenario physics started with",
+          [](Referee& r) { return r.simple(sim_control_t::RESET); });
+  command("step", "advance N physics steps (paused or lockstep)",
+          [](Referee& r) { return r.step(); })
+      ->add_option("n", o.steps, "steps")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  command("speed", "set the speed: 1 real time, 0.5, 4 ..., 0 as fast as possible, -1 lockstep",
+          [](Referee& r) { return r.speed(); })
+      ->add_option("factor", o.speed)
+      ->required();
+  command("seed", "set the random seed", [](Referee& r) { return r.seed(); })
+      ->add_option("seed", o.seed)
+      ->required();
+  command("geometry", "print the field geometry", [](Referee& r) { return r.geometry(); });
+  command("state", "print where everything is", [](Referee& r) { return r.state(); });
+
+  auto* add =
+      command("add", "put a robot on the field", [](Referee& r) { return r.place_robot(true); });
+  team_arg(add);
+  add->add_option("id", o.robot_id)->required();
+  add->add_option("type", o.robot_type, "robot config name")->required();
+  xy_args(add);
+  add->add_option("heading", o.heading_deg, "deg");
+
+  auto* remove =
+      command("remove", "take a robot off the field", [](Referee& r) { return r.remove_robot(); });
+  team_arg(remove);
+  remove->add_option("id", o.robot_id)->required();
+
+  auto* place = command("place-robot", "move a robot (robots in the way move aside and stop)",
+                        [](Referee& r) { return r.place_robot(false); });
+  team_arg(place);
+  place->add_option("id", o.robot_id)->required();
+  xy_args(place);
+  place->add_option("heading", o.heading_deg, "deg");
+  place->add_option("--velocity", o.velocity, "vx vy omega (m/s, m/s, rad/s, field frame)")
+      ->expected(3);
+
+  auto* ball = command("place-ball", "move the ball (robots in the way move aside and stop)",
+                       [](Referee& r) { return r.place_ball(); });
+  xy_args(ball);
+  ball->add_option("--z", o.z, "height (m)");
+  ball->add_option("--velocity", o.velocity, "vx vy [vz] (m/s)")->expected(2, 3);
+
+  command("setup", "put robots and ball where a scenario file says",
+          [](Referee& r) { return r.setup(); })
+      ->add_option("scenario", o.scenario, "scenario name or path")
+      ->required();
+
+  team_arg(command("kickoff", "kick-off for a team",
+                   [](Referee& r) { return r.situation(Situation::KickOff); }));
+  auto* free_kick = command("free-kick", "free kick for a team at x y",
+                            [](Referee& r) { return r.situation(Situation::FreeKick); });
+  team_arg(free_kick);
+  xy_args(free_kick);
+  team_arg(command("penalty", "penalty kick for a team",
+                   [](Referee& r) { return r.situation(Situation::Penalty); }));
+  xy_args(command("ball-placement", "place the ball at x y, robots keep 0.5 m away",
+                  [](Referee& r) { return r.situation(Situation::BallPlacement); }));
+  command("stop", "stop: every robot 0.5 m from the ball and still",
+          [](Referee& r) { return r.situation(Situation::Stop); });
+
+  CLI11_PARSE(app, argc, argv);
+  setup_logging("referee",
+                o.common.verbosity() - 1);  // quiet by default: it is a command-line tool
+  try {
+    Referee referee(o);
+    return actions.at(app.get_subcommands().front()->get_name())(referee);
+  } catch (const NoAnswer& error) {
+    std::cerr << "referee: " << error.what() << "\n";
+    return 2;
+  } catch (const CLI::ValidationError& error) {
+    std::cerr << "referee: " << error.what() << "\n";
+    return 2;
+  } catch (const std::exception& error) {
+    std::cerr << "referee: " << error.what() << "\n";
+    return 1;
+  }
+}

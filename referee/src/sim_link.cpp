@@ -1,0 +1,69 @@
+#include "sim_link.hpp"
+
+#include <unistd.h>
+
+namespace ubersim::referee {
+
+SimLink::SimLink(MessageBus& bus, ChannelNames channels, std::string sender)
+    : bus_(bus),
+      channels_(std::move(channels)),
+      sender_(std::move(sender)),
+      // Unique enough across concurrent referee invocations: pid and clock.
+      next_request_id_((static_cast<std::int64_t>(::getpid()) << 32) ^
+                       std::chrono::steady_clock::now().time_since_epoch().count()) {
+  bus_.subscribe<sim_control_ack_t>(channels_(Channel::SimControlAck),
+                                    [this](const sim_control_ack_t& ack) {
+                                      if (ack.request_id == awaited_id_) ack_ = ack;
+                                    });
+  bus_.subscribe<sim_state_t>(
+      channels_(Channel::SimState), [this](const sim_state_t& state) { state_ = state; }, 4);
+  bus_.subscribe<field_geometry_t>(channels_(Channel::SimGeometry),
+                                   [this](const field_geometry_t& g) { geometry_ = g; });
+}
+
+template <class Predicate>
+void SimLink::wait_until(Predicate done, std::chrono::milliseconds timeout,
+                         const std::string& what) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!done()) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      throw NoAnswer("no answer from the physics server within " +
+                     std::to_string(timeout.count() / 1000.0).substr(0, 4) + " s (" + what +
+                     "): is ubersim_physics running on this LCM URL and channel prefix?");
+    }
+    bus_.wait_and_handle(static_cast<int>(std::min<long>(left.count(), 50)));
+  }
+}
+
+sim_control_ack_t SimLink::request(sim_control_t control, std::chrono::milliseconds timeout) {
+  control.request_id = next_request_id_++;
+  control.sender = sender_;
+  awaited_id_ = control.request_id;
+  ack_.reset();
+  bus_.publish(channels_(Channel::SimControl), control);
+  wait_until([this] { return ack_.has_value(); }, timeout,
+             "waiting on " + channels_(Channel::SimControlAck));
+  return *ack_;
+}
+
+sim_state_t SimLink::state(std::chrono::milliseconds timeout) {
+  state_.reset();
+  wait_until([this] { return state_.has_value(); }, timeout,
+             "waiting on " + channels_(Channel::SimState));
+  return *state_;
+}
+
+field_geometry_t SimLink::geometry(std::chrono::milliseconds timeout) {
+  if (!geometry_) {
+    sim_control_t ask{};
+    ask.action = sim_control_t::REQUEST_GEOMETRY;
+    request(ask, timeout);
+    wait_until([this] { return geometry_.has_value(); }, timeout,
+               "waiting on " + channels_(Channel::SimGeometry));
+  }
+  return *geometry_;
+}
+
+}  // namespace ubersim::referee
