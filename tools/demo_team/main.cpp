@@ -1,0 +1,100 @@
+// ubersim_demo_team: a small control program written only against VISION and
+// RADIO_<TEAM> — the interface a team's own software has on the real field.
+// It acts on each vision frame (throttled to --rate in capture time, so it
+// behaves the same at any simulation speed) and sends one radio packet.
+#include <CLI/CLI.hpp>
+#include <ubersim/radio_packet_t.hpp>
+#include <ubersim/team_t.hpp>
+#include <ubersim/vision_frame_t.hpp>
+#include <ubersim/vision_geometry_t.hpp>
+
+#include "behaviour.hpp"
+#include "ubersim/cli.hpp"
+#include "ubersim/logging.hpp"
+#include "ubersim/message_bus.hpp"
+#include "ubersim/shutdown.hpp"
+
+int main(int argc, char** argv) {
+  ubersim::CommonOptions common;
+  std::string team_text = "yellow";
+  std::string mode = "play";
+  std::string defends_text;
+  double rate = 60.0;
+  double figure8_speed = 0.8;
+  double figure8_size = 1.0;
+  demo::TeamSetup team;
+
+  CLI::App app{"ubersim demo team: drives one team's robots from VISION over RADIO_<TEAM>"};
+  ubersim::add_common_options(app, common);
+  app.add_option("--team", team_text, "yellow | blue")->capture_default_str();
+  app.add_option("--mode", mode, "play | positions | figure8")
+      ->check(CLI::IsMember({"play", "positions", "figure8"}))
+      ->capture_default_str();
+  app.add_option("--defends", defends_text,
+                 "negative | positive x goal (default: yellow negative, blue positive)")
+      ->check(CLI::IsMember({"negative", "positive"}));
+  app.add_option("--rate", rate, "commands per second of capture time (Hz)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--figure8-speed", figure8_speed, "m/s")->capture_default_str();
+  app.add_option("--figure8-size", figure8_size, "m across")->capture_default_str();
+  app.add_option("--kick-speed", team.kick_speed, "m/s")->capture_default_str();
+  app.add_option("--max-speed", team.limits.max_speed, "m/s")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  ubersim::Team own{};
+  if (!ubersim::parse_team(team_text, own)) {
+    std::cerr << "demo_team: --team must be yellow or blue\n";
+    return 2;
+  }
+  ubersim::setup_logging(std::string("demo_") + ubersim::team_name(own), common.verbosity());
+  const bool yellow = own == ubersim::Team::Yellow;
+  team.defends = defends_text.empty() ? (yellow ? -1 : 1) : (defends_text == "negative" ? -1 : 1);
+
+  try {
+    ubersim::ShutdownSignal shutdown;
+    ubersim::MessageBus bus(ubersim::with_receive_buffer(common.lcm_url));
+    const auto channels = common.channels();
+    demo::WorldModel world(yellow);
+    double last_sent = -1e9;
+    std::int64_t sequence = 0;
+
+    bus.subscribe<ubersim::vision_geometry_t>(channels(ubersim::Channel::VisionGeometry),
+                                              [&](const ubersim::vision_geometry_t& g) {
+                                                team.field_length = g.field.field_length;
+                                                team.field_width = g.field.field_width;
+                                              });
+    bus.subscribe<ubersim::vision_frame_t>(
+        channels(ubersim::Channel::Vision), [&](const ubersim::vision_frame_t& frame) {
+          if (frame.t_capture + 1.0 < world.now()) {  // the simulation was reset
+            world = demo::WorldModel(yellow);
+            last_sent = -1e9;
+          }
+          world.update(frame);
+          if (world.now() - last_sent < 1.0 / rate - 1e-9) return;
+          last_sent = world.now();
+          world.forget_older_than(1.0);
+
+          ubersim::radio_packet_t packet{};
+          packet.team = yellow ? ubersim::team_t::YELLOW : ubersim::team_t::BLUE;
+          packet.sequence = sequence++;
+          packet.t_sent = world.now();
+          packet.commands = mode == "positions" ? demo::hold_positions(world, team)
+                            : mode == "figure8"
+                                ? demo::figure_eights(world, team, figure8_speed, figure8_size)
+                                : demo::play(world, team);
+          packet.num_commands = static_cast<int32_t>(packet.commands.size());
+          bus.publish(channels.radio(own), packet);
+        });
+
+    spdlog::info("{} team, mode {}, defending the {} goal: listening on {}, sending on {}",
+                 ubersim::team_name(own), mode, team.defends < 0 ? "negative-x" : "positive-x",
+                 channels(ubersim::Channel::Vision), channels.radio(own));
+    while (!shutdown.requested()) bus.wait_and_handle(100, &shutdown);
+    spdlog::info("stopped after {} packets", sequence);
+    return 0;
+  } catch (const std::exception& error) {
+    spdlog::error("{}", error.what());
+    return 1;
+  }
+}

@@ -1,0 +1,168 @@
+#!/usr/bin/env bash
+# Starts the ubersim process set: physics, vision emulator, radio emulator, and
+# optionally demo teams and lcm-logger. Prints what runs, where each process
+# logs and which channels to listen to. On Ctrl-C (or SIGTERM), or when any
+# process dies, it stops all the others (SIGTERM, then SIGKILL after 2 s) and
+# leaves none behind; it exits non-zero if any process failed.
+set -uo pipefail
+
+root=$(cd "$(dirname "$0")/.." && pwd)
+bin_dir="${UBERSIM_BUILD_DIR:-$root/build}/bin"
+
+usage() {
+  cat <<USAGE
+usage: tools/launch.sh [options]
+  --scenario NAME      robots, ball and field (default division_b_6v6)
+  --field NAME         field2002 | division_b | division_a: that field's default scenario
+  --profile NAME       vision and radio emulator profile (default cmdragons02)
+  --speed F            1 real time (default), 0.5, 4 ..., 0 as fast as possible
+  --lockstep           physics advances only when told (referee step N)
+  --seed N             seed for physics and both emulators
+  --duration S         stop everything after S seconds of sim time
+  --lcm-url URL        LCM URL for every process (default \$LCM_DEFAULT_URL or LCM's)
+  --channel-prefix P   prefix every channel (to run several simulations side by side)
+  --no-vision          do not start the vision emulator (a real vision server publishes VISION)
+  --no-radio           do not start the radio emulator (a real radio server listens on RADIO_<TEAM>)
+  --demo WHO           start the demo team for yellow | blue | both | none (default none)
+  --demo-mode MODE     play | positions | figure8 (default play)
+  --log FILE           record every channel with lcm-logger into FILE
+  --log-dir DIR        where process logs go (default: a new folder under /tmp)
+  --quiet              less process log output
+USAGE
+}
+
+scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 seed="" duration=""
+lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix=""
+vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --scenario) scenario=$2; shift 2 ;;
+    --field) field=$2; shift 2 ;;
+    --profile) profile=$2; shift 2 ;;
+    --speed) speed=$2; shift 2 ;;
+    --lockstep) lockstep=1; shift ;;
+    --seed) seed=$2; shift 2 ;;
+    --duration) duration=$2; shift 2 ;;
+    --lcm-url) lcm_url=$2; shift 2 ;;
+    --channel-prefix) prefix=$2; shift 2 ;;
+    --no-vision) vision=0; shift ;;
+    --no-radio) radio=0; shift ;;
+    --demo) demo=$2; shift 2 ;;
+    --demo-mode) demo_mode=$2; shift 2 ;;
+    --log) log_file=$2; shift 2 ;;
+    --log-dir) log_dir=$2; shift 2 ;;
+    --quiet) quiet=1; shift ;;
+    -h|--help) usage; exit 0 ;;
+    *) echo "launch: unknown option '$1'" >&2; usage >&2; exit 2 ;;
+  esac
+done
+
+if [ -z "$scenario" ]; then
+  case "${field:-division_b}" in
+    field2002) scenario=field2002_5v5 ;;
+    division_b) scenario=division_b_6v6 ;;
+    division_a) scenario=division_a_11v11 ;;
+    *) echo "launch: no default scenario for field '$field' (give --scenario)" >&2; exit 2 ;;
+  esac
+fi
+case "$demo" in yellow|blue|both|none) ;; *) echo "launch: --demo takes yellow, blue, both or none" >&2; exit 2 ;; esac
+for program in ubersim_physics ubersim_vision ubersim_radio ubersim_demo_team; do
+  [ -x "$bin_dir/$program" ] || { echo "launch: $bin_dir/$program not found: run tools/build.sh" >&2; exit 2; }
+done
+[ -n "$log_dir" ] || log_dir=$(mktemp -d /tmp/ubersim-XXXXXX)
+mkdir -p "$log_dir"
+
+common=(--lcm-url "$lcm_url")
+[ -n "$prefix" ] && common+=(--channel-prefix "$prefix")
+[ "$quiet" = 1 ] && common+=(-q)
+seed_args=()
+[ -n "$seed" ] && seed_args=(--seed "$seed")
+
+names=() pids=()
+start() {  # start NAME COMMAND...
+  local name=$1
+  shift
+  "$@" >"$log_dir/$name.log" 2>&1 &
+  names+=("$name")
+  pids+=($!)
+  printf '  %-14s pid %-7s log %s\n' "$name" "$!" "$log_dir/$name.log"
+}
+
+echo "ubersim: scenario $scenario, profile $profile, speed $( [ "$lockstep" = 1 ] && echo lockstep || echo "$speed"), LCM $lcm_url"
+if [ -n "$log_file" ]; then
+  start lcm-logger lcm-logger -l "$lcm_url" -f -q -c "${prefix}.*" "$log_file"
+fi
+physics_args=(--scenario "$scenario" --speed "$speed")
+[ "$lockstep" = 1 ] && physics_args+=(--lockstep)
+[ -n "$duration" ] && physics_args+=(--duration "$duration")
+start physics "$bin_dir/ubersim_physics" "${common[@]}" "${physics_args[@]}" "${seed_args[@]}"
+[ "$vision" = 1 ] && start vision "$bin_dir/ubersim_vision" "${common[@]}" --profile "$profile" "${seed_args[@]}"
+[ "$radio" = 1 ] && start radio "$bin_dir/ubersim_radio" "${common[@]}" --profile "$profile" "${seed_args[@]}"
+for team in yellow blue; do
+  if [ "$demo" = "$team" ] || [ "$demo" = both ]; then
+    start "demo_$team" "$bin_dir/ubersim_demo_team" "${common[@]}" --team "$team" --mode "$demo_mode"
+  fi
+done
+physics_pid=${pids[1]:-}
+[ -n "$log_file" ] || physics_pid=${pids[0]}
+echo "channels: ${prefix}VISION ${prefix}VISION_GEOMETRY ${prefix}RADIO_YELLOW ${prefix}RADIO_BLUE ${prefix}RADIO_FEEDBACK_YELLOW ${prefix}RADIO_FEEDBACK_BLUE ${prefix}SIM_STATE ${prefix}SIM_CONTROL"
+echo "watch:    tools/lcm-spy.sh -l '$lcm_url'      control: build/bin/ubersim_referee --help"
+[ "$vision" = 0 ] && echo "vision:   not started: a real vision server must publish ${prefix}VISION"
+[ "$radio" = 0 ] && echo "radio:    not started: a real radio server must listen on ${prefix}RADIO_YELLOW / ${prefix}RADIO_BLUE"
+echo "Ctrl-C stops everything."
+
+failed=0
+stop_all() {
+  local pid
+  for pid in "${pids[@]}"; do kill -TERM "$pid" 2>/dev/null; done
+  for _ in $(seq 20); do
+    local alive=0
+    for pid in "${pids[@]}"; do kill -0 "$pid" 2>/dev/null && alive=1; done
+    [ "$alive" = 0 ] && break
+    sleep 0.1
+  done
+  for i in "${!pids[@]}"; do
+    if kill -0 "${pids[$i]}" 2>/dev/null; then
+      echo "launch: ${names[$i]} did not stop within 2 s: killing it" >&2
+      kill -KILL "${pids[$i]}" 2>/dev/null
+      failed=1
+    fi
+  done
+  for i in "${!pids[@]}"; do
+    wait "${pids[$i]}" 2>/dev/null
+    local status=$?
+    # 0, or killed by the signal we sent (128+15) / Ctrl-C (128+2): a clean stop.
+    case $status in 0|130|143) ;; 127) ;; *) echo "launch: ${names[$i]} exited with status $status" >&2; failed=1 ;; esac
+  done
+}
+
+on_signal() {
+  echo "launch: stopping"
+  trap '' INT TERM
+  stop_all
+  exit $failed
+}
+trap on_signal INT TERM
+
+while :; do
+  finished=""
+  wait -n -p finished "${pids[@]}"
+  status=$?
+  [ -n "$finished" ] || continue  # interrupted by a signal: the trap handles it
+  for i in "${!pids[@]}"; do
+    [ "${pids[$i]}" = "$finished" ] || continue
+    name=${names[$i]}
+    unset 'pids[i]' 'names[i]'
+    pids=("${pids[@]}") names=("${names[@]}")
+    if [ "$finished" = "$physics_pid" ] && [ "$status" = 0 ] && [ -n "$duration" ]; then
+      echo "launch: physics finished its $duration s of sim time: stopping the rest"
+    else
+      echo "launch: $name exited with status $status: stopping the rest (see $log_dir/$name.log)" >&2
+      failed=1
+    fi
+    break
+  done
+  trap '' INT TERM
+  stop_all
+  exit $failed
+done
