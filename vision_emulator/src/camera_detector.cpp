@@ -34,6 +34,7 @@ CameraDetector::CameraDetector(const CameraProfile& camera, const VisionProfile&
       truth_(true_camera(camera)),
       believed_(believed_camera(camera)),
       profile_(profile),
+      processing_time_(camera.processing_time),
       false_ball_probability_(std::min(1.0, profile.false_ball_rate * camera.period())),
       random_(seed, 2 * static_cast<std::uint64_t>(camera.id)) {}
 
@@ -152,7 +153,7 @@ vision_frame_t CameraDetector::capture(const WorldSnapshot& world, std::int64_t 
   frame.camera_id = id_;
   frame.frame_number = frame_number;
   frame.t_capture = world.sim_time;
-  frame.t_sent = world.sim_time + profile_.processing_time;
+  frame.t_sent = world.sim_time + processing_time_;
   for (const WorldSnapshot::Robot& robot : world.robots) detect_robot(robot, frame);
   detect_ball(world, frame);
   add_false_balls(world, frame);

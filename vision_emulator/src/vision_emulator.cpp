@@ -34,7 +34,7 @@ VisionEmulator::VisionEmulator(VisionProfile profile, RobotSizes robot_sizes)
     cameras_.push_back(Camera{CameraDetector(c, profile_, profile_.seed),
                               CaptureSchedule(c.frame_rate, c.phase),
                               RandomSource(profile_.seed, 2 * static_cast<std::uint64_t>(c.id) + 1),
-                              DelayLine<vision_frame_t>{}, c.period()});
+                              DelayLine<vision_frame_t>{}, c});
   }
 }
 
@@ -89,9 +89,9 @@ const WorldSnapshot& VisionEmulator::snapshot(const sim_state_t& state) {
 
 double VisionEmulator::release_time(Camera& camera, double t_capture) {
   // Jitter never makes a frame leave before it was processed.
-  const double latency =
-      std::max(profile_.processing_time,
-               profile_.latency + camera.latency_random.gaussian(profile_.latency_jitter));
+  const double latency = std::max(
+      camera.timing.processing_time,
+      camera.timing.latency + camera.latency_random.gaussian(camera.timing.latency_jitter));
   return t_capture + latency;
 }
 
@@ -109,8 +109,8 @@ void VisionEmulator::check_step_fits(const sim_state_t& state) {
   if (step_checked_) return;
   step_checked_ = true;
   for (const Camera& camera : cameras_) {
-    const CameraProfile& c = profile_.cameras[static_cast<std::size_t>(camera.detector.id())];
-    if (!whole_steps(camera.period, state.dt) || !whole_steps(c.phase, state.dt)) {
+    const CameraProfile& c = camera.timing;
+    if (!whole_steps(c.period(), state.dt) || !whole_steps(c.phase, state.dt)) {
       spdlog::warn(
           "camera {}: its capture instants ({} Hz, phase {} s) fall between physics steps of "
           "{} s; each is served by the first step after it (up to one step late)",
@@ -161,18 +161,14 @@ VisionEmulator::Outcome VisionEmulator::on_sim_state(const sim_state_t& state) {
                         camera.detector.capture(world_, capture->frame_number));
   }
 
-  std::vector<std::pair<double, vision_frame_t>> due;
+  // Everything due is published at this step, camera by camera in id order
+  // (within one step, sim time cannot order them any finer).
   for (Camera& camera : cameras_) {
     // "Reaches" to a microsecond, so a latency of whole steps is never a step late by rounding.
     for (auto& item : camera.pending.pop_due(state.sim_time + CaptureSchedule::kTolerance)) {
-      due.push_back(std::move(item));
+      outcome.frames.push_back(std::move(item.second));
     }
   }
-  // Oldest publication time first; cameras in id order where they tie.
-  std::stable_sort(due.begin(), due.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  outcome.frames.reserve(due.size());
-  for (auto& item : due) outcome.frames.push_back(std::move(item.second));
   stats_.frames_published += outcome.frames.size();
   return outcome;
 }

@@ -12,6 +12,8 @@ namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 constexpr double kMaxFrameRate = 1000.0;  // Hz: anything faster is a unit mistake
 constexpr double kMaxSigma = 1.0;         // m
+constexpr double kMaxLatency = 10.0;      // s
+constexpr double kMaxJitter = 1.0;        // s
 
 std::string camera_key(int index, const char* suffix) {
   return "CAMERA_" + std::to_string(index) + "_" + suffix;
@@ -35,12 +37,30 @@ void require_in(const ConfigFile& config, const std::string& key, double value, 
   config.fail(key, what.str());
 }
 
-CameraProfile load_camera(const ConfigFile& config, int index, double default_frame_rate) {
+// A camera's optional override of a profile-wide value.
+double camera_real_in(const ConfigFile& config, const std::string& key, double fallback, double min,
+                      double max) {
+  return config.has(key) ? config.real_in(key, min, max) : fallback;
+}
+
+CameraProfile load_camera(const ConfigFile& config, int index, const VisionProfile& defaults,
+                          double default_frame_rate) {
   CameraProfile c;
   c.id = index;
-  const std::string rate_key = camera_key(index, "FRAME_RATE");
-  c.frame_rate =
-      config.has(rate_key) ? config.real_in(rate_key, 0.1, kMaxFrameRate) : default_frame_rate;
+  c.frame_rate = camera_real_in(config, camera_key(index, "FRAME_RATE"), default_frame_rate, 0.1,
+                                kMaxFrameRate);
+  c.latency =
+      camera_real_in(config, camera_key(index, "LATENCY"), defaults.latency, 0.0, kMaxLatency);
+  c.latency_jitter = camera_real_in(config, camera_key(index, "LATENCY_JITTER"),
+                                    defaults.latency_jitter, 0.0, kMaxJitter);
+  const std::string processing_key = camera_key(index, "PROCESSING_TIME");
+  c.processing_time =
+      camera_real_in(config, processing_key, defaults.processing_time, 0.0, kMaxLatency);
+  if (c.processing_time > c.latency) {
+    config.fail(
+        config.has(processing_key) ? processing_key : camera_key(index, "LATENCY"),
+        "camera " + std::to_string(index) + ": its processing time must not exceed its latency");
+  }
   const std::string phase_key = camera_key(index, "PHASE");
   c.phase = config.real(phase_key);
   if (c.phase < 0 || c.phase >= c.period()) {
@@ -109,8 +129,8 @@ VisionProfile load_vision_profile(const ConfigFile& config, const std::string& n
   p.seed = static_cast<std::uint64_t>(seed);
 
   const double frame_rate = config.real_in("FRAME_RATE", 0.1, kMaxFrameRate);
-  p.latency = config.real_in("LATENCY", 0.0, 10.0);
-  p.latency_jitter = config.real_in("LATENCY_JITTER", 0.0, 1.0);
+  p.latency = config.real_in("LATENCY", 0.0, kMaxLatency);
+  p.latency_jitter = config.real_in("LATENCY_JITTER", 0.0, kMaxJitter);
   p.processing_time = config.real_in("PROCESSING_TIME", 0.0, p.latency);
   p.geometry_period = config.real_in("GEOMETRY_PERIOD", 0.05, 3600.0);
 
@@ -134,7 +154,7 @@ VisionProfile load_vision_profile(const ConfigFile& config, const std::string& n
   const std::int64_t count = config.integer("CAMERA_COUNT");
   if (count < 1 || count > 64) config.fail("CAMERA_COUNT", "expected 1 to 64 cameras");
   for (int index = 0; index < count; ++index) {
-    p.cameras.push_back(load_camera(config, index, frame_rate));
+    p.cameras.push_back(load_camera(config, index, p, frame_rate));
   }
   // Keys of cameras beyond CAMERA_COUNT are reported here as unknown keys.
   config.require_all_used();

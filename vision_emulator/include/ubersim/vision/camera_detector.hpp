@@ -71,6 +71,7 @@ class CameraDetector {
   PinholeCamera truth_;
   PinholeCamera believed_;
   VisionProfile profile_;          // a copy: the detection model's parameters
+  double processing_time_;         // s
   double false_ball_probability_;  // per robot in view, per frame
   BallOcclusion occlusion_;
   RandomSource random_;

@@ -7,7 +7,8 @@
 // Per state: check it (a bad one is counted and skipped), follow sim time
 // (an older step is out of order and skipped; a step back to 0..2 is a reset),
 // let each camera capture if one of its instants falls on this step, then
-// release every frame whose publication time has come, oldest first.
+// release every frame whose publication time has come (camera by camera in id
+// order, each camera's frames oldest first).
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -74,7 +75,7 @@ class VisionEmulator {
     CaptureSchedule schedule;
     RandomSource latency_random;
     DelayLine<vision_frame_t> pending;
-    double period = 0;
+    CameraProfile timing;  // rate, phase, latency of this camera
   };
 
   const WorldSnapshot& snapshot(const sim_state_t& state);

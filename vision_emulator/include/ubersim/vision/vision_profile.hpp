@@ -16,6 +16,10 @@ struct CameraProfile {
   int id = 0;
   double frame_rate = 0;  // Hz
   double phase = 0;       // s, captures at phase + n / frame_rate (sim time)
+  // Timing of this camera's frames (the profile's LATENCY ... unless overridden).
+  double latency = 0;          // s, capture -> publication on VISION
+  double latency_jitter = 0;   // s, standard deviation added to the latency
+  double processing_time = 0;  // s, t_sent - t_capture
   // True pose: centre (m) and roll, pitch, yaw (rad) relative to looking
   // straight down with image columns along field +x and rows along field -y.
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
@@ -37,6 +41,7 @@ struct VisionProfile {
   std::string name;
   std::uint64_t seed = 0;
 
+  // Defaults for every camera's timing (CAMERA_<k>_LATENCY ... override them).
   double latency = 0;          // s, capture -> publication on VISION
   double latency_jitter = 0;   // s, standard deviation added to the latency
   double processing_time = 0;  // s, t_sent - t_capture
