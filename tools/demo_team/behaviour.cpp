@@ -1,5 +1,6 @@
 #include "behaviour.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
