@@ -1,5 +1,6 @@
 #include "ubersim/robot_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "ubersim/config_paths.hpp"
@@ -35,6 +36,7 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
   r.height = config.real_in("HEIGHT", 0.01, 1.0);
   r.center_of_mass_height = config.real_in("CENTER_OF_MASS_HEIGHT", 0.0, r.height);
   r.front_distance = config.real_in("FRONT_DISTANCE", 0.0, r.radius);
+  r.ground_clearance = config.real_in("GROUND_CLEARANCE", 0.0, r.height / 2);
 
   const auto angles = config.reals("WHEEL_ANGLES_DEG");
   const std::size_t expected_wheels = r.drive == DriveKind::Differential ? 2 : 0;
@@ -46,11 +48,24 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
     config.fail("WHEEL_ANGLES_DEG",
                 "an omni drive needs at least 3 wheels, got " + std::to_string(angles.size()));
   }
-  const double wheel_distance = config.real_in("WHEEL_DISTANCE", 0.001, r.radius);
-  for (double angle_deg : angles) {
+  // One distance for every wheel, or one per wheel (any placement is allowed).
+  const auto distances = config.reals("WHEEL_DISTANCE");
+  if (distances.size() != 1 && distances.size() != angles.size()) {
+    config.fail("WHEEL_DISTANCE", "expected 1 value or one per wheel (" +
+                                      std::to_string(angles.size()) + "), got " +
+                                      std::to_string(distances.size()));
+  }
+  for (double d : distances) {
+    if (!(d >= 0.001 && d <= r.radius)) {
+      config.fail("WHEEL_DISTANCE", "expected values in [0.001, " + std::to_string(r.radius) +
+                                        "] m (inside the robot)");
+    }
+  }
+  for (std::size_t i = 0; i < angles.size(); ++i) {
+    const double angle_deg = angles[i];
     WheelConfig w;
     w.angle = angle_deg * kDegToRad;
-    w.distance = wheel_distance;
+    w.distance = distances.size() == 1 ? distances[0] : distances[i];
     if (r.drive == DriveKind::Omni) {
       // Positive wheel speed pushes the robot counter-clockwise about its centre.
       w.drive_x = -std::sin(w.angle);
@@ -73,6 +88,13 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
     if (r.caster_positions.empty() || r.caster_positions.size() % 2 != 0) {
       config.fail("CASTER_POSITIONS", "expected x y pairs (m)");
     }
+    for (std::size_t i = 0; i < r.caster_positions.size(); i += 2) {
+      if (std::hypot(r.caster_positions[i], r.caster_positions[i + 1]) > r.radius) {
+        config.fail("CASTER_POSITIONS",
+                    "caster " + std::to_string(i / 2) + " lies outside the robot");
+      }
+    }
+    r.caster_radius = config.real_in("CASTER_RADIUS", 0.001, r.height / 2);
   }
 
   r.max_speed = config.real_in("MAX_SPEED", 0.0, 20.0);
@@ -85,12 +107,52 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
   r.dribbler_height = config.real_in("DRIBBLER_HEIGHT", 0.0, r.height);
   r.dribbler_width = config.real_in("DRIBBLER_WIDTH", 0.0, 2 * r.radius);
   r.dribbler_max_torque = config.real_in("DRIBBLER_MAX_TORQUE", 0.0, 10.0);
+  if (r.dribbler_max_speed > 0) {
+    if (r.dribbler_roller_radius <= 0)
+      config.fail("DRIBBLER_ROLLER_RADIUS", "a dribbler needs a roller");
+    if (r.dribbler_max_torque <= 0) config.fail("DRIBBLER_MAX_TORQUE", "a dribbler needs torque");
+    if (r.dribbler_width <= 0) config.fail("DRIBBLER_WIDTH", "a dribbler needs a width");
+  }
 
   r.kick_max_speed = config.real_in("KICK_MAX_SPEED", 0.0, 20.0);
   r.chip_max_speed = config.real_in("CHIP_MAX_SPEED", 0.0, 20.0);
   r.chip_default_angle = config.real_in("CHIP_DEFAULT_ANGLE_DEG", 0.0, 89.0) * kDegToRad;
+  r.chip_max_angle = config.real_in("CHIP_MAX_ANGLE_DEG", 0.0, 89.0) * kDegToRad;
+  if (r.chip_default_angle > r.chip_max_angle) {
+    config.fail("CHIP_DEFAULT_ANGLE_DEG", "the default chip angle exceeds CHIP_MAX_ANGLE_DEG");
+  }
   r.kicker_recharge_time = config.real_in("KICKER_RECHARGE_TIME", 0.0, 60.0);
   r.kicker_width = config.real_in("KICKER_WIDTH", 0.0, 2 * r.radius);
+  r.kicker_reach = config.real_in("KICKER_REACH", 0.0, r.radius);
+  const double front_half_width =
+      std::sqrt(std::max(0.0, r.radius * r.radius - r.front_distance * r.front_distance));
+  if (r.kicker_width / 2 > front_half_width + 1e-9) {
+    config.fail("KICKER_WIDTH", "wider than the flat front (" +
+                                    std::to_string(2 * front_half_width) + " m at FRONT_DISTANCE)");
+  }
+  if (r.dribbler_width / 2 > front_half_width + 1e-9) {
+    config.fail("DRIBBLER_WIDTH", "wider than the flat front (" +
+                                      std::to_string(2 * front_half_width) +
+                                      " m at FRONT_DISTANCE)");
+  }
+
+  if (r.model == DriveModel::Jointed) {
+    // The jointed model carries the wheels as bodies of their own: the chassis
+    // gets what is left of the robot's mass and inertia.
+    const double wheels_mass = r.wheel_mass * static_cast<double>(r.wheels.size());
+    if (wheels_mass >= r.mass) {
+      config.fail("WHEEL_MASS", "the wheels weigh as much as the whole robot (MASS)");
+    }
+    double wheels_inertia = 0;
+    for (const auto& w : r.wheels) {
+      wheels_inertia +=
+          r.wheel_mass * (w.distance * w.distance + r.wheel_radius * r.wheel_radius / 2);
+    }
+    if (wheels_inertia >= r.moment_of_inertia) {
+      config.fail("MOMENT_OF_INERTIA", "smaller than the wheels' own share (" +
+                                           std::to_string(wheels_inertia) + " kg m^2)");
+    }
+  }
 
   config.require_all_used();
   return r;

@@ -31,6 +31,7 @@ struct RobotTypeConfig {
   double height = 0;                 // m
   double center_of_mass_height = 0;  // m
   double front_distance = 0;         // m, centre to the flat front face (kicker, dribbler)
+  double ground_clearance = 0;       // m, floor to the underside of the chassis
 
   std::vector<WheelConfig> wheels;
   double wheel_radius = 0;               // m
@@ -41,6 +42,7 @@ struct RobotTypeConfig {
   double motor_max_torque = 0;           // N m at the wheel
   double motor_max_speed = 0;            // rad/s at the wheel
   std::vector<double> caster_positions;  // m, x y pairs (differential drive)
+  double caster_radius = 0;              // m, frictionless ball casters (differential drive)
 
   double max_speed = 0;                 // m/s, commands are clamped to it
   double max_angular_speed = 0;         // rad/s
@@ -56,9 +58,12 @@ struct RobotTypeConfig {
   double kick_max_speed = 0;        // m/s, 0 = no kicker
   double chip_max_speed = 0;        // m/s, 0 = cannot chip
   double chip_default_angle = 0;    // rad
+  double chip_max_angle = 0;        // rad, steeper chip commands are clamped to it
   double kicker_recharge_time = 0;  // s
   double kicker_width = 0;          // m, width of the kicker face the ball must touch
+  double kicker_reach = 0;  // m, largest gap between ball and face that still counts as touching
 
+  std::size_t wheel_count() const { return wheels.size(); }
   bool has_dribbler() const { return dribbler_max_speed > 0; }
   bool has_kicker() const { return kick_max_speed > 0 || chip_max_speed > 0; }
 };

@@ -1,0 +1,170 @@
+#include "ubersim/physics/contact_handler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "ubersim/physics/robot.hpp"
+
+namespace ubersim::physics {
+
+ContactHandler::ContactHandler(const PhysicsConfig& physics, const FieldConfig& field,
+                               const BallConfig& ball, const BallSurface& ball_surface)
+    : physics_(physics),
+      field_(field),
+      ball_(ball),
+      ball_surface_(ball_surface),
+      buffer_(static_cast<std::size_t>(physics.max_contacts)) {}
+
+void ContactHandler::collide(dSpaceID world_space, dWorldID world, dJointGroupID group) {
+  world_ = world;
+  group_ = group;
+  contacts_ = 0;
+  dSpaceCollide(world_space, this, &ContactHandler::near_callback);
+}
+
+void ContactHandler::near_callback(void* data, dGeomID a, dGeomID b) {
+  auto* self = static_cast<ContactHandler*>(data);
+  if (dGeomIsSpace(a) || dGeomIsSpace(b)) {
+    // A robot's space (or the walls'): test its geoms, never against each other.
+    dSpaceCollide2(a, b, data, &ContactHandler::near_callback);
+    return;
+  }
+  self->touch(a, b);
+}
+
+void ContactHandler::touch(dGeomID a, dGeomID b) {
+  const auto* ta = static_cast<const GeomTag*>(dGeomGetData(a));
+  const auto* tb = static_cast<const GeomTag*>(dGeomGetData(b));
+  if (ta == nullptr || tb == nullptr) return;
+  if (ta->robot != nullptr && ta->robot == tb->robot) return;  // a robot's own parts
+  if ((ta->kind == GeomKind::Wheel && tb->kind == GeomKind::Ground) ||
+      (tb->kind == GeomKind::Wheel && ta->kind == GeomKind::Ground)) {
+    touch_wheel(ta->kind == GeomKind::Wheel ? a : b, ta->kind == GeomKind::Wheel ? b : a);
+    return;
+  }
+  const int n = dCollide(a, b, physics_.max_contacts, buffer_.data(), sizeof(dContactGeom));
+  if (n <= 0) return;
+  const dBodyID body_a = dGeomGetBody(a);
+  const dBodyID body_b = dGeomGetBody(b);
+  for (int i = 0; i < n; ++i) {
+    dContact contact{};
+    contact.geom = buffer_[static_cast<std::size_t>(i)];
+    surface_for(a, b, *ta, *tb, contact);
+    const dJointID joint = dJointCreateContact(world_, group_, &contact);
+    dJointAttach(joint, body_a, body_b);
+    ++contacts_;
+  }
+}
+
+void ContactHandler::touch_wheel(dGeomID wheel, dGeomID ground) {
+  // A wheel touches the floor within a small margin, not only when it sinks
+  // in: four wheels (or wheels and casters) on one rigid chassis are
+  // statically indeterminate, and a wheel hovering a rounding error above the
+  // floor would otherwise lose all grip.
+  dVector4 plane;
+  dGeomPlaneGetParams(ground, plane);
+  const dReal* centre = dGeomGetPosition(wheel);
+  const double radius = dGeomSphereGetRadius(wheel);
+  const double gap =
+      plane[0] * centre[0] + plane[1] * centre[1] + plane[2] * centre[2] - plane[3] - radius;
+  if (gap > physics_.wheel_contact_margin) return;
+  dContact contact{};
+  for (int k = 0; k < 3; ++k) {
+    contact.geom.pos[k] = centre[k] - plane[k] * (radius + gap);
+    contact.geom.normal[k] = plane[k];
+  }
+  contact.geom.depth = std::max(0.0, -gap);
+  contact.geom.g1 = wheel;
+  contact.geom.g2 = ground;
+  contact.geom.side1 = contact.geom.side2 = -1;
+  const auto* wheel_tag = static_cast<const GeomTag*>(dGeomGetData(wheel));
+  surface_for(wheel, ground, *wheel_tag, *static_cast<const GeomTag*>(dGeomGetData(ground)),
+              contact);
+  const dJointID joint = dJointCreateContact(world_, group_, &contact);
+  dJointAttach(joint, dGeomGetBody(wheel), nullptr);
+  ++contacts_;
+}
+
+void ContactHandler::surface_for(dGeomID a, dGeomID b, const GeomTag& ta, const GeomTag& tb,
+                                 dContact& c) const {
+  dSurfaceParameters& s = c.surface;
+  s.bounce_vel = physics_.bounce_min_velocity;
+  // Order the pair so that each case below is written once.
+  GeomKind ka = ta.kind;
+  GeomKind kb = tb.kind;
+  if (static_cast<int>(ka) > static_cast<int>(kb)) std::swap(ka, kb);
+  auto is = [&](GeomKind x, GeomKind y) { return ka == x && kb == y; };
+
+  if (is(GeomKind::Ground, GeomKind::Ball)) {
+    // Carpet: Coulomb friction (proportional to the load), rolling resistance,
+    // bounce. Friction acts along the sliding direction, so a ball sliding
+    // diagonally decelerates exactly like one sliding along an axis.
+    s.mode = dContactApprox1 | dContactRolling | dContactBounce;
+    s.mu = ball_surface_.ground_friction;
+    s.rho = ball_surface_.rolling_friction;
+    s.bounce = ball_.bounce_restitution;
+    const dGeomID ball = ta.kind == GeomKind::Ball ? a : b;
+    const dBodyID body = dGeomGetBody(ball);
+    dVector3 slip;
+    dBodyGetPointVel(body, c.geom.pos[0], c.geom.pos[1], c.geom.pos[2], slip);
+    const double* n = c.geom.normal;
+    const double along_normal = slip[0] * n[0] + slip[1] * n[1] + slip[2] * n[2];
+    double t[3] = {slip[0] - along_normal * n[0], slip[1] - along_normal * n[1],
+                   slip[2] - along_normal * n[2]};
+    const double speed = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    if (speed > 1e-9) {
+      s.mode |= dContactFDir1;
+      for (int k = 0; k < 3; ++k) c.fdir1[k] = t[k] / speed;
+    }
+  } else if (is(GeomKind::Ground, GeomKind::Wheel)) {
+    // Omni wheel or tyre: grip along the rolling direction (axle x normal),
+    // roller friction across it. The friction bounds use each wheel's static
+    // share of the robot's weight rather than the solver's normal force: with
+    // casters and wheels on one rigid chassis the load split is statically
+    // indeterminate, and an iterative solver's split (and hence the grip)
+    // would be arbitrary. The planar model uses the same loads.
+    s.mode = dContactMu2 | dContactFDir1;
+    const GeomTag& w = ta.kind == GeomKind::Wheel ? ta : tb;
+    dVector3 axle;
+    dJointGetHingeAxis(w.wheel_hinge, axle);
+    const double* n = c.geom.normal;
+    double d[3] = {axle[1] * n[2] - axle[2] * n[1], axle[2] * n[0] - axle[0] * n[2],
+                   axle[0] * n[1] - axle[1] * n[0]};
+    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (len > 1e-9) {
+      for (int k = 0; k < 3; ++k) c.fdir1[k] = d[k] / len;
+    } else {
+      s.mode &= ~dContactFDir1;
+    }
+    const RobotTypeConfig& type = w.robot->type();
+    const double supports =
+        static_cast<double>(type.wheels.size() + type.caster_positions.size() / 2);
+    const double load = type.mass * physics_.gravity / supports;
+    s.mu = type.wheel_friction * load;
+    s.mu2 = type.wheel_lateral_friction * load;
+  } else if (is(GeomKind::Ground, GeomKind::Caster)) {
+    s.mode = 0;
+    s.mu = 0;  // ball casters roll freely every way
+  } else if (is(GeomKind::Ground, GeomKind::Chassis)) {
+    s.mode = dContactApprox1;
+    s.mu = physics_.chassis_ground_friction;
+  } else if (is(GeomKind::Wall, GeomKind::Ball) || is(GeomKind::Wall, GeomKind::Chassis)) {
+    s.mode = dContactApprox1 | dContactBounce;
+    s.mu = field_.wall_friction;
+    s.bounce = field_.wall_restitution;
+  } else if (is(GeomKind::Ball, GeomKind::Chassis)) {
+    s.mode = dContactApprox1 | dContactBounce;
+    s.mu = physics_.ball_robot_friction;
+    s.bounce = ball_.robot_restitution;
+  } else if (is(GeomKind::Chassis, GeomKind::Chassis)) {
+    s.mode = dContactApprox1 | dContactBounce;
+    s.mu = physics_.robot_robot_friction;
+    s.bounce = physics_.robot_robot_restitution;
+  } else {
+    s.mode = 0;
+    s.mu = 0;
+  }
+}
+
+}  // namespace ubersim::physics

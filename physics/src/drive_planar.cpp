@@ -1,0 +1,192 @@
+// The planar drive model: one body per robot, held to the floor plane by a
+// plane-2D joint, with no wheel bodies. Each step solves, per robot, for the
+// wheel forces that would make every wheel roll at its set-point and not slide
+// across its axle, each force bounded: along the wheel by the smaller of the
+// motor's torque / wheel radius and Coulomb friction, across it by the roller
+// (or tyre) friction. It is a small projected Gauss-Seidel over 2 rows per
+// wheel and 3 degrees of freedom; the forces go to ODE as forces at the wheels'
+// contact points, so everything else (collisions, kicks) stays ODE physics.
+#include <algorithm>
+#include <cmath>
+
+#include "ubersim/physics/drive.hpp"
+
+namespace ubersim::physics {
+namespace {
+
+class PlanarDrive final : public Drive {
+ public:
+  explicit PlanarDrive(const DriveContext& c)
+      : type_(*c.type),
+        kinematics_(*c.kinematics),
+        iterations_(c.physics->planar_solver_iterations) {
+    const RobotTypeConfig& t = type_;
+    chassis_.reset(dBodyCreate(c.world));
+    const double tilt_inertia = t.mass * (3 * t.radius * t.radius + t.height * t.height) / 12;
+    dMass m;
+    dMassSetParameters(&m, t.mass, 0, 0, 0, tilt_inertia, tilt_inertia, t.moment_of_inertia, 0, 0,
+                       0);
+    dBodySetMass(chassis_.get(), &m);
+    // The plane-2D joint carries the weight; gravity would only load it.
+    dBodySetGravityMode(chassis_.get(), 0);
+    geom_.reset(create_chassis_geom(c.space, c.outline));
+    dGeomSetBody(geom_.get(), chassis_.get());
+    tag_geom(geom_.get(), c.chassis_tag);
+    plane_.reset(dJointCreatePlane2D(c.world, nullptr));
+    dJointAttach(plane_.get(), chassis_.get(), nullptr);
+
+    // Static load share: the robot's weight spread over wheels and casters.
+    const double supports = static_cast<double>(t.wheels.size() + t.caster_positions.size() / 2);
+    const double load = t.mass * c.physics->gravity / supports;
+    traction_limit_ = std::min(t.motor_max_torque / t.wheel_radius, t.wheel_friction * load);
+    torque_limited_ = t.motor_max_torque / t.wheel_radius <= t.wheel_friction * load;
+    lateral_limit_ = t.wheel_lateral_friction * load;
+    for (const auto& w : t.wheels) wheels_.push_back(wheel_geometry(w));
+    measured_.assign(wheels_.size(), 0);
+    inverse_mass_ = 1 / t.mass;
+    inverse_inertia_ = 1 / t.moment_of_inertia;
+    rows_.resize(2 * wheels_.size());
+    place(PlanarState{});
+  }
+
+  dBodyID chassis() const override { return chassis_.get(); }
+  dGeomID chassis_geom() const override { return geom_.get(); }
+
+  void drive(const std::vector<double>& wheel_speeds, double dt) override {
+    const dReal* lv = dBodyGetLinearVel(chassis_.get());
+    const dReal* av = dBodyGetAngularVel(chassis_.get());
+    const dReal* R = dBodyGetRotation(chassis_.get());
+    const double c = R[0];
+    const double s = R[4];
+    double v[3] = {lv[0], lv[1], av[2]};
+
+    for (std::size_t i = 0; i < wheels_.size(); ++i) {
+      const WheelGeometry& g = wheels_[i];
+      const Vec2 r = rotate({g.x, g.y}, c, s);
+      const Vec2 d = rotate({g.dx, g.dy}, c, s);
+      const Vec2 axle = perp(d);
+      set_row(rows_[2 * i], r, d, wheel_speeds[i] * type_.wheel_radius, traction_limit_ * dt);
+      set_row(rows_[2 * i + 1], r, axle, 0.0, lateral_limit_ * dt);
+    }
+    for (int it = 0; it < iterations_; ++it) {
+      for (Row& row : rows_) {
+        const double jv = row.j[0] * v[0] + row.j[1] * v[1] + row.j[2] * v[2];
+        const double wanted = row.impulse + (row.target - jv) * row.mass;
+        const double clamped = std::clamp(wanted, -row.bound, row.bound);
+        const double delta = clamped - row.impulse;
+        row.impulse = clamped;
+        v[0] += row.j[0] * delta * inverse_mass_;
+        v[1] += row.j[1] * delta * inverse_mass_;
+        v[2] += row.j[2] * delta * inverse_inertia_;
+      }
+    }
+    double force[3] = {0, 0, 0};
+    for (const Row& row : rows_) {
+      for (int k = 0; k < 3; ++k) force[k] += row.j[k] * row.impulse / dt;
+    }
+    dBodyAddForce(chassis_.get(), force[0], force[1], 0);
+    dBodyAddTorque(chassis_.get(), 0, 0, force[2]);
+
+    // Encoders: a wheel turns at its set-point unless its motor is out of
+    // torque, in which case it rolls with the floor.
+    for (std::size_t i = 0; i < wheels_.size(); ++i) {
+      const Row& row = rows_[2 * i];
+      const bool saturated = std::abs(row.impulse) >= row.bound * (1 - 1e-9);
+      if (saturated && torque_limited_) {
+        const double jv = row.j[0] * v[0] + row.j[1] * v[1] + row.j[2] * v[2];
+        measured_[i] = jv / type_.wheel_radius;
+      } else {
+        measured_[i] = wheel_speeds[i];
+      }
+    }
+  }
+
+  void after_step() override {
+    // The plane-2D joint keeps velocities planar, but rounding still tilts the
+    // body a little each step; project it back onto the plane (as ODE advises).
+    const dReal* R = dBodyGetRotation(chassis_.get());
+    const double heading = std::atan2(R[4], R[0]);
+    dMatrix3 upright;
+    yaw_rotation(heading, upright);
+    dBodySetRotation(chassis_.get(), upright);
+    const dReal* p = dBodyGetPosition(chassis_.get());
+    dBodySetPosition(chassis_.get(), p[0], p[1], 0);
+    const dReal* lv = dBodyGetLinearVel(chassis_.get());
+    dBodySetLinearVel(chassis_.get(), lv[0], lv[1], 0);
+    const dReal* av = dBodyGetAngularVel(chassis_.get());
+    dBodySetAngularVel(chassis_.get(), 0, 0, av[2]);
+  }
+
+  void measured_wheel_speeds(std::vector<double>& out) const override { out = measured_; }
+
+  void place(const PlanarState& s) override {
+    dMatrix3 R;
+    yaw_rotation(s.heading, R);
+    dBodySetPosition(chassis_.get(), s.x, s.y, 0);
+    dBodySetRotation(chassis_.get(), R);
+    dBodySetLinearVel(chassis_.get(), s.vx, s.vy, 0);
+    dBodySetAngularVel(chassis_.get(), 0, 0, s.omega);
+    dBodySetForce(chassis_.get(), 0, 0, 0);
+    dBodySetTorque(chassis_.get(), 0, 0, 0);
+    const double c = std::cos(s.heading);
+    const double sn = std::sin(s.heading);
+    const Eigen::Vector3d local(c * s.vx + sn * s.vy, -sn * s.vx + c * s.vy, s.omega);
+    const Eigen::VectorXd spin = kinematics_.wheel_speeds(local);
+    for (std::size_t i = 0; i < measured_.size(); ++i) {
+      measured_[i] = spin(static_cast<Eigen::Index>(i));
+    }
+  }
+
+  void bodies(std::vector<dBodyID>& out) const override { out.push_back(chassis_.get()); }
+
+ private:
+  struct Row {
+    double j[3] = {0, 0, 0};  // Jacobian: (x, y, yaw) -> contact velocity along the row
+    double target = 0;        // m/s
+    double bound = 0;         // N s, largest impulse this step
+    double mass = 0;          // effective mass along the row (kg)
+    double impulse = 0;       // N s, accumulated
+  };
+
+  void set_row(Row& row, Vec2 r, Vec2 direction, double target, double bound) const {
+    row.j[0] = direction.x;
+    row.j[1] = direction.y;
+    row.j[2] = cross(r, direction);
+    row.target = target;
+    row.bound = bound;
+    row.impulse = 0;
+    row.mass = 1 / (inverse_mass_ * (direction.x * direction.x + direction.y * direction.y) +
+                    inverse_inertia_ * row.j[2] * row.j[2]);
+  }
+
+  const RobotTypeConfig& type_;
+  const WheelKinematics& kinematics_;
+  int iterations_;
+  BodyHandle chassis_;
+  GeomHandle geom_;
+  JointHandle plane_;
+  std::vector<WheelGeometry> wheels_;
+  std::vector<Row> rows_;
+  std::vector<double> measured_;
+  double traction_limit_ = 0;  // N
+  bool torque_limited_ = false;
+  double lateral_limit_ = 0;  // N
+  double inverse_mass_ = 0;
+  double inverse_inertia_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Drive> make_planar_drive(const DriveContext& context) {
+  return std::make_unique<PlanarDrive>(context);
+}
+
+double chassis_origin_height(const RobotTypeConfig& type) {
+  return type.model == DriveModel::Jointed ? type.center_of_mass_height : 0.0;
+}
+
+void yaw_rotation(double heading, dMatrix3 R) {
+  dRFromAxisAndAngle(R, 0, 0, 1, heading);
+}
+
+}  // namespace ubersim::physics

@@ -1,0 +1,313 @@
+#include "ubersim/physics/robot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "ubersim/angles.hpp"
+
+namespace ubersim::physics {
+namespace {
+
+// Moves `value` towards `target` by at most `max_step` (no limit when <= 0).
+double approach(double value, double target, double max_step) {
+  if (max_step <= 0) return target;
+  return value + std::clamp(target - value, -max_step, max_step);
+}
+
+}  // namespace
+
+Robot::Robot(dWorldID world, dSpaceID world_space, const PhysicsConfig& physics,
+             const BallConfig& ball, std::shared_ptr<const RobotTypeConfig> type, Team team, int id)
+    : type_(std::move(type)),
+      team_(team),
+      id_(id),
+      physics_(physics),
+      ball_radius_(ball.radius),
+      ball_mass_(ball.mass),
+      kinematics_(*type_) {
+  const RobotTypeConfig& t = *type_;
+  const double origin = chassis_origin_height(t);
+  outline_ = ChassisOutline::make(t.radius, t.front_distance, physics.chassis_outline_segments,
+                                  t.ground_clearance - origin, t.height - origin);
+  if (t.has_dribbler()) {
+    // Roller axis placed so that it just touches a ball resting against the
+    // front face: a held ball sits on the face, where the kicker reaches it.
+    const double reach = ball_radius_ + t.dribbler_roller_radius;
+    const double rise = t.dribbler_height - ball_radius_;
+    if (std::abs(rise) >= reach) {
+      throw std::invalid_argument(
+          "robot type '" + t.name + "': a dribbler at height " + std::to_string(t.dribbler_height) +
+          " m cannot touch a ball of radius " + std::to_string(ball_radius_) + " m");
+    }
+    roller_x_ = t.front_distance + ball_radius_ - std::sqrt(reach * reach - rise * rise);
+  }
+  space_ = make_simple_space(world_space);
+  dGeomID space_geom = reinterpret_cast<dGeomID>(space_.get());
+  dGeomSetCategoryBits(space_geom, collide_bits::kChassis | collide_bits::kWheel);
+  dGeomSetCollideBits(space_geom, collide_bits::kGround | collide_bits::kWall |
+                                      collide_bits::kBall | collide_bits::kChassis);
+  chassis_tag_.kind = GeomKind::Chassis;
+  chassis_tag_.robot = this;
+  DriveContext context;
+  context.world = world;
+  context.space = space_.get();
+  context.type = type_.get();
+  context.physics = &physics_;
+  context.kinematics = &kinematics_;
+  context.outline = &outline_;
+  context.chassis_tag = &chassis_tag_;
+  context.robot = this;
+  drive_ =
+      t.model == DriveModel::Jointed ? make_jointed_drive(context) : make_planar_drive(context);
+  wheel_targets_.assign(t.wheels.size(), 0.0);
+}
+
+void Robot::place(const PlanarState& state) {
+  drive_->place(state);
+  setpoint_vx_ = state.vx;
+  setpoint_vy_ = state.vy;
+  setpoint_omega_ = state.omega;
+}
+
+PlanarState Robot::planar_state() const {
+  const dBodyID body = drive_->chassis();
+  const dReal* p = dBodyGetPosition(body);
+  const dReal* R = dBodyGetRotation(body);
+  const dReal* v = dBodyGetLinearVel(body);
+  const dReal* w = dBodyGetAngularVel(body);
+  PlanarState s;
+  s.x = p[0];
+  s.y = p[1];
+  s.heading = std::atan2(R[4], R[0]);
+  s.vx = v[0];
+  s.vy = v[1];
+  s.omega = w[2];
+  return s;
+}
+
+double Robot::uprightness() const {
+  return dBodyGetRotation(drive_->chassis())[10];
+}
+
+void Robot::set_command(const RobotCommand& command, double now, double timeout) {
+  command_ = command;
+  last_command_time_ = now;
+  command_timeout_ = timeout;
+}
+
+RobotCommand Robot::effective_command(double now) const {
+  const bool timed_out = command_timeout_ > 0 && last_command_time_ >= 0 &&
+                         now - last_command_time_ > command_timeout_;
+  return timed_out ? RobotCommand{} : command_;
+}
+
+void Robot::before_step(double now, double dt) {
+  const RobotTypeConfig& t = *type_;
+  const RobotCommand command = effective_command(now);
+  const PlanarState s = planar_state();
+  const double c = std::cos(s.heading);
+  const double sn = std::sin(s.heading);
+  if (command.mode == CommandMode::WheelSpeeds) {
+    // Raw motor set-points; the velocity set-point follows for a smooth switch back.
+    wheel_targets_ = command.wheel_speeds;
+    Eigen::VectorXd w(static_cast<Eigen::Index>(wheel_targets_.size()));
+    for (std::size_t i = 0; i < wheel_targets_.size(); ++i) {
+      w(static_cast<Eigen::Index>(i)) = wheel_targets_[i];
+    }
+    const Eigen::Vector3d v = kinematics_.velocity(w);
+    setpoint_vx_ = c * v(0) - sn * v(1);
+    setpoint_vy_ = sn * v(0) + c * v(1);
+    setpoint_omega_ = v(2);
+  } else {
+    double target_vx = command.vx;
+    double target_vy = command.vy;
+    if (command.mode == CommandMode::LocalVelocity) {
+      target_vx = c * command.vx - sn * command.vy;
+      target_vy = sn * command.vx + c * command.vy;
+    }
+    // The on-board acceleration limit acts on the field-frame velocity: that
+    // is the acceleration the robot's mass actually sees.
+    const double dvx = target_vx - setpoint_vx_;
+    const double dvy = target_vy - setpoint_vy_;
+    const double change = std::hypot(dvx, dvy);
+    const double max_change = t.max_acceleration * dt;
+    const double scale = (t.max_acceleration > 0 && change > max_change) ? max_change / change : 1;
+    setpoint_vx_ += dvx * scale;
+    setpoint_vy_ += dvy * scale;
+    setpoint_omega_ = approach(setpoint_omega_, command.omega, t.max_angular_acceleration * dt);
+    const Eigen::Vector3d local(c * setpoint_vx_ + sn * setpoint_vy_,
+                                -sn * setpoint_vx_ + c * setpoint_vy_, setpoint_omega_);
+    const Eigen::VectorXd w = kinematics_.wheel_speeds(local);
+    // Out of motor speed: slow every wheel alike, so the direction holds.
+    const double fastest = w.cwiseAbs().maxCoeff();
+    const double wheel_scale = fastest > t.motor_max_speed ? t.motor_max_speed / fastest : 1;
+    for (std::size_t i = 0; i < wheel_targets_.size(); ++i) {
+      wheel_targets_[i] = w(static_cast<Eigen::Index>(i)) * wheel_scale;
+    }
+  }
+  drive_->drive(wheel_targets_, dt);
+}
+
+void Robot::ball_in_robot_frame(const Ball& ball, double local[3]) const {
+  const dBodyID body = drive_->chassis();
+  const dReal* p = dBodyGetPosition(body);
+  const dReal* R = dBodyGetRotation(body);
+  const dReal* b = ball.position();
+  double fx = R[0];
+  double fy = R[4];
+  const double norm = std::hypot(fx, fy);
+  fx /= norm;
+  fy /= norm;
+  const double dx = b[0] - p[0];
+  const double dy = b[1] - p[1];
+  local[0] = fx * dx + fy * dy;
+  local[1] = -fy * dx + fx * dy;
+  local[2] = b[2];  // height above the floor
+}
+
+bool Robot::ball_at_kicker(const Ball& ball) const {
+  const RobotTypeConfig& t = *type_;
+  double local[3];
+  ball_in_robot_frame(ball, local);
+  const double half_width = std::max(t.kicker_width, t.dribbler_width) / 2;
+  return local[0] >= t.front_distance &&
+         local[0] <= t.front_distance + ball_radius_ + t.kicker_reach &&
+         std::abs(local[1]) <= half_width && local[2] <= ball_radius_ + t.kicker_reach;
+}
+
+bool Robot::kicker_charged(double now) const {
+  return type_->has_kicker() && now - last_kick_time_ >= type_->kicker_recharge_time;
+}
+
+bool Robot::try_kick(Ball& ball, double now, double dt) {
+  const RobotCommand command = effective_command(now);
+  const bool chip = command.chip_speed > 0;
+  if (!chip && command.kick_speed <= 0) return false;
+  if (!kicker_charged(now) || !ball_at_kicker(ball)) return false;
+  const dBodyID body = drive_->chassis();
+  const dReal* R = dBodyGetRotation(body);
+  const double norm = std::hypot(R[0], R[4]);
+  const double fx = R[0] / norm;
+  const double fy = R[4] / norm;
+  const dReal* b = ball.position();
+  dVector3 base;
+  dBodyGetPointVel(body, b[0], b[1], b[2], base);
+  double v[3];
+  if (chip) {
+    const double along = command.chip_speed * std::cos(command.chip_angle);
+    v[0] = base[0] + along * fx;
+    v[1] = base[1] + along * fy;
+    v[2] = command.chip_speed * std::sin(command.chip_angle);
+  } else {
+    v[0] = base[0] + command.kick_speed * fx;
+    v[1] = base[1] + command.kick_speed * fy;
+    v[2] = 0;
+  }
+  const dReal* old = ball.velocity();
+  const double impulse[3] = {ball_mass_ * (v[0] - old[0]), ball_mass_ * (v[1] - old[1]),
+                             ball_mass_ * (v[2] - old[2])};
+  dBodySetLinearVel(ball.body(), v[0], v[1], v[2]);
+  dBodySetAngularVel(ball.body(), 0, 0, 0);
+  // Newton's third law over the coming step, at the ball: no joint, nothing stiff.
+  dBodyAddForceAtPos(body, -impulse[0] / dt, -impulse[1] / dt, -impulse[2] / dt, b[0], b[1], b[2]);
+  last_kick_time_ = now;
+  return true;
+}
+
+void Robot::add_dribbler_contact(const Ball& ball, double now, dWorldID world,
+                                 dJointGroupID group) const {
+  const RobotTypeConfig& t = *type_;
+  if (!t.has_dribbler()) return;
+  const RobotCommand command = effective_command(now);
+  if (command.dribbler_speed == 0) return;
+  double local[3];
+  ball_in_robot_frame(ball, local);
+  // Nearest point of the roller's axis to the ball centre (robot frame).
+  const double axis_y = std::clamp(local[1], -t.dribbler_width / 2, t.dribbler_width / 2);
+  const double gap[3] = {local[0] - roller_x_, local[1] - axis_y, local[2] - t.dribbler_height};
+  const double distance = std::sqrt(gap[0] * gap[0] + gap[1] * gap[1] + gap[2] * gap[2]);
+  const double touch = ball_radius_ + t.dribbler_roller_radius;
+  if (distance > touch + t.kicker_reach || distance < 1e-9 || local[0] < roller_x_) return;
+
+  const dBodyID body = drive_->chassis();
+  const dReal* R = dBodyGetRotation(body);
+  const double norm = std::hypot(R[0], R[4]);
+  const double fx = R[0] / norm;
+  const double fy = R[4] / norm;
+  // Robot frame -> field frame (upright): x forward, y left, z up.
+  auto to_field = [&](const double v[3], double out[3]) {
+    out[0] = fx * v[0] - fy * v[1];
+    out[1] = fy * v[0] + fx * v[1];
+    out[2] = v[2];
+  };
+  const double n_local[3] = {gap[0] / distance, gap[1] / distance, gap[2] / distance};
+  double normal[3];
+  to_field(n_local, normal);
+  const double roller_axis_local[3] = {0, 1, 0};
+  double roller_axis[3];
+  to_field(roller_axis_local, roller_axis);
+  // Direction the roller's surface moves at the contact for backspin: down
+  // and back along the ball's near side (axis x normal).
+  double fdir[3] = {roller_axis[1] * normal[2] - roller_axis[2] * normal[1],
+                    roller_axis[2] * normal[0] - roller_axis[0] * normal[2],
+                    roller_axis[0] * normal[1] - roller_axis[1] * normal[0]};
+  const double fnorm = std::sqrt(fdir[0] * fdir[0] + fdir[1] * fdir[1] + fdir[2] * fdir[2]);
+  if (fnorm < 1e-9) return;
+  const dReal* b = ball.position();
+  dContact contact{};
+  contact.geom.pos[0] = b[0] - normal[0] * ball_radius_;
+  contact.geom.pos[1] = b[1] - normal[1] * ball_radius_;
+  contact.geom.pos[2] = b[2] - normal[2] * ball_radius_;
+  // Normal into body 1, the ball: pushes it away from the roller.
+  for (int k = 0; k < 3; ++k) {
+    contact.geom.normal[k] = normal[k];
+    contact.fdir1[k] = fdir[k] / fnorm;
+  }
+  contact.geom.depth = std::max(0.0, touch - distance);
+  contact.geom.g1 = ball.geom();
+  contact.geom.g2 = drive_->chassis_geom();
+  contact.surface.mode = dContactFDir1 | dContactMotion1 | dContactMu2 | dContactApprox1_2;
+  // Along the roller's motion the grip is the roller motor's torque over its
+  // radius; across it, ordinary friction.
+  contact.surface.mu = t.dribbler_max_torque / t.dribbler_roller_radius;
+  contact.surface.motion1 = command.dribbler_speed * t.dribbler_roller_radius;
+  contact.surface.mu2 = physics_.ball_robot_friction;
+  const dJointID joint = dJointCreateContact(world, group, &contact);
+  dJointAttach(joint, ball.body(), body);
+}
+
+void Robot::fill_state(robot_state_t& out, const Ball& ball, double now) const {
+  const RobotTypeConfig& t = *type_;
+  const dBodyID body = drive_->chassis();
+  const dReal* p = dBodyGetPosition(body);
+  const dReal* q = dBodyGetQuaternion(body);
+  const dReal* v = dBodyGetLinearVel(body);
+  const dReal* w = dBodyGetAngularVel(body);
+  const dReal* R = dBodyGetRotation(body);
+  out.team = static_cast<int8_t>(team_);
+  out.robot_id = id_;
+  out.robot_type = t.name;
+  out.x = p[0];
+  out.y = p[1];
+  out.orientation = wrap_angle(std::atan2(R[4], R[0]));
+  out.vx = v[0];
+  out.vy = v[1];
+  out.omega = w[2];
+  // The centre of mass, whichever model (the planar body sits on the floor).
+  const double lift = t.center_of_mass_height - chassis_origin_height(t);
+  for (int k = 0; k < 3; ++k) {
+    out.body.position[k] = p[k] + R[4 * k + 2] * lift;
+    out.body.linear_velocity[k] = v[k];
+    out.body.angular_velocity[k] = w[k];
+  }
+  for (int k = 0; k < 4; ++k) out.body.orientation[k] = q[k];
+  drive_->measured_wheel_speeds(wheel_speed_buffer_);
+  out.num_wheels = static_cast<int32_t>(wheel_speed_buffer_.size());
+  out.wheel_speeds = wheel_speed_buffer_;
+  out.ball_contact = ball_at_kicker(ball);
+  out.kicker_charged = kicker_charged(now);
+  out.last_command_time = last_command_time_;
+}
+
+}  // namespace ubersim::physics

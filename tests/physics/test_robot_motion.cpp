@@ -1,0 +1,148 @@
+// Robot motion against the robot's configuration: acceleration at the
+// on-board limit, top speed, rotation, and a differential drive's inability
+// to move sideways. Every test runs for both drive models.
+#include <gtest/gtest.h>
+
+#include "physics_test_support.hpp"
+
+namespace ubersim::physics::testing {
+namespace {
+
+class RobotMotion : public ::testing::TestWithParam<DriveModel> {};
+
+struct Ramp {
+  double acceleration = 0;  // measured between 25 % and 75 % of the target
+  double final_value = 0;   // mean over the last 0.2 s
+  double off_axis = 0;      // largest |value| on the axes that should stay still
+};
+
+// Drives a fresh robot with a constant command and measures one component of
+// its (robot-frame at start = field-frame, heading 0) velocity.
+Ramp measure(DriveModel model, const std::string& type, double vx, double vy, double omega,
+             int component, double duration) {
+  World world(empty_world(model));
+  Robot& robot = world.add_robot(Team::Yellow, 0, type, PlanarState{});
+  world.command(Team::Yellow, 0, velocity_command(0, vx, vy, omega));
+  const double target = component == 0 ? vx : component == 1 ? vy : omega;
+  double t_low = -1, t_high = -1;
+  double sum = 0;
+  int count = 0;
+  Ramp ramp;
+  const auto steps = static_cast<int>(std::lround(duration / world.dt()));
+  for (int i = 0; i < steps; ++i) {
+    world.step();
+    const PlanarState s = robot.planar_state();
+    const double c = std::cos(s.heading), sn = std::sin(s.heading);
+    const double local[3] = {c * s.vx + sn * s.vy, -sn * s.vx + c * s.vy, s.omega};
+    const double value = local[component];
+    if (t_low < 0 && value >= 0.25 * target) t_low = world.time();
+    if (t_high < 0 && value >= 0.75 * target) t_high = world.time();
+    if (world.time() > duration - 0.2) {
+      sum += value;
+      ++count;
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (k != component) ramp.off_axis = std::max(ramp.off_axis, std::abs(local[k]));
+    }
+  }
+  ramp.acceleration = (t_low > 0 && t_high > t_low) ? 0.5 * target / (t_high - t_low) : 0;
+  ramp.final_value = count > 0 ? sum / count : 0;
+  return ramp;
+}
+
+TEST_P(RobotMotion, OmniForwardReachesSpeedAtTheConfiguredAcceleration) {
+  const auto type = load_robot_config(kConfigDir, "omni4_ssl");
+  const Ramp r = measure(GetParam(), "omni4_ssl", 2.0, 0, 0, 0, 1.5);
+  EXPECT_NEAR(r.acceleration, type.max_acceleration, 0.05 * type.max_acceleration);
+  EXPECT_NEAR(r.final_value, 2.0, 0.05 * 2.0);
+  EXPECT_LT(r.off_axis, 0.1);
+}
+
+TEST_P(RobotMotion, OmniSidewaysReachesSpeedAtTheConfiguredAcceleration) {
+  const auto type = load_robot_config(kConfigDir, "omni4_ssl");
+  const Ramp r = measure(GetParam(), "omni4_ssl", 0, 2.0, 0, 1, 1.5);
+  EXPECT_NEAR(r.acceleration, type.max_acceleration, 0.05 * type.max_acceleration);
+  EXPECT_NEAR(r.final_value, 2.0, 0.05 * 2.0);
+  EXPECT_LT(r.off_axis, 0.1);
+}
+
+TEST_P(RobotMotion, OmniRotatesAtTheConfiguredAngularAcceleration) {
+  const auto type = load_robot_config(kConfigDir, "omni4_ssl");
+  const Ramp r = measure(GetParam(), "omni4_ssl", 0, 0, 4.0, 2, 1.0);
+  EXPECT_NEAR(r.acceleration, type.max_angular_acceleration, 0.05 * type.max_angular_acceleration);
+  EXPECT_NEAR(r.final_value, 4.0, 0.05 * 4.0);
+  EXPECT_LT(r.off_axis, 0.05);
+}
+
+TEST_P(RobotMotion, ThreeWheelOmniDrivesDiagonally) {
+  World world(empty_world(GetParam(), "field2002"));
+  Robot& robot = world.add_robot(Team::Blue, 3, "omni3_cmdragons02", PlanarState{});
+  world.command(Team::Blue, 3, velocity_command(3, 0.7, 0.7, 0));
+  run_for(world, 1.5);
+  const PlanarState s = robot.planar_state();
+  EXPECT_NEAR(s.vx, 0.7, 0.05 * 0.7);
+  EXPECT_NEAR(s.vy, 0.7, 0.05 * 0.7);
+  EXPECT_NEAR(s.heading, 0, 0.05);
+}
+
+TEST_P(RobotMotion, DifferentialDriveDoesNotMoveSideways) {
+  World world(empty_world(GetParam()));
+  Robot& robot = world.add_robot(Team::Yellow, 1, "diff_drive_cmdragons02", PlanarState{});
+  world.command(Team::Yellow, 1, velocity_command(1, 0, 1.5, 0));
+  run_for(world, 1.0);
+  const PlanarState s = robot.planar_state();
+  EXPECT_LT(std::abs(s.y), 0.005);
+  EXPECT_LT(std::abs(s.x), 0.005);
+  EXPECT_LT(std::hypot(s.vx, s.vy), 0.01);
+  // ... while forward it drives.
+  world.command(Team::Yellow, 1, velocity_command(1, 1.0, 0, 0));
+  run_for(world, 1.5);
+  EXPECT_NEAR(robot.planar_state().vx, 1.0, 0.05);
+}
+
+TEST_P(RobotMotion, WheelSpeedCommandsDriveTheWheels) {
+  World world(empty_world(GetParam()));
+  Robot& robot = world.add_robot(Team::Yellow, 2, "omni4_ssl", PlanarState{});
+  const Eigen::VectorXd wheels = robot.kinematics().wheel_speeds(Eigen::Vector3d(1.0, 0, 0));
+  robot_command_t c{};
+  c.robot_id = 2;
+  c.mode = robot_command_t::MODE_WHEEL_SPEEDS;
+  c.num_wheels = static_cast<int32_t>(wheels.size());
+  for (Eigen::Index i = 0; i < wheels.size(); ++i) c.wheel_speeds.push_back(wheels(i));
+  world.command(Team::Yellow, 2, c);
+  run_for(world, 1.0);
+  EXPECT_NEAR(robot.planar_state().vx, 1.0, 0.05);
+  EXPECT_NEAR(robot.planar_state().vy, 0.0, 0.05);
+}
+
+TEST_P(RobotMotion, GlobalCommandsHoldTheirDirectionWhileTheRobotTurns) {
+  World world(empty_world(GetParam()));
+  PlanarState start;
+  start.heading = M_PI / 2;  // facing +y
+  Robot& robot = world.add_robot(Team::Yellow, 4, "omni4_ssl", start);
+  robot_command_t c = velocity_command(4, 1.0, 0, 2.0);
+  c.mode = robot_command_t::MODE_GLOBAL_VELOCITY;
+  world.command(Team::Yellow, 4, c);
+  run_for(world, 1.5);
+  const PlanarState s = robot.planar_state();
+  EXPECT_NEAR(s.vx, 1.0, 0.1);
+  EXPECT_NEAR(s.vy, 0.0, 0.1);
+  EXPECT_NEAR(s.omega, 2.0, 0.1);
+}
+
+TEST_P(RobotMotion, CommandTimeoutStopsTheRobot) {
+  World world(empty_world(GetParam()));
+  Robot& robot = world.add_robot(Team::Yellow, 5, "omni4_ssl", PlanarState{});
+  world.command(Team::Yellow, 5, velocity_command(5, 1.0, 0, 0), 0.5);
+  run_for(world, 0.45);
+  EXPECT_GT(robot.planar_state().vx, 0.9);
+  run_for(world, 1.0);  // 0.5 s timeout, then at most 1/3 s of braking at 3 m/s^2
+  EXPECT_LT(std::abs(robot.planar_state().vx), 0.02);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothDriveModels, RobotMotion,
+                         ::testing::Values(DriveModel::Jointed, DriveModel::Planar),
+                         drive_model_test_name);
+
+}  // namespace
+}  // namespace ubersim::physics::testing
