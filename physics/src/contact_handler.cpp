@@ -57,6 +57,24 @@ void ContactHandler::touch(dGeomID a, dGeomID b) {
   }
 }
 
+namespace {
+
+// Slower slip than this (m/s) counts as rolling.
+constexpr double kSlipThreshold = 1e-3;
+
+// The part of v across `normal`, as a unit vector, if longer than `minimum`.
+bool tangent_direction(const double* v, const double* normal, double minimum, double* out) {
+  const double along = v[0] * normal[0] + v[1] * normal[1] + v[2] * normal[2];
+  const double t[3] = {v[0] - along * normal[0], v[1] - along * normal[1],
+                       v[2] - along * normal[2]};
+  const double length = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+  if (length <= minimum || length < 1e-12) return false;
+  for (int k = 0; k < 3; ++k) out[k] = t[k] / length;
+  return true;
+}
+
+}  // namespace
+
 void ContactHandler::touch_wheel(dGeomID wheel, dGeomID ground) {
   // A wheel touches the floor within a small margin, not only when it sinks
   // in: four wheels (or wheels and casters) on one rigid chassis are
@@ -104,19 +122,21 @@ void ContactHandler::surface_for(dGeomID a, dGeomID b, const GeomTag& ta, const 
     s.mu = ball_surface_.ground_friction;
     s.rho = ball_surface_.rolling_friction;
     s.bounce = ball_.bounce_restitution;
+    // Both friction and rolling resistance act in the box of ODE's two
+    // tangent axes; aligning the first with the motion makes them act along
+    // it exactly, so a ball moving diagonally behaves like one along an axis.
+    // While sliding that is the slip of the contact point, once rolling the
+    // ball's own direction.
     const dGeomID ball = ta.kind == GeomKind::Ball ? a : b;
     const dBodyID body = dGeomGetBody(ball);
     dVector3 slip;
     dBodyGetPointVel(body, c.geom.pos[0], c.geom.pos[1], c.geom.pos[2], slip);
-    const double* n = c.geom.normal;
-    const double along_normal = slip[0] * n[0] + slip[1] * n[1] + slip[2] * n[2];
-    double t[3] = {slip[0] - along_normal * n[0], slip[1] - along_normal * n[1],
-                   slip[2] - along_normal * n[2]};
-    const double speed = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-    if (speed > 1e-9) {
-      s.mode |= dContactFDir1;
-      for (int k = 0; k < 3; ++k) c.fdir1[k] = t[k] / speed;
+    const double* v = dBodyGetLinearVel(body);
+    if (!tangent_direction(slip, c.geom.normal, kSlipThreshold, c.fdir1) &&
+        !tangent_direction(v, c.geom.normal, 0.0, c.fdir1)) {
+      return;
     }
+    s.mode |= dContactFDir1;
   } else if (is(GeomKind::Ground, GeomKind::Wheel)) {
     // Omni wheel or tyre: grip along the rolling direction (axle x normal),
     // roller friction across it. The friction bounds use each wheel's static

@@ -98,6 +98,7 @@ CommandCheck check_command(const robot_command_t& raw, const RobotTypeConfig& ro
   check.accepted = true;
   check.clamped = clamped;
   check.problem = problems.str();
+  if (check.problem.size() >= 2) check.problem.resize(check.problem.size() - 2);  // trailing "; "
   return check;
 }
 

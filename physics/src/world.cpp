@@ -258,13 +258,19 @@ void World::check_safety() {
   const dBodyID ball = ball_->body();
   const dReal* bp = dBodyGetPosition(ball);
   if (!body_finite(ball) || !inside_walls(bp[0], bp[1], margin) || bp[2] < -setup_.ball.radius) {
+    // Over the wall or through a fault: back inside where it was last seen
+    // good, on the floor, at rest.
     ++counters_.bodies_reset;
-    log_.warn("reset:ball", "ball had a non-finite state or left the field: put back at (" +
-                                std::to_string(ball_last_good_[0]) + ", " +
-                                std::to_string(ball_last_good_[1]) + ") at rest");
-    const double p[3] = {ball_last_good_[0], ball_last_good_[1], ball_last_good_[2]};
-    const double v[3] = {0, 0, 0};
-    ball_->place(p, v);
+    const double r = setup_.ball.radius;
+    const double x = std::clamp(ball_last_good_[0], -setup_.field.half_length_to_wall() + r,
+                                setup_.field.half_length_to_wall() - r);
+    const double y = std::clamp(ball_last_good_[1], -setup_.field.half_width_to_wall() + r,
+                                setup_.field.half_width_to_wall() - r);
+    log_.warn("reset:ball",
+              "ball " +
+                  std::string(body_finite(ball) ? "left the field" : "had a non-finite state") +
+                  ": put back at (" + std::to_string(x) + ", " + std::to_string(y) + ") at rest");
+    place_ball(x, y, 0, 0, 0, 0);
   } else {
     ball_last_good_ = {bp[0], bp[1], bp[2]};
   }
