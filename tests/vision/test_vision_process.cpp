@@ -62,7 +62,7 @@ std::map<std::string, std::string> base_keys() {
 std::string profile_text(std::map<std::string, std::string> keys, int cameras = 1) {
   keys["CAMERA_COUNT"] = std::to_string(cameras + 1);
   std::string text;
-  for (const auto& [key, value] : keys) text += key + " = " + value + "\n";
+  for (const auto& [key, value] : keys) text.append(key).append(" = ").append(value).append("\n");
   return text + marker_camera_keys(cameras);
 }
 
@@ -640,8 +640,8 @@ TEST_F(VisionProcess, BallBehindARobotIsHiddenOrShiftedAsConfigured) {
   const double touching = omni4().radius + kBallRadius;
   Vector3d mostly_visible, mostly_hidden;
   bool found_mostly_visible = false, found_mostly_hidden = false;
-  for (double y = 0.25; y > 0.0; y -= 0.0005) {
-    const Vector3d ball(1.6, y, kBallRadius);
+  for (int i = 0; i < 500; ++i) {  // y from 0.25 m towards the robot, 0.5 mm steps
+    const Vector3d ball(1.6, 0.25 - 0.0005 * i, kBallRadius);
     if ((ball.head<2>() - Vector2d(robot.x, robot.y)).norm() < touching) break;
     const double fraction = visible_part(ball, camera0, robot, 24).fraction;  // coarse: a search
     if (!found_mostly_visible && fraction < 0.75) {
@@ -677,7 +677,7 @@ TEST_F(VisionProcess, BallBehindARobotIsHiddenOrShiftedAsConfigured) {
     for (const auto& r : driver->frames(camera)) {
       const auto scene =
           std::min<std::size_t>(3, static_cast<std::size_t>(r.frame.t_capture / 0.25));
-      const Vector3d ball = scenes[scene];
+      const Vector3d& ball = scenes[scene];
       if (camera == 1) {
         // From the other side the robot hides nothing: the ball shows whole.
         ASSERT_EQ(r.frame.num_balls, 1) << "scene " << scene;

@@ -148,6 +148,7 @@ class Child {
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
     std::vector<char*> args;
+    args.reserve(argv.size() + 1);
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
     if (posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ) != 0) pid_ = -1;
@@ -268,9 +269,7 @@ void measure_realtime(const std::string& profile_name,
       1e3 * kDt / 2);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"ubersim vision emulator benchmark: CPU per frame, real-time end-to-end delay"};
   std::vector<std::string> profiles{"cmdragons02", "modern"};
   double cpu_sim_seconds = 120;
@@ -306,4 +305,17 @@ int main(int argc, char** argv) {
     std::printf("\n");
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "ubersim_vision_benchmark: %s\n", error.what());
+  } catch (...) {
+    std::fprintf(stderr, "ubersim_vision_benchmark: unknown error\n");
+  }
+  return 1;
 }

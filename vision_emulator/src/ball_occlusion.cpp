@@ -6,7 +6,7 @@
 namespace ubersim::vision {
 
 BallOcclusion::BallOcclusion(int rings, int points_per_ring) {
-  samples_.reserve(static_cast<std::size_t>(rings * points_per_ring));
+  samples_.reserve(static_cast<std::size_t>(rings) * static_cast<std::size_t>(points_per_ring));
   for (int ring = 0; ring < rings; ++ring) {
     // The radius that halves this ring's annulus of equal area.
     const double r = std::sqrt((ring + 0.5) / rings);

@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <cstdio>
 #include <exception>
 
 #include "ubersim/cli.hpp"
@@ -11,7 +12,9 @@
 #include "ubersim/shutdown.hpp"
 #include "ubersim/vision/vision_process.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app{
       "ubersim vision emulator: turns ground truth on SIM_STATE into detection frames on "
       "VISION (rate, latency, noise, dropouts, cameras) as the team's real vision server would"};
@@ -38,8 +41,18 @@ int main(int argc, char** argv) {
   } catch (const ubersim::ConfigError& error) {
     spdlog::error("{}", error.what());
     return 2;
-  } catch (const std::exception& error) {
-    spdlog::error("{}", error.what());
-    return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "ubersim_vision: %s\n", error.what());
+  } catch (...) {
+    std::fprintf(stderr, "ubersim_vision: unknown error\n");
+  }
+  return 1;
 }
