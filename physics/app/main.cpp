@@ -1,0 +1,59 @@
+// ubersim_physics: the physics server (see physics_server.hpp and
+// /work/notes/physics.md). Exits 0 on SIGINT/SIGTERM or after --duration.
+#include <CLI/CLI.hpp>
+#include <cmath>
+
+#include "ubersim/cli.hpp"
+#include "ubersim/config.hpp"
+#include "ubersim/logging.hpp"
+#include "ubersim/physics/physics_server.hpp"
+#include "ubersim/shutdown.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"ubersim physics server: owns the simulated world (ODE) and steps it"};
+  ubersim::CommonOptions common;
+  ubersim::add_common_options(app, common);
+  std::string scenario = "division_b_6v6";
+  std::string physics_config = "default";
+  double speed = 1.0;
+  bool lockstep = false;
+  bool paused = false;
+  std::uint64_t seed = 0;
+  double duration = 0;
+  app.add_option("--scenario", scenario, "scenario config: field, ball and robots")
+      ->capture_default_str();
+  app.add_option("--physics-config", physics_config, "config/physics/<name>.cfg: step, solver...")
+      ->capture_default_str();
+  app.add_option("--speed", speed, "times real time (0.5, 4 ...); 0 = as fast as possible")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--lockstep", lockstep, "advance only on STEP requests (SIM_CONTROL)");
+  app.add_flag("--paused", paused, "start paused (RESUME or STEP to advance)");
+  app.add_option("--seed", seed, "seed of the solver's randomness")->capture_default_str();
+  app.add_option("--duration", duration, "exit after this many seconds of sim time (0 = never)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  CLI11_PARSE(app, argc, argv);
+  ubersim::setup_logging("physics", common.verbosity());
+
+  try {
+    ubersim::physics::WorldSetup setup =
+        ubersim::physics::load_world_setup(common.config_root(), scenario, physics_config);
+    setup.seed = seed;
+    ubersim::physics::ServerOptions options;
+    options.scenario = scenario;
+    options.speed = lockstep ? -1.0 : speed;
+    options.paused = paused;
+    options.duration = duration;
+    ubersim::MessageBus bus(ubersim::with_receive_buffer(common.lcm_url));
+    ubersim::ShutdownSignal shutdown;
+    ubersim::physics::PhysicsServer server(std::move(setup), bus, common.channels(), options);
+    return server.run(&shutdown);
+  } catch (const ubersim::ConfigError& e) {
+    spdlog::error("configuration: {}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,83 @@
+#pragma once
+// The physics server: the world plus messages and pacing.
+//
+//   subscribes SIM_COMMANDS (sim_commands_t): held until t_apply, then applied
+//              SIM_CONTROL  (sim_control_t):  place, setup, pause, resume, reset,
+//                                             step, speed, seed, geometry, ping
+//   publishes  SIM_STATE    (sim_state_t):    after every step (or at STATE_PUBLISH_RATE)
+//              SIM_GEOMETRY (field_geometry_t): at start, every GEOMETRY_PUBLISH_PERIOD
+//                                             of wall time, and on request
+//              SIM_CONTROL_ACK (sim_control_ack_t): one per SIM_CONTROL
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <ubersim/sim_control_ack_t.hpp>
+#include <ubersim/sim_control_t.hpp>
+#include <ubersim/sim_state_t.hpp>
+
+#include "ubersim/channels.hpp"
+#include "ubersim/logging.hpp"
+#include "ubersim/message_bus.hpp"
+#include "ubersim/physics/pacer.hpp"
+#include "ubersim/physics/world.hpp"
+
+namespace ubersim {
+class ShutdownSignal;
+}
+
+namespace ubersim::physics {
+
+struct ServerOptions {
+  std::string scenario;  // for logs and acknowledgements
+  double speed = 1.0;    // > 0 times real time, 0 as fast as possible, < 0 lockstep
+  bool paused = false;
+  double duration = 0;  // s of sim time after which run() returns, 0 = never
+};
+
+struct ServerStats {
+  std::int64_t steps = 0;
+  std::int64_t states_published = 0;
+  std::int64_t controls_handled = 0;
+  std::int64_t packets_received = 0;
+  std::int64_t schedule_restarts = 0;  // times real time could not be kept
+  double wall_seconds = 0;
+  double drift = 0;  // s, sim time ahead of the real-time schedule at the end (paced modes)
+};
+
+class PhysicsServer {
+ public:
+  PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNames& channels,
+                ServerOptions options);
+
+  // Runs until the shutdown signal (if any) or the duration. Returns the exit code.
+  int run(const ShutdownSignal* shutdown);
+
+  World& world() { return world_; }
+  const ServerStats& stats() const { return stats_; }
+
+ private:
+  void on_control(const sim_control_t& request);
+  void acknowledge(const sim_control_t& request, bool ok, const std::string& message);
+  void step_and_publish(bool publish_every_step);
+  void publish_state();
+  void publish_geometry();
+  bool idle() const { return paused_ || pacer_.lockstep(); }
+  // Waits until `deadline` or a message or a signal; handles messages.
+  void wait_until(Pacer::Clock::time_point deadline, const ShutdownSignal* shutdown);
+  bool duration_reached() const;
+
+  World world_;
+  MessageBus& bus_;
+  std::string state_channel_;
+  std::string geometry_channel_;
+  std::string ack_channel_;
+  ServerOptions options_;
+  Pacer pacer_;
+  bool paused_;
+  double next_state_time_ = 0;  // sim time of the next publication (STATE_PUBLISH_RATE > 0)
+  sim_state_t state_{};
+  ServerStats stats_;
+  ThrottledLog log_;
+};
+
+}  // namespace ubersim::physics

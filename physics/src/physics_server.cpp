@@ -1,0 +1,252 @@
+#include "ubersim/physics/physics_server.hpp"
+
+#include <poll.h>
+
+#include <cmath>
+
+#include "ubersim/shutdown.hpp"
+
+namespace ubersim::physics {
+namespace {
+
+using Clock = Pacer::Clock;
+
+double seconds_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+const char* action_name(int action) {
+  switch (action) {
+    case sim_control_t::PLACE:
+      return "PLACE";
+    case sim_control_t::SETUP:
+      return "SETUP";
+    case sim_control_t::PAUSE:
+      return "PAUSE";
+    case sim_control_t::RESUME:
+      return "RESUME";
+    case sim_control_t::RESET:
+      return "RESET";
+    case sim_control_t::STEP:
+      return "STEP";
+    case sim_control_t::SET_SPEED:
+      return "SET_SPEED";
+    case sim_control_t::SET_SEED:
+      return "SET_SEED";
+    case sim_control_t::REQUEST_GEOMETRY:
+      return "REQUEST_GEOMETRY";
+    case sim_control_t::PING:
+      return "PING";
+    default:
+      return "unknown action";
+  }
+}
+
+}  // namespace
+
+PhysicsServer::PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNames& channels,
+                             ServerOptions options)
+    : world_(std::move(setup)),
+      bus_(bus),
+      state_channel_(channels(Channel::SimState)),
+      geometry_channel_(channels(Channel::SimGeometry)),
+      ack_channel_(channels(Channel::SimControlAck)),
+      options_(std::move(options)),
+      pacer_(world_.dt(), options_.speed < 0 ? -1.0 : options_.speed,
+             world_.setup().physics.max_pacing_lag),
+      paused_(options_.paused) {
+  bus_.subscribe<sim_commands_t>(channels(Channel::SimCommands), [this](const sim_commands_t& p) {
+    ++stats_.packets_received;
+    world_.submit(p);
+  });
+  bus_.subscribe<sim_control_t>(channels(Channel::SimControl),
+                                [this](const sim_control_t& r) { on_control(r); });
+}
+
+bool PhysicsServer::duration_reached() const {
+  return options_.duration > 0 && world_.time() >= options_.duration - world_.dt() / 2;
+}
+
+int PhysicsServer::run(const ShutdownSignal* shutdown) {
+  const auto start = Clock::now();
+  const auto geometry_period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(world_.setup().physics.geometry_publish_period));
+  publish_geometry();
+  publish_state();
+  auto next_geometry = start + geometry_period;
+  pacer_.restart(start, world_.step_index());
+  spdlog::info("physics running: scenario {}, {} robots, {} Hz, {}{}", options_.scenario,
+               world_.robots().size(), 1.0 / world_.dt(),
+               pacer_.lockstep()              ? std::string("lockstep")
+               : pacer_.as_fast_as_possible() ? std::string("as fast as possible")
+                                              : fmt::format("{:g} x real time", pacer_.speed()),
+               paused_ ? ", paused" : "");
+
+  while ((shutdown == nullptr || !shutdown->requested()) && !duration_reached()) {
+    auto now = Clock::now();
+    if (now >= next_geometry) {
+      publish_geometry();
+      if (idle()) publish_state();  // late joiners learn the time while nothing moves
+      next_geometry = now + geometry_period;
+    }
+    if (idle()) {
+      wait_until(next_geometry, shutdown);
+      continue;
+    }
+    if (pacer_.as_fast_as_possible()) {
+      bus_.handle_pending();
+      if (!idle() && !duration_reached()) step_and_publish(false);
+      continue;
+    }
+    const auto due = pacer_.due(world_.step_index());
+    if (now < due) {
+      wait_until(std::min(due, next_geometry), shutdown);
+      continue;
+    }
+    if (pacer_.restart_if_behind(now, world_.step_index())) {
+      ++stats_.schedule_restarts;
+      log_.warn("pacing", "physics cannot keep up with the requested speed: schedule restarted");
+    }
+    step_and_publish(false);
+  }
+  const auto end = Clock::now();
+  stats_.wall_seconds = seconds_between(start, end);
+  stats_.drift = pacer_.paced() && !paused_ ? pacer_.drift(end, world_.step_index()) : 0;
+  spdlog::info("physics stopping: {} steps, {:.3f} s of sim time in {:.3f} s of wall time{}",
+               stats_.steps, world_.time(), stats_.wall_seconds,
+               pacer_.paced() ? fmt::format(", {:+.1f} ms from the schedule", stats_.drift * 1e3)
+                              : std::string());
+  return 0;
+}
+
+void PhysicsServer::wait_until(Clock::time_point deadline, const ShutdownSignal* shutdown) {
+  const auto now = Clock::now();
+  const auto wait = deadline > now ? deadline - now : Clock::duration::zero();
+  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(wait).count();
+  timespec timeout{static_cast<time_t>(ns / 1000000000), static_cast<long>(ns % 1000000000)};
+  pollfd fds[2] = {{bus_.lcm().getFileno(), POLLIN, 0}, {-1, POLLIN, 0}};
+  nfds_t count = 1;
+  if (shutdown != nullptr) {
+    fds[1].fd = shutdown->fd();
+    count = 2;
+  }
+  if (::ppoll(fds, count, &timeout, nullptr) > 0 && (fds[0].revents & POLLIN)) {
+    bus_.handle_pending();
+  }
+}
+
+void PhysicsServer::step_and_publish(bool publish_every_step) {
+  world_.step();
+  ++stats_.steps;
+  const double rate = world_.setup().physics.state_publish_rate;
+  if (publish_every_step || rate <= 0) {
+    publish_state();
+  } else if (world_.time() >= next_state_time_ - world_.dt() / 2) {
+    publish_state();
+    next_state_time_ += 1.0 / rate;
+    if (next_state_time_ < world_.time()) next_state_time_ = world_.time() + 1.0 / rate;
+  }
+}
+
+void PhysicsServer::publish_state() {
+  world_.fill_state(state_);
+  state_.paused = paused_;
+  state_.speed_factor = pacer_.speed();
+  bus_.publish(state_channel_, state_);
+  ++stats_.states_published;
+}
+
+void PhysicsServer::publish_geometry() {
+  bus_.publish(geometry_channel_, world_.geometry());
+}
+
+void PhysicsServer::acknowledge(const sim_control_t& request, bool ok, const std::string& message) {
+  sim_control_ack_t ack{};
+  ack.request_id = request.request_id;
+  ack.sender = request.sender;
+  ack.ok = ok;
+  ack.message = message;
+  ack.sim_time = world_.time();
+  ack.step = world_.step_index();
+  bus_.publish(ack_channel_, ack);
+  if (ok) {
+    spdlog::debug("{} from '{}' (#{}): {}", action_name(request.action), request.sender,
+                  request.request_id, message);
+  } else {
+    log_.warn("control:" + request.sender, std::string(action_name(request.action)) + " from '" +
+                                               request.sender + "' refused: " + message);
+  }
+}
+
+void PhysicsServer::on_control(const sim_control_t& request) {
+  ++stats_.controls_handled;
+  const auto now = Clock::now();
+  switch (request.action) {
+    case sim_control_t::PLACE:
+    case sim_control_t::SETUP: {
+      const PlaceOutcome outcome = world_.place(request, request.action == sim_control_t::SETUP);
+      if (outcome.ok) publish_state();
+      acknowledge(request, outcome.ok, outcome.message);
+      return;
+    }
+    case sim_control_t::PAUSE:
+      paused_ = true;
+      publish_state();
+      acknowledge(request, true, "paused");
+      return;
+    case sim_control_t::RESUME:
+      paused_ = false;
+      pacer_.restart(now, world_.step_index());
+      acknowledge(request, true, "running");
+      return;
+    case sim_control_t::RESET:
+      world_.reset();
+      next_state_time_ = 0;
+      pacer_.restart(now, world_.step_index());
+      publish_state();
+      acknowledge(request, true, "reset to scenario " + options_.scenario);
+      return;
+    case sim_control_t::STEP: {
+      const std::int64_t limit = world_.setup().physics.max_steps_per_request;
+      if (request.step_count < 1 || request.step_count > limit) {
+        acknowledge(request, false,
+                    "step_count must be 1.." + std::to_string(limit) + ", got " +
+                        std::to_string(request.step_count));
+        return;
+      }
+      for (int i = 0; i < request.step_count; ++i) step_and_publish(true);
+      pacer_.restart(Clock::now(), world_.step_index());
+      acknowledge(request, true, "stepped " + std::to_string(request.step_count));
+      return;
+    }
+    case sim_control_t::SET_SPEED: {
+      if (!std::isfinite(request.speed_factor)) {
+        acknowledge(request, false, "speed_factor must be finite");
+        return;
+      }
+      const double speed = request.speed_factor < 0 ? -1.0 : request.speed_factor;
+      pacer_.set_speed(speed, now, world_.step_index());
+      acknowledge(request, true,
+                  speed < 0    ? std::string("lockstep")
+                  : speed == 0 ? std::string("as fast as possible")
+                               : fmt::format("{:g} x real time", speed));
+      return;
+    }
+    case sim_control_t::SET_SEED:
+      world_.set_seed(static_cast<std::uint64_t>(request.seed));
+      acknowledge(request, true, "seed " + std::to_string(request.seed));
+      return;
+    case sim_control_t::REQUEST_GEOMETRY:
+      publish_geometry();
+      acknowledge(request, true, "geometry published");
+      return;
+    case sim_control_t::PING:
+      acknowledge(request, true, "pong");
+      return;
+    default:
+      acknowledge(request, false, "unknown action " + std::to_string(request.action));
+      return;
+  }
+}
+
+}  // namespace ubersim::physics
