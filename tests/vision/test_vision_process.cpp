@@ -189,8 +189,9 @@ TEST_F(VisionProcess, RateIsExactly300FramesIn10SimSecondsNumberedConsecutively)
   ASSERT_TRUE(driver->run_windowed(0, 2400 + 48, world, 0.3, 1)) << driver->failure();
   driver->listen(0.3);
   stop();
+  const auto frames = driver->frames(0);
   std::vector<const vision_frame_t*> in_ten_seconds;
-  for (const auto& r : driver->frames(0)) {
+  for (const auto& r : frames) {
     if (r.frame.t_capture < 10.0 - 1e-9) in_ten_seconds.push_back(&r.frame);
   }
   ASSERT_EQ(in_ten_seconds.size(), 300u);
