@@ -4,6 +4,7 @@
 // robots' feedback on RADIO_FEEDBACK_<TEAM>. See /work/notes/radio.md.
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <cstdio>
 #include <optional>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/sim_state_t.hpp>
@@ -76,9 +77,7 @@ int run(const Options& options) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int parse_and_run(int argc, char** argv) {
   Options options;
   CLI::App app{"ubersim radio emulator: each team's radio link (rate limit, latency, loss)"};
   ubersim::add_common_options(app, options.common);
@@ -96,8 +95,19 @@ int main(int argc, char** argv) {
   } catch (const ubersim::ConfigError& error) {
     spdlog::error("{}", error.what());
     return 2;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return parse_and_run(argc, argv);
   } catch (const std::exception& error) {
-    spdlog::error("{}", error.what());
+    std::fprintf(stderr, "ubersim_radio: %s\n", error.what());
+    return 1;
+  } catch (...) {
+    std::fprintf(stderr, "ubersim_radio: unknown error\n");
     return 1;
   }
 }

@@ -24,6 +24,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   std::vector<char*> args;
+  args.reserve(argv.size() + 1);
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   const int error = posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ);
