@@ -121,6 +121,10 @@ int collide_chassis_chassis(dGeomID o1, dGeomID o2, int flags, dContactGeom* con
   const double lo = std::max(lo_a, lo_b);
   const double hi = std::min(hi_a, hi_b);
   if (hi <= lo) return 0;
+  // Bounding circles apart: nothing to do (the common case near other robots).
+  const double dx = pa[0] - pb[0], dy = pa[1] - pb[1];
+  const double reach = a.bounding_radius + b.bounding_radius;
+  if (dx * dx + dy * dy > reach * reach) return 0;
   thread_local std::vector<Vec2> av, an, bv, bn;
   outline_in_plane(a, pa, Ra, av, an);
   outline_in_plane(b, pb, Rb, bv, bn);
@@ -148,6 +152,11 @@ int collide_chassis_box(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact
   const Vec2 c{pb[0], pb[1]};
   const double hx = lengths[0] / 2;
   const double hy = lengths[1] / 2;
+  // Bounding circle clear of the rectangle: nothing to do.
+  const Vec2 rel = Vec2{pa[0], pa[1]} - c;
+  const double ex = std::max(0.0, std::abs(dot(rel, ax)) - hx);
+  const double ey = std::max(0.0, std::abs(dot(rel, ay)) - hy);
+  if (ex * ex + ey * ey > a.bounding_radius * a.bounding_radius) return 0;
   thread_local std::vector<Vec2> av, an;
   thread_local std::vector<Vec2> bv(4), bn(4);
   bv[0] = c - hx * ax - hy * ay;
@@ -256,11 +265,17 @@ int collide_chassis_plane(dGeomID o1, dGeomID o2, int flags, dContactGeom* conta
   const dReal* R = dGeomGetRotation(o1);
   dVector4 plane;
   dGeomPlaneGetParams(o2, plane);
+  // Lowest reach of the prism along the plane's normal: its axis' extent plus
+  // the outline's radius in the directions across the axis.
   const double zmid = (o.z_bottom + o.z_top) / 2;
   const double half_height = (o.z_top - o.z_bottom) / 2;
   double centre[3];
   to_world(pos, R, 0, 0, zmid, centre);
-  const double reach = std::sqrt(o.bounding_radius * o.bounding_radius + half_height * half_height);
+  const double n_x = plane[0] * R[0] + plane[1] * R[4] + plane[2] * R[8];
+  const double n_y = plane[0] * R[1] + plane[1] * R[5] + plane[2] * R[9];
+  const double n_z = plane[0] * R[2] + plane[1] * R[6] + plane[2] * R[10];
+  const double reach =
+      std::abs(n_z) * half_height + std::sqrt(n_x * n_x + n_y * n_y) * o.bounding_radius;
   if (plane[0] * centre[0] + plane[1] * centre[1] + plane[2] * centre[2] - plane[3] > reach) {
     return 0;
   }

@@ -14,6 +14,13 @@
 namespace ubersim::physics {
 namespace {
 
+// An impulse change below this (N s) changes no velocity that matters: under
+// a micrometre per second on a robot.
+constexpr double kConverged = 1e-6;
+// Out-of-plane tilt (unitless), height (m) and speeds (m/s, rad/s) summed:
+// below this a planar robot is left alone.
+constexpr double kPlanarDrift = 1e-9;
+
 class PlanarDrive final : public Drive {
  public:
   explicit PlanarDrive(const DriveContext& c)
@@ -42,10 +49,16 @@ class PlanarDrive final : public Drive {
     torque_limited_ = t.motor_max_torque / t.wheel_radius <= t.wheel_friction * load;
     lateral_limit_ = t.wheel_lateral_friction * load;
     for (const auto& w : t.wheels) wheels_.push_back(wheel_geometry(w));
-    measured_.assign(wheels_.size(), 0);
     inverse_mass_ = 1 / t.mass;
     inverse_inertia_ = 1 / t.moment_of_inertia;
+    measured_.assign(wheels_.size(), 0);
     rows_.resize(2 * wheels_.size());
+    for (std::size_t i = 0; i < wheels_.size(); ++i) {
+      const WheelGeometry& g = wheels_[i];
+      const Vec2 d{g.dx, g.dy};
+      set_row(rows_[2 * i], {g.x, g.y}, d);
+      set_row(rows_[2 * i + 1], {g.x, g.y}, perp(d));
+    }
     place(PlanarState{});
   }
 
@@ -53,22 +66,31 @@ class PlanarDrive final : public Drive {
   dGeomID chassis_geom() const override { return geom_.get(); }
 
   void drive(const std::vector<double>& wheel_speeds, double dt) override {
+    // Solved in the robot's frame, where every row's Jacobian and effective
+    // mass are constants (computed once, in the constructor).
     const dReal* lv = dBodyGetLinearVel(chassis_.get());
     const dReal* av = dBodyGetAngularVel(chassis_.get());
     const dReal* R = dBodyGetRotation(chassis_.get());
-    const double c = R[0];
-    const double s = R[4];
-    double v[3] = {lv[0], lv[1], av[2]};
-
+    const double norm = std::sqrt(R[0] * R[0] + R[4] * R[4]);
+    const double c = R[0] / norm;
+    const double s = R[4] / norm;
+    double v[3] = {c * lv[0] + s * lv[1], -s * lv[0] + c * lv[1], av[2]};
     for (std::size_t i = 0; i < wheels_.size(); ++i) {
-      const WheelGeometry& g = wheels_[i];
-      const Vec2 r = rotate({g.x, g.y}, c, s);
-      const Vec2 d = rotate({g.dx, g.dy}, c, s);
-      const Vec2 axle = perp(d);
-      set_row(rows_[2 * i], r, d, wheel_speeds[i] * type_.wheel_radius, traction_limit_ * dt);
-      set_row(rows_[2 * i + 1], r, axle, 0.0, lateral_limit_ * dt);
+      rows_[2 * i].target = wheel_speeds[i] * type_.wheel_radius;
+      rows_[2 * i].bound = traction_limit_ * dt;
+      rows_[2 * i + 1].target = 0;
+      rows_[2 * i + 1].bound = lateral_limit_ * dt;
+    }
+    // Warm start: last step's forces are nearly this step's, so a few
+    // iterations from there converge where many from zero would be needed.
+    for (Row& row : rows_) {
+      row.impulse = std::clamp(row.warm * dt, -row.bound, row.bound);
+      v[0] += row.j[0] * row.impulse * inverse_mass_;
+      v[1] += row.j[1] * row.impulse * inverse_mass_;
+      v[2] += row.j[2] * row.impulse * inverse_inertia_;
     }
     for (int it = 0; it < iterations_; ++it) {
+      double largest_change = 0;
       for (Row& row : rows_) {
         const double jv = row.j[0] * v[0] + row.j[1] * v[1] + row.j[2] * v[2];
         const double wanted = row.impulse + (row.target - jv) * row.mass;
@@ -78,13 +100,17 @@ class PlanarDrive final : public Drive {
         v[0] += row.j[0] * delta * inverse_mass_;
         v[1] += row.j[1] * delta * inverse_mass_;
         v[2] += row.j[2] * delta * inverse_inertia_;
+        largest_change = std::max(largest_change, std::abs(delta));
       }
+      // Converged (a robot at rest or cruising, thanks to the warm start).
+      if (largest_change < kConverged) break;
     }
-    double force[3] = {0, 0, 0};
-    for (const Row& row : rows_) {
-      for (int k = 0; k < 3; ++k) force[k] += row.j[k] * row.impulse / dt;
+    double force[3] = {0, 0, 0};  // robot frame: x, y, yaw torque
+    for (Row& row : rows_) {
+      row.warm = row.impulse / dt;
+      for (int k = 0; k < 3; ++k) force[k] += row.j[k] * row.warm;
     }
-    dBodyAddForce(chassis_.get(), force[0], force[1], 0);
+    dBodyAddForce(chassis_.get(), c * force[0] - s * force[1], s * force[0] + c * force[1], 0);
     dBodyAddTorque(chassis_.get(), 0, 0, force[2]);
 
     // Encoders: a wheel turns at its set-point unless its motor is out of
@@ -102,18 +128,24 @@ class PlanarDrive final : public Drive {
   }
 
   void after_step() override {
-    // The plane-2D joint keeps velocities planar, but rounding still tilts the
-    // body a little each step; project it back onto the plane (as ODE advises).
+    // The plane-2D joint keeps velocities planar, but rounding still tilts and
+    // lifts the body a little; project it back onto the plane (as ODE
+    // advises) once that is measurable, not every step.
     const dReal* R = dBodyGetRotation(chassis_.get());
-    const double heading = std::atan2(R[4], R[0]);
-    dMatrix3 upright;
-    yaw_rotation(heading, upright);
-    dBodySetRotation(chassis_.get(), upright);
     const dReal* p = dBodyGetPosition(chassis_.get());
-    dBodySetPosition(chassis_.get(), p[0], p[1], 0);
     const dReal* lv = dBodyGetLinearVel(chassis_.get());
-    dBodySetLinearVel(chassis_.get(), lv[0], lv[1], 0);
     const dReal* av = dBodyGetAngularVel(chassis_.get());
+    if (std::abs(R[8]) + std::abs(R[9]) + std::abs(p[2]) + std::abs(lv[2]) + std::abs(av[0]) +
+            std::abs(av[1]) <
+        kPlanarDrift) {
+      return;
+    }
+    const double norm = std::sqrt(R[0] * R[0] + R[4] * R[4]);
+    dMatrix3 upright;
+    yaw_rotation(R[0] / norm, R[4] / norm, upright);
+    dBodySetRotation(chassis_.get(), upright);
+    dBodySetPosition(chassis_.get(), p[0], p[1], 0);
+    dBodySetLinearVel(chassis_.get(), lv[0], lv[1], 0);
     dBodySetAngularVel(chassis_.get(), 0, 0, av[2]);
   }
 
@@ -135,26 +167,27 @@ class PlanarDrive final : public Drive {
     for (std::size_t i = 0; i < measured_.size(); ++i) {
       measured_[i] = spin(static_cast<Eigen::Index>(i));
     }
+    for (Row& row : rows_) row.warm = 0;
   }
 
   void bodies(std::vector<dBodyID>& out) const override { out.push_back(chassis_.get()); }
 
  private:
   struct Row {
-    double j[3] = {0, 0, 0};  // Jacobian: (x, y, yaw) -> contact velocity along the row
-    double target = 0;        // m/s
-    double bound = 0;         // N s, largest impulse this step
-    double mass = 0;          // effective mass along the row (kg)
-    double impulse = 0;       // N s, accumulated
+    double j[3] = {0, 0,
+                   0};   // Jacobian, robot frame: (x, y, yaw) -> contact velocity along the row
+    double target = 0;   // m/s
+    double bound = 0;    // N s, largest impulse this step
+    double mass = 0;     // effective mass along the row (kg)
+    double impulse = 0;  // N s, accumulated this step
+    double warm = 0;     // N, last step's force: where the next solve starts
   };
 
-  void set_row(Row& row, Vec2 r, Vec2 direction, double target, double bound) const {
+  // A row along `direction` at contact point r (robot frame).
+  void set_row(Row& row, Vec2 r, Vec2 direction) const {
     row.j[0] = direction.x;
     row.j[1] = direction.y;
     row.j[2] = cross(r, direction);
-    row.target = target;
-    row.bound = bound;
-    row.impulse = 0;
     row.mass = 1 / (inverse_mass_ * (direction.x * direction.x + direction.y * direction.y) +
                     inverse_inertia_ * row.j[2] * row.j[2]);
   }
@@ -186,7 +219,22 @@ double chassis_origin_height(const RobotTypeConfig& type) {
 }
 
 void yaw_rotation(double heading, dMatrix3 R) {
-  dRFromAxisAndAngle(R, 0, 0, 1, heading);
+  yaw_rotation(std::cos(heading), std::sin(heading), R);
+}
+
+void yaw_rotation(double c, double s, dMatrix3 R) {
+  R[0] = c;
+  R[1] = -s;
+  R[2] = 0;
+  R[3] = 0;
+  R[4] = s;
+  R[5] = c;
+  R[6] = 0;
+  R[7] = 0;
+  R[8] = 0;
+  R[9] = 0;
+  R[10] = 1;
+  R[11] = 0;
 }
 
 }  // namespace ubersim::physics

@@ -52,6 +52,7 @@ PhysicsConfig load_physics_config(const ConfigFile& config, const std::string& n
   p.state_publish_rate = config.real_in("STATE_PUBLISH_RATE", 0.0, p.step_rate);
   p.geometry_publish_period = config.real_in("GEOMETRY_PUBLISH_PERIOD", 0.01, 3600.0);
   p.max_pacing_lag = config.real_in("MAX_PACING_LAG", 0.001, 60.0);
+  p.message_poll_period = config.real_in("MESSAGE_POLL_PERIOD", 0.0, 1.0);
   p.max_steps_per_request = config.integer("MAX_STEPS_PER_REQUEST");
   if (p.max_steps_per_request < 1) config.fail("MAX_STEPS_PER_REQUEST", "expected at least 1");
   config.require_all_used();

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "ubersim/angles.hpp"
-
 namespace ubersim::physics {
 namespace {
 
@@ -86,6 +84,32 @@ PlanarState Robot::planar_state() const {
   return s;
 }
 
+void Robot::position(double& x, double& y) const {
+  const dReal* p = dBodyGetPosition(drive_->chassis());
+  x = p[0];
+  y = p[1];
+}
+
+void Robot::heading_vector(double& c, double& s) const {
+  const dReal* R = dBodyGetRotation(drive_->chassis());
+  const double norm = std::sqrt(R[0] * R[0] + R[4] * R[4]);
+  c = norm > 1e-12 ? R[0] / norm : 1.0;
+  s = norm > 1e-12 ? R[4] / norm : 0.0;
+}
+
+void Robot::remember_good_state() {
+  position(good_x_, good_y_);
+  heading_vector(good_c_, good_s_);
+}
+
+PlanarState Robot::last_good_state() const {
+  PlanarState s;
+  s.x = good_x_;
+  s.y = good_y_;
+  s.heading = std::atan2(good_s_, good_c_);
+  return s;
+}
+
 double Robot::uprightness() const {
   return dBodyGetRotation(drive_->chassis())[10];
 }
@@ -96,18 +120,18 @@ void Robot::set_command(const RobotCommand& command, double now, double timeout)
   command_timeout_ = timeout;
 }
 
-RobotCommand Robot::effective_command(double now) const {
+const RobotCommand& Robot::effective_command(double now) const {
+  static const RobotCommand stop{};
   const bool timed_out = command_timeout_ > 0 && last_command_time_ >= 0 &&
                          now - last_command_time_ > command_timeout_;
-  return timed_out ? RobotCommand{} : command_;
+  return timed_out ? stop : command_;
 }
 
 void Robot::before_step(double now, double dt) {
   const RobotTypeConfig& t = *type_;
-  const RobotCommand command = effective_command(now);
-  const PlanarState s = planar_state();
-  const double c = std::cos(s.heading);
-  const double sn = std::sin(s.heading);
+  const RobotCommand& command = effective_command(now);
+  double c, sn;
+  heading_vector(c, sn);
   if (command.mode == CommandMode::WheelSpeeds) {
     // Raw motor set-points; the velocity set-point follows for a smooth switch back.
     wheel_targets_ = command.wheel_speeds;
@@ -130,20 +154,26 @@ void Robot::before_step(double now, double dt) {
     // is the acceleration the robot's mass actually sees.
     const double dvx = target_vx - setpoint_vx_;
     const double dvy = target_vy - setpoint_vy_;
-    const double change = std::hypot(dvx, dvy);
+    const double change = std::sqrt(dvx * dvx + dvy * dvy);
     const double max_change = t.max_acceleration * dt;
     const double scale = (t.max_acceleration > 0 && change > max_change) ? max_change / change : 1;
     setpoint_vx_ += dvx * scale;
     setpoint_vy_ += dvy * scale;
     setpoint_omega_ = approach(setpoint_omega_, command.omega, t.max_angular_acceleration * dt);
-    const Eigen::Vector3d local(c * setpoint_vx_ + sn * setpoint_vy_,
-                                -sn * setpoint_vx_ + c * setpoint_vy_, setpoint_omega_);
-    const Eigen::VectorXd w = kinematics_.wheel_speeds(local);
-    // Out of motor speed: slow every wheel alike, so the direction holds.
-    const double fastest = w.cwiseAbs().maxCoeff();
-    const double wheel_scale = fastest > t.motor_max_speed ? t.motor_max_speed / fastest : 1;
+    const double local[3] = {c * setpoint_vx_ + sn * setpoint_vy_,
+                             -sn * setpoint_vx_ + c * setpoint_vy_, setpoint_omega_};
+    // w = T^-1 v, written out: this runs for every robot at every step.
+    const Eigen::MatrixXd& inverse = kinematics_.inverse();
+    double fastest = 0;
     for (std::size_t i = 0; i < wheel_targets_.size(); ++i) {
-      wheel_targets_[i] = w(static_cast<Eigen::Index>(i)) * wheel_scale;
+      const auto row = static_cast<Eigen::Index>(i);
+      wheel_targets_[i] =
+          inverse(row, 0) * local[0] + inverse(row, 1) * local[1] + inverse(row, 2) * local[2];
+      fastest = std::max(fastest, std::abs(wheel_targets_[i]));
+    }
+    // Out of motor speed: slow every wheel alike, so the direction holds.
+    if (fastest > t.motor_max_speed) {
+      for (double& w : wheel_targets_) w *= t.motor_max_speed / fastest;
     }
   }
   drive_->drive(wheel_targets_, dt);
@@ -152,13 +182,9 @@ void Robot::before_step(double now, double dt) {
 void Robot::ball_in_robot_frame(const Ball& ball, double local[3]) const {
   const dBodyID body = drive_->chassis();
   const dReal* p = dBodyGetPosition(body);
-  const dReal* R = dBodyGetRotation(body);
   const dReal* b = ball.position();
-  double fx = R[0];
-  double fy = R[4];
-  const double norm = std::hypot(fx, fy);
-  fx /= norm;
-  fy /= norm;
+  double fx, fy;
+  heading_vector(fx, fy);
   const double dx = b[0] - p[0];
   const double dy = b[1] - p[1];
   local[0] = fx * dx + fy * dy;
@@ -181,7 +207,7 @@ bool Robot::kicker_charged(double now) const {
 }
 
 bool Robot::try_kick(Ball& ball, double now, double dt) {
-  const RobotCommand command = effective_command(now);
+  const RobotCommand& command = effective_command(now);
   const bool chip = command.chip_speed > 0;
   if (!chip && command.kick_speed <= 0) return false;
   if (!kicker_charged(now) || !ball_at_kicker(ball)) return false;
@@ -219,7 +245,7 @@ void Robot::add_dribbler_contact(const Ball& ball, double now, dWorldID world,
                                  dJointGroupID group) const {
   const RobotTypeConfig& t = *type_;
   if (!t.has_dribbler()) return;
-  const RobotCommand command = effective_command(now);
+  const RobotCommand& command = effective_command(now);
   if (command.dribbler_speed == 0) return;
   double local[3];
   ball_in_robot_frame(ball, local);
@@ -290,7 +316,9 @@ void Robot::fill_state(robot_state_t& out, const Ball& ball, double now) const {
   out.robot_type = t.name;
   out.x = p[0];
   out.y = p[1];
-  out.orientation = wrap_angle(std::atan2(R[4], R[0]));
+  // atan2 is already in [-pi, pi]; the published convention is (-pi, pi].
+  out.orientation = std::atan2(R[4], R[0]);
+  if (out.orientation <= -M_PI) out.orientation += 2 * M_PI;
   out.vx = v[0];
   out.vy = v[1];
   out.omega = w[2];

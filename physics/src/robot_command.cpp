@@ -2,16 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <cstdio>
+#include <string>
 
 namespace ubersim::physics {
 namespace {
 
-// Clamps |value| to limit, noting what it did.
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+// Clamps |value| to limit, noting what it did (text only when needed: this
+// runs for every command of every robot).
 double clamp_magnitude(double value, double limit, const char* what, const char* unit,
-                       std::ostringstream& problems, bool& clamped) {
+                       std::string& problems, bool& clamped) {
   if (std::abs(value) <= limit) return value;
-  problems << what << " " << value << " " << unit << " clamped to " << limit << "; ";
+  problems +=
+      std::string(what) + " " + number(value) + " " + unit + " clamped to " + number(limit) + "; ";
   clamped = true;
   return std::copysign(limit, value);
 }
@@ -43,7 +52,7 @@ CommandCheck check_command(const robot_command_t& raw, const RobotTypeConfig& ro
       check.problem = "unknown command mode " + std::to_string(raw.mode);
       return check;
   }
-  std::ostringstream problems;
+  std::string problems;
   bool clamped = false;
   if (c.mode == CommandMode::WheelSpeeds) {
     if (raw.num_wheels != static_cast<int>(robot.wheels.size()) ||
@@ -67,7 +76,7 @@ CommandCheck check_command(const robot_command_t& raw, const RobotTypeConfig& ro
     double scale = 1;
     if (speed > robot.max_speed) {
       scale = robot.max_speed / speed;
-      problems << "speed " << speed << " m/s clamped to " << robot.max_speed << "; ";
+      problems += "speed " + number(speed) + " m/s clamped to " + number(robot.max_speed) + "; ";
       clamped = true;
     }
     c.vx = raw.vx * scale;
@@ -77,7 +86,7 @@ CommandCheck check_command(const robot_command_t& raw, const RobotTypeConfig& ro
   }
 
   if (raw.kick_speed < 0 || raw.chip_speed < 0) {
-    problems << "negative kick speed ignored; ";
+    problems += "negative kick speed ignored; ";
     clamped = true;
   }
   c.kick_speed = std::max(0.0, raw.kick_speed);
@@ -88,7 +97,7 @@ CommandCheck check_command(const robot_command_t& raw, const RobotTypeConfig& ro
       clamp_magnitude(c.chip_speed, robot.chip_max_speed, "chip speed", "m/s", problems, clamped);
   c.chip_angle = raw.chip_angle > 0 ? raw.chip_angle : robot.chip_default_angle;
   if (raw.chip_angle < 0) {
-    problems << "negative chip angle replaced by the default; ";
+    problems += "negative chip angle replaced by the default; ";
     clamped = true;
   }
   c.chip_angle =
@@ -97,7 +106,7 @@ CommandCheck check_command(const robot_command_t& raw, const RobotTypeConfig& ro
                                      "rad/s", problems, clamped);
   check.accepted = true;
   check.clamped = clamped;
-  check.problem = problems.str();
+  check.problem = problems;
   if (check.problem.size() >= 2) check.problem.resize(check.problem.size() - 2);  // trailing "; "
   return check;
 }

@@ -221,7 +221,8 @@ void World::step() {
   apply_due_commands();
   const double now = time();
   for (auto& r : robots_) r->before_step(now, dt_);
-  std::vector<char> kicked(robots_.size(), 0);
+  std::vector<char>& kicked = kicked_buffer_;
+  kicked.assign(robots_.size(), 0);
   for (std::size_t i = 0; i < robots_.size(); ++i) {
     if (robots_[i]->try_kick(*ball_, now, dt_)) {
       kicked[i] = 1;
@@ -281,8 +282,9 @@ void World::check_safety() {
     r->bodies(body_buffer_);
     bool finite = true;
     for (dBodyID b : body_buffer_) finite = finite && body_finite(b);
-    const PlanarState s = r->planar_state();
-    if (!finite || !inside_walls(s.x, s.y, margin)) {
+    double x, y;
+    r->position(x, y);
+    if (!finite || !inside_walls(x, y, margin)) {
       ++counters_.bodies_reset;
       const PlanarState good = r->last_good_state();
       log_.warn("reset:" + robot_name(r->team(), r->id()),
@@ -298,7 +300,7 @@ void World::check_safety() {
       ++counters_.robots_set_upright;
       log_.warn("upright:" + robot_name(r->team(), r->id()),
                 robot_name(r->team(), r->id()) + " tipped over: set upright where it was");
-      PlanarState rest = s;
+      PlanarState rest = r->planar_state();
       rest.vx = rest.vy = rest.omega = 0;
       r->place(rest);
     }

@@ -3,12 +3,20 @@
 // to move sideways. Every test runs for both drive models.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "physics_test_support.hpp"
 
 namespace ubersim::physics::testing {
 namespace {
 
-class RobotMotion : public ::testing::TestWithParam<DriveModel> {};
+class RobotMotion : public ::testing::TestWithParam<DriveModel> {
+ protected:
+  // Largest speed (m/s, rad/s) on the axes that should stay still. The jointed
+  // model's iterative solver (QuickStep, 10 iterations) leaves a little slip at
+  // the wheels, seen as a few cm/s sideways or a slow yaw while accelerating.
+  double off_axis_tolerance() const { return GetParam() == DriveModel::Jointed ? 0.15 : 0.02; }
+};
 
 struct Ramp {
   double acceleration = 0;  // measured between 25 % and 75 % of the target
@@ -25,6 +33,7 @@ Ramp measure(DriveModel model, const std::string& type, double vx, double vy, do
   world.command(Team::Yellow, 0, velocity_command(0, vx, vy, omega));
   const double target = component == 0 ? vx : component == 1 ? vy : omega;
   double t_low = -1, t_high = -1;
+  double previous = 0;
   double sum = 0;
   int count = 0;
   Ramp ramp;
@@ -35,8 +44,14 @@ Ramp measure(DriveModel model, const std::string& type, double vx, double vy, do
     const double c = std::cos(s.heading), sn = std::sin(s.heading);
     const double local[3] = {c * s.vx + sn * s.vy, -sn * s.vx + c * s.vy, s.omega};
     const double value = local[component];
-    if (t_low < 0 && value >= 0.25 * target) t_low = world.time();
-    if (t_high < 0 && value >= 0.75 * target) t_high = world.time();
+    // Crossing times interpolated between steps: the rotation ramp lasts
+    // only a dozen steps, so whole steps would be too coarse.
+    auto crossing = [&](double level) {
+      return world.time() - world.dt() * (value - level) / (value - previous);
+    };
+    if (t_low < 0 && value >= 0.25 * target) t_low = crossing(0.25 * target);
+    if (t_high < 0 && value >= 0.75 * target) t_high = crossing(0.75 * target);
+    previous = value;
     if (world.time() > duration - 0.2) {
       sum += value;
       ++count;
@@ -47,6 +62,9 @@ Ramp measure(DriveModel model, const std::string& type, double vx, double vy, do
   }
   ramp.acceleration = (t_low > 0 && t_high > t_low) ? 0.5 * target / (t_high - t_low) : 0;
   ramp.final_value = count > 0 ? sum / count : 0;
+  std::printf("%s %s, command (%.1f, %.1f, %.1f): acceleration %.3f, final %.3f, off-axis %.3f\n",
+              model_name(model), type.c_str(), vx, vy, omega, ramp.acceleration, ramp.final_value,
+              ramp.off_axis);
   return ramp;
 }
 
@@ -55,7 +73,7 @@ TEST_P(RobotMotion, OmniForwardReachesSpeedAtTheConfiguredAcceleration) {
   const Ramp r = measure(GetParam(), "omni4_ssl", 2.0, 0, 0, 0, 1.5);
   EXPECT_NEAR(r.acceleration, type.max_acceleration, 0.05 * type.max_acceleration);
   EXPECT_NEAR(r.final_value, 2.0, 0.05 * 2.0);
-  EXPECT_LT(r.off_axis, 0.1);
+  EXPECT_LT(r.off_axis, off_axis_tolerance());
 }
 
 TEST_P(RobotMotion, OmniSidewaysReachesSpeedAtTheConfiguredAcceleration) {
@@ -63,7 +81,7 @@ TEST_P(RobotMotion, OmniSidewaysReachesSpeedAtTheConfiguredAcceleration) {
   const Ramp r = measure(GetParam(), "omni4_ssl", 0, 2.0, 0, 1, 1.5);
   EXPECT_NEAR(r.acceleration, type.max_acceleration, 0.05 * type.max_acceleration);
   EXPECT_NEAR(r.final_value, 2.0, 0.05 * 2.0);
-  EXPECT_LT(r.off_axis, 0.1);
+  EXPECT_LT(r.off_axis, off_axis_tolerance());
 }
 
 TEST_P(RobotMotion, OmniRotatesAtTheConfiguredAngularAcceleration) {
@@ -71,7 +89,7 @@ TEST_P(RobotMotion, OmniRotatesAtTheConfiguredAngularAcceleration) {
   const Ramp r = measure(GetParam(), "omni4_ssl", 0, 0, 4.0, 2, 1.0);
   EXPECT_NEAR(r.acceleration, type.max_angular_acceleration, 0.05 * type.max_angular_acceleration);
   EXPECT_NEAR(r.final_value, 4.0, 0.05 * 4.0);
-  EXPECT_LT(r.off_axis, 0.05);
+  EXPECT_LT(r.off_axis, off_axis_tolerance());
 }
 
 TEST_P(RobotMotion, ThreeWheelOmniDrivesDiagonally) {

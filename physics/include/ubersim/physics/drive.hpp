@@ -61,7 +61,9 @@ double chassis_origin_height(const RobotTypeConfig& type);
 std::unique_ptr<Drive> make_jointed_drive(const DriveContext& context);
 std::unique_ptr<Drive> make_planar_drive(const DriveContext& context);
 
-// Shared by both models: an upright rotation about z.
+// Shared by both models: an upright rotation about z, by angle or by its
+// cosine and sine.
 void yaw_rotation(double heading, dMatrix3 R);
+void yaw_rotation(double cos_heading, double sin_heading, dMatrix3 R);
 
 }  // namespace ubersim::physics

@@ -36,6 +36,7 @@ struct PhysicsConfig {
   double state_publish_rate = 0;       // Hz of sim time, 0 = every step
   double geometry_publish_period = 0;  // s of wall time
   double max_pacing_lag = 0;           // s of wall time
+  double message_poll_period = 0;      // s of wall time between message checks, as fast as possible
   std::int64_t max_steps_per_request = 0;
 
   double dt() const { return 1.0 / step_rate; }

@@ -14,6 +14,7 @@
 #include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
+#include <vector>
 
 #include "ubersim/channels.hpp"
 #include "ubersim/logging.hpp"
@@ -76,6 +77,7 @@ class PhysicsServer {
   bool paused_;
   double next_state_time_ = 0;  // sim time of the next publication (STATE_PUBLISH_RATE > 0)
   sim_state_t state_{};
+  std::vector<uint8_t> state_buffer_;  // encoded SIM_STATE, reused every step
   ServerStats stats_;
   ThrottledLog log_;
 };

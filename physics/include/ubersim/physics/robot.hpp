@@ -33,6 +33,9 @@ class Robot {
   // follows (the robot keeps its command).
   void place(const PlanarState& state);
   PlanarState planar_state() const;
+  // Cheaper parts of it, for every-step use: position and heading as a unit vector.
+  void position(double& x, double& y) const;
+  void heading_vector(double& c, double& s) const;
   // Cosine of the chassis' tilt from upright.
   double uprightness() const;
   void bodies(std::vector<dBodyID>& out) const { drive_->bodies(out); }
@@ -61,11 +64,12 @@ class Robot {
   void fill_state(robot_state_t& out, const Ball& ball, double now) const;
 
   // The last pose that passed the world's safety checks (restored on failure).
-  void remember_good_state() { last_good_ = planar_state(); }
-  const PlanarState& last_good_state() const { return last_good_; }
+  void remember_good_state();
+  PlanarState last_good_state() const;
 
  private:
-  RobotCommand effective_command(double now) const;
+  // The command in force: the last one, or stop once it timed out.
+  const RobotCommand& effective_command(double now) const;
   void ball_in_robot_frame(const Ball& ball, double local[3]) const;
 
   std::shared_ptr<const RobotTypeConfig> type_;
@@ -87,7 +91,7 @@ class Robot {
   std::vector<double> wheel_targets_;
   double last_kick_time_ = -1e9;  // s
   double roller_x_ = 0;           // m, roller axis ahead of the centre (robot frame)
-  PlanarState last_good_;
+  double good_x_ = 0, good_y_ = 0, good_c_ = 1, good_s_ = 0;  // last good pose
   mutable std::vector<double> wheel_speed_buffer_;
 };
 

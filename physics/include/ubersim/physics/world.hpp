@@ -137,6 +137,7 @@ class World {
   WorldCounters counters_;
   ThrottledLog log_;
   std::vector<dBodyID> body_buffer_;
+  std::vector<char> kicked_buffer_;
 };
 
 }  // namespace ubersim::physics
