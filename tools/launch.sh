@@ -90,7 +90,8 @@ start() {  # start NAME COMMAND...
 
 echo "ubersim: scenario $scenario, profile $profile, speed $( [ "$lockstep" = 1 ] && echo lockstep || echo "$speed"), LCM $lcm_url"
 if [ -n "$log_file" ]; then
-  start lcm-logger lcm-logger -l "$lcm_url" -f -q -c "${prefix}.*" "$log_file"
+  # lcm-logger 1.3.1 lists -l in its help but accepts only the long form.
+  start lcm-logger lcm-logger --lcm-url="$lcm_url" -f -q --channel="${prefix}.*" "$log_file"
 fi
 physics_args=(--scenario "$scenario" --speed "$speed")
 [ "$lockstep" = 1 ] && physics_args+=(--lockstep)
