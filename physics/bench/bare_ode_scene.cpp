@@ -62,6 +62,8 @@ BareOdeScene::BareOdeScene(const WorldSetup& setup, DriveModel model)
     r.mass = type.mass;
     r.inertia = type.moment_of_inertia;
     r.max_force = type.wheel_friction * type.mass * p.gravity;
+    r.max_acceleration = type.max_acceleration;
+    r.max_angular_acceleration = type.max_angular_acceleration;
     dMatrix3 R;
     dRFromAxisAndAngle(R, 0, 0, 1, spawn.state.heading);
     dMass m;
@@ -121,18 +123,9 @@ BareOdeScene::~BareOdeScene() {
 
 void BareOdeScene::command(std::size_t index, double vx, double vy, double omega) {
   Robot& r = robots_[index];
-  if (model_ == DriveModel::Jointed) {
-    for (Wheel& w : r.wheels) {
-      const double speed =
-          (w.dx * vx + w.dy * vy + omega * (w.x * w.dy - w.y * w.dx)) / r.wheel_radius;
-      dJointSetHingeParam(w.hinge, dParamVel, speed);
-    }
-  } else {
-    const dReal* R = dBodyGetRotation(r.chassis);
-    r.target[0] = R[0] * vx + R[1] * vy;
-    r.target[1] = R[4] * vx + R[5] * vy;
-    r.target[2] = omega;
-  }
+  r.target[0] = vx;
+  r.target[1] = vy;
+  r.target[2] = omega;
 }
 
 void BareOdeScene::near_callback(void* data, dGeomID a, dGeomID b) {
@@ -162,14 +155,36 @@ void BareOdeScene::near_callback(void* data, dGeomID a, dGeomID b) {
 }
 
 void BareOdeScene::step() {
-  if (model_ == DriveModel::Planar) {
-    for (Robot& r : robots_) {
+  for (Robot& r : robots_) {
+    // The same on-board acceleration limit as ubersim's robots, so both
+    // scenes move alike.
+    const dReal* R = dBodyGetRotation(r.chassis);
+    const double c = R[0], s = R[4];
+    const double want[3] = {c * r.target[0] - s * r.target[1], s * r.target[0] + c * r.target[1],
+                            r.target[2]};
+    const double dv = r.max_acceleration * dt_, dw = r.max_angular_acceleration * dt_;
+    for (int k = 0; k < 3; ++k) {
+      const double limit = k < 2 ? dv : dw;
+      r.setpoint[k] += std::clamp(want[k] - r.setpoint[k], -limit, limit);
+    }
+    if (model_ == DriveModel::Jointed) {
+      const double local[2] = {c * r.setpoint[0] + s * r.setpoint[1],
+                               -s * r.setpoint[0] + c * r.setpoint[1]};
+      for (Wheel& w : r.wheels) {
+        const double speed =
+            (w.dx * local[0] + w.dy * local[1] + r.setpoint[2] * (w.x * w.dy - w.y * w.dx)) /
+            r.wheel_radius;
+        dJointSetHingeParam(w.hinge, dParamVel, speed);
+      }
+    } else {
       const dReal* v = dBodyGetLinearVel(r.chassis);
       const dReal* w = dBodyGetAngularVel(r.chassis);
-      const double fx = std::clamp(r.mass * (r.target[0] - v[0]) / dt_, -r.max_force, r.max_force);
-      const double fy = std::clamp(r.mass * (r.target[1] - v[1]) / dt_, -r.max_force, r.max_force);
+      const double fx =
+          std::clamp(r.mass * (r.setpoint[0] - v[0]) / dt_, -r.max_force, r.max_force);
+      const double fy =
+          std::clamp(r.mass * (r.setpoint[1] - v[1]) / dt_, -r.max_force, r.max_force);
       dBodyAddForce(r.chassis, fx, fy, 0);
-      dBodyAddTorque(r.chassis, 0, 0, r.inertia * (r.target[2] - w[2]) / dt_);
+      dBodyAddTorque(r.chassis, 0, 0, r.inertia * (r.setpoint[2] - w[2]) / dt_);
     }
   }
   dSpaceCollide(space_, this, &near_callback);

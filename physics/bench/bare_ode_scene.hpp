@@ -36,7 +36,9 @@ class BareOdeScene {
     std::vector<Wheel> wheels;
     double wheel_radius = 0;
     double mass = 0, inertia = 0, max_force = 0;
-    double target[3] = {0, 0, 0};  // planar: field-frame velocity set-point
+    double max_acceleration = 0, max_angular_acceleration = 0;
+    double target[3] = {0, 0, 0};    // robot-frame velocity command
+    double setpoint[3] = {0, 0, 0};  // field-frame, ramped at the robot's acceleration limit
   };
   static void near_callback(void* data, dGeomID a, dGeomID b);
 
