@@ -10,11 +10,13 @@
 #include <memory>
 #include <string>
 
-#include "child_process.hpp"
+#include "child_process.hpp"  // tests/support
 #include "radio_driver.hpp"
 #include "radio_test_util.hpp"
 
 namespace radio_test {
+
+using ubersim::test::ChildProcess;
 
 class RadioProcessTest : public ::testing::Test {
  protected:
@@ -37,7 +39,7 @@ class RadioProcessTest : public ::testing::Test {
 
   void TearDown() override {
     if (process_) {
-      EXPECT_EQ(process_->terminate(), 0) << process_->log();
+      EXPECT_EQ(process_->stop(), 0) << process_->log();
       if (HasFailure()) std::cerr << "--- ubersim_radio log ---\n" << process_->log();
     }
     if (!dir_.empty()) std::filesystem::remove_all(dir_);

@@ -18,7 +18,7 @@
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
 
-#include "child_process.hpp"
+#include "child_process.hpp"  // tests/support
 #include "radio_test_util.hpp"
 #include "ubersim/channels.hpp"
 #include "ubersim/cli.hpp"
@@ -77,11 +77,11 @@ class RadioPhysicsTest : public ::testing::Test {
         channels_(ubersim::Channel::SimControlAck),
         [this](const ubersim::sim_control_ack_t& a) { acks_[a.request_id] = a; });
 
-    physics_ = std::make_unique<radio_test::ChildProcess>(
+    physics_ = std::make_unique<ubersim::test::ChildProcess>(
         std::vector<std::string>{UBERSIM_PHYSICS_EXE, "--lockstep", "--scenario",
                                  (dir_ / "scenario.cfg").string()},
         (dir_ / "physics.log").string());
-    radio_ = std::make_unique<radio_test::ChildProcess>(
+    radio_ = std::make_unique<ubersim::test::ChildProcess>(
         std::vector<std::string>{UBERSIM_RADIO_EXE, "--yellow-profile",
                                  (dir_ / "yellow.cfg").string(), "--blue-profile",
                                  (dir_ / "blue.cfg").string()},
@@ -103,10 +103,10 @@ class RadioPhysicsTest : public ::testing::Test {
 
   void TearDown() override {
     if (radio_) {
-      EXPECT_EQ(radio_->terminate(), 0) << radio_->log();
+      EXPECT_EQ(radio_->stop(), 0) << radio_->log();
     }
     if (physics_) {
-      EXPECT_EQ(physics_->terminate(), 0) << physics_->log();
+      EXPECT_EQ(physics_->stop(), 0) << physics_->log();
     }
     if (HasFailure() && radio_ && physics_) {
       std::cerr << "--- radio ---\n" << radio_->log() << "--- physics ---\n" << physics_->log();
@@ -184,8 +184,8 @@ class RadioPhysicsTest : public ::testing::Test {
   ubersim::ChannelNames channels_;
   std::filesystem::path dir_;
   std::unique_ptr<ubersim::MessageBus> bus_;
-  std::unique_ptr<radio_test::ChildProcess> physics_;
-  std::unique_ptr<radio_test::ChildProcess> radio_;
+  std::unique_ptr<ubersim::test::ChildProcess> physics_;
+  std::unique_ptr<ubersim::test::ChildProcess> radio_;
   std::map<std::int64_t, ubersim::sim_control_ack_t> acks_;
   std::vector<ubersim::sim_commands_t> forwarded_[2];
   std::vector<Sample> samples_;

@@ -227,7 +227,7 @@ TEST_F(RadioProcessTest, BadInputIsCountedNeverForwardedAndNeverCrashesIt) {
   }
 
   // Stop it and read its report and its log.
-  EXPECT_EQ(process_->terminate(), 0);
+  EXPECT_EQ(process_->stop(), 0);
   const std::string log = process_->log();
   process_.reset();
   for (const char* counted :
@@ -253,6 +253,6 @@ TEST_F(RadioProcessTest, BadInputIsCountedNeverForwardedAndNeverCrashesIt) {
 TEST_F(RadioProcessTest, ExitsCleanlyOnSigterm) {
   start(profile_text(60, 0.03, 0, 0, 0), 1);
   EXPECT_TRUE(process_->running());
-  EXPECT_EQ(process_->terminate(), 0);
+  EXPECT_EQ(process_->stop(), 0);
   process_.reset();
 }

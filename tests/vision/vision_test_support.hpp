@@ -1,4 +1,5 @@
 #pragma once
+#include "child_process.hpp"
 // What the end-to-end vision tests share: the real ubersim_vision process as
 // a child, and a driver that stands in for physics. The driver publishes
 // ground truth on SIM_STATE step by step (240 Hz in sim time) and collects
@@ -48,25 +49,7 @@ class TempDir {
   std::string root_;
 };
 
-// A child process with stdout and stderr going to a log file; killed if still
-// running when destroyed.
-class ChildProcess {
- public:
-  ChildProcess(const std::vector<std::string>& argv, const std::string& log_path);
-  ~ChildProcess();
-  ChildProcess(const ChildProcess&) = delete;
-  ChildProcess& operator=(const ChildProcess&) = delete;
-
-  bool running();
-  // SIGTERM, then wait; returns the exit code, 128 + signal if killed by one,
-  // or -1 if it did not stop within the timeout (it is then killed).
-  int stop(double timeout_s = 10);
-
- private:
-  pid_t pid_ = -1;
-  int status_ = 0;
-  bool reaped_ = false;
-};
+using ubersim::test::ChildProcess;  // tests/support
 
 // Keys that add the lockstep marker camera as camera `id` (see the top).
 std::string marker_camera_keys(int id);
