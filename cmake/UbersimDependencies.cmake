@@ -45,7 +45,7 @@ endif()
 # --- Cyclone DDS (optional bridge) ---------------------------------------------
 find_package(CycloneDDS CONFIG QUIET)
 if(CycloneDDS_FOUND)
-  message(STATUS "Cyclone DDS ${CycloneDDS_VERSION}: the DDS bridge is built")
+  message(STATUS "Cyclone DDS ${CycloneDDS_VERSION} found: the DDS bridge can be built")
 else()
   message(STATUS "Cyclone DDS not found: the DDS bridge is skipped (install cyclonedds-dev to build it)")
 endif()
