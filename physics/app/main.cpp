@@ -34,9 +34,9 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
-  ubersim::setup_logging("physics", common.verbosity());
 
   try {
+    ubersim::setup_logging("physics", common.verbosity());
     ubersim::physics::WorldSetup setup =
         ubersim::physics::load_world_setup(common.config_root(), scenario, physics_config);
     setup.seed = seed;
@@ -54,6 +54,8 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
+    return 1;
+  } catch (...) {
     return 1;
   }
 }

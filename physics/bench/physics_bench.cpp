@@ -8,7 +8,6 @@
 // SIM_COMMANDS at 60 Hz.
 //
 //   --pacing S   instead: run in real time for S s of sim time and print the drift.
-#include <xmmintrin.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -155,30 +154,27 @@ std::string load_average() {
   return one + " " + five + " " + fifteen;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"ubersim physics benchmark: simulated seconds per wall second"};
+struct BenchOptions {
   std::string url = "memq://";
   std::string config_dir = default_config_dir().string();
   double seconds = 0;
   int repeat = 3;
   double pacing = 0;
   std::vector<std::string> scenarios = {"division_a_11v11", "division_b_6v6", "field2002_5v5"};
-  app.add_option("-l,--lcm-url", url, "where SIM_STATE goes (memq:// = in-process)")
-      ->capture_default_str();
-  app.add_option("--config-dir", config_dir, "config folder")->capture_default_str();
-  app.add_option("--seconds", seconds, "sim seconds per run (0: 20 jointed, 60 planar)");
-  app.add_option("--repeat", repeat, "runs of each, the fastest counts")->capture_default_str();
-  app.add_option("--scenarios", scenarios, "scenarios to run")->capture_default_str();
-  app.add_option("--pacing", pacing, "only check real-time pacing for this many sim seconds");
   std::vector<std::string> models = {"jointed", "planar"};
-  app.add_option("--models", models, "drive models to run")->capture_default_str();
   std::string only;
-  app.add_option("--only", only, "run just one variant: server, world or bare (for profiling)");
-  CLI11_PARSE(app, argc, argv);
+};
+
+int run_benchmark(const BenchOptions& options) {
+  const std::string& url = options.url;
+  const std::string& config_dir = options.config_dir;
+  const double seconds = options.seconds;
+  const int repeat = options.repeat;
+  const double pacing = options.pacing;
+  const std::vector<std::string>& scenarios = options.scenarios;
+  const std::vector<std::string>& models = options.models;
+  const std::string& only = options.only;
   setup_logging("bench", -2);
-  if (getenv("FTZ")) _mm_setcsr(_mm_getcsr() | 0x8040);
 
   if (pacing > 0) {
     ServerStats stats;
@@ -224,4 +220,29 @@ int main(int argc, char** argv) {
       "\nserver: the ubersim_physics server loop with messages; world: the World alone;\n"
       "overhead: server time over bare ODE time, minus 1.\n");
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"ubersim physics benchmark: simulated seconds per wall second"};
+  BenchOptions o;
+  app.add_option("-l,--lcm-url", o.url, "where SIM_STATE goes (memq:// = in-process)")
+      ->capture_default_str();
+  app.add_option("--config-dir", o.config_dir, "config folder")->capture_default_str();
+  app.add_option("--seconds", o.seconds, "sim seconds per run (0: 20 jointed, 60 planar)");
+  app.add_option("--repeat", o.repeat, "runs of each, the fastest counts")->capture_default_str();
+  app.add_option("--scenarios", o.scenarios, "scenarios to run")->capture_default_str();
+  app.add_option("--pacing", o.pacing, "only check real-time pacing for this many sim seconds");
+  app.add_option("--models", o.models, "drive models to run")->capture_default_str();
+  app.add_option("--only", o.only, "run just one variant: server, world or bare (for profiling)");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    return run_benchmark(o);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ubersim_physics_bench: %s\n", e.what());
+    return 1;
+  } catch (...) {
+    return 1;
+  }
 }

@@ -21,7 +21,8 @@ struct ChassisGeomData {
 int g_chassis_class = -1;
 
 dContactGeom* contact_at(dContactGeom* contacts, int skip, int index) {
-  return reinterpret_cast<dContactGeom*>(reinterpret_cast<char*>(contacts) + index * skip);
+  return reinterpret_cast<dContactGeom*>(reinterpret_cast<char*>(contacts) +
+                                         static_cast<std::ptrdiff_t>(index) * skip);
 }
 
 // Local -> world for an ODE rotation (3x4, row-major).

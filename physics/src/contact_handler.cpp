@@ -158,14 +158,10 @@ void ContactHandler::surface_for(dGeomID a, dGeomID b, const GeomTag& ta, const 
       s.mode &= ~dContactFDir1;
     }
     const RobotTypeConfig& type = w.robot->type();
-    const double supports =
-        static_cast<double>(type.wheels.size() + type.caster_positions.size() / 2);
+    const auto supports = static_cast<double>(type.wheel_count() + type.caster_count());
     const double load = type.mass * physics_.gravity / supports;
     s.mu = type.wheel_friction * load;
     s.mu2 = type.wheel_lateral_friction * load;
-  } else if (is(GeomKind::Ground, GeomKind::Caster)) {
-    s.mode = 0;
-    s.mu = 0;  // ball casters roll freely every way
   } else if (is(GeomKind::Ground, GeomKind::Chassis)) {
     s.mode = dContactApprox1;
     s.mu = physics_.chassis_ground_friction;
@@ -182,6 +178,8 @@ void ContactHandler::surface_for(dGeomID a, dGeomID b, const GeomTag& ta, const 
     s.mu = physics_.robot_robot_friction;
     s.bounce = physics_.robot_robot_restitution;
   } else {
+    // Ground and Caster: ball casters roll freely every way (and nothing else
+    // reaches here: the collide bits filter every other pair).
     s.mode = 0;
     s.mu = 0;
   }

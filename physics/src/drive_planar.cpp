@@ -43,7 +43,7 @@ class PlanarDrive final : public Drive {
     dJointAttach(plane_.get(), chassis_.get(), nullptr);
 
     // Static load share: the robot's weight spread over wheels and casters.
-    const double supports = static_cast<double>(t.wheels.size() + t.caster_positions.size() / 2);
+    const auto supports = static_cast<double>(t.wheel_count() + t.caster_count());
     const double load = t.mass * c.physics->gravity / supports;
     traction_limit_ = std::min(t.motor_max_torque / t.wheel_radius, t.wheel_friction * load);
     torque_limited_ = t.motor_max_torque / t.wheel_radius <= t.wheel_friction * load;

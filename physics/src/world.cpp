@@ -170,7 +170,7 @@ void World::submit(const sim_commands_t& packet) {
     log_.warn("packet:time", "dropped a SIM_COMMANDS packet with a non-finite time");
     return;
   }
-  pending_[static_cast<std::size_t>(packet.team)].push(packet.t_apply, packet);
+  pending_[packet.team == 0 ? 0 : 1].push(packet.t_apply, packet);
 }
 
 void World::apply_due_commands() {

@@ -64,6 +64,7 @@ struct RobotTypeConfig {
   double kicker_reach = 0;  // m, largest gap between ball and face that still counts as touching
 
   std::size_t wheel_count() const { return wheels.size(); }
+  std::size_t caster_count() const { return caster_positions.size() / 2; }
   bool has_dribbler() const { return dribbler_max_speed > 0; }
   bool has_kicker() const { return kick_max_speed > 0 || chip_max_speed > 0; }
 };
