@@ -1,0 +1,114 @@
+// ubersim_dds_bridge: ubersim's LCM channels on a Cyclone DDS domain, in the
+// directions config/dds_bridge/<name>.cfg gives (see /work/notes/dds_bridge.md).
+#include <poll.h>
+
+#include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+#include "ubersim/cli.hpp"
+#include "ubersim/config.hpp"
+#include "ubersim/dds_bridge/bridge.hpp"
+#include "ubersim/dds_bridge/bridge_config.hpp"
+#include "ubersim/dds_bridge/dds_entity.hpp"
+#include "ubersim/logging.hpp"
+#include "ubersim/message_bus.hpp"
+#include "ubersim/radio/radio_profile.hpp"
+#include "ubersim/shutdown.hpp"
+
+namespace {
+
+struct Options {
+  ubersim::CommonOptions common;
+  int domain = 0;
+  bool network = false;
+  std::string config = "default";
+};
+
+int run(const Options& options) {
+  using namespace ubersim;
+  const std::string config_dir = options.common.config_root();
+  const dds::BridgeConfig config = dds::load_bridge_config(config_dir, options.config);
+  const radio::CommandLimits limits =
+      radio::load_radio_profile(config_dir, config.radio_limits).limits;
+  const ChannelNames channels = options.common.channels();
+
+  ShutdownSignal shutdown;
+  MessageBus bus(with_receive_buffer(options.common.lcm_url));
+  const dds::DdsParticipant participant =
+      dds::join_domain(static_cast<dds_domainid_t>(options.domain),
+                       options.network ? dds::DdsNetwork::Network : dds::DdsNetwork::Loopback);
+  dds::Bridge bridge(config, channels, limits, participant.get(), bus);
+
+  spdlog::info(
+      "config {}, DDS domain {} ({}), LCM {}; radio samples checked against the limits of radio "
+      "profile {}",
+      config.name, options.domain,
+      dds::cyclone_configured_by_environment() ? "Cyclone configured by CYCLONEDDS_URI"
+      : options.network                        ? "Cyclone's default network interface"
+                                               : "this host only, loopback",
+      options.common.lcm_url, config.radio_limits);
+  for (const std::string& line : bridge.describe_routes()) spdlog::info("{}", line);
+  if (config.routes.empty()) spdlog::warn("config {} bridges no channel", config.name);
+
+  const dds::Route* geometry = config.find(Channel::SimGeometry);
+  if (geometry != nullptr && dds::carries_lcm_to_dds(geometry->direction))
+    bridge.request_sim_geometry();
+
+  while (!shutdown.requested()) {
+    pollfd fds[3] = {{bus.lcm().getFileno(), POLLIN, 0},
+                     {bridge.wake_fd(), POLLIN, 0},
+                     {shutdown.fd(), POLLIN, 0}};
+    if (poll(fds, 3, 500) < 0 && errno != EINTR)
+      throw std::runtime_error(std::string("poll: ") + std::strerror(errno));
+    // DDS first: its samples waited in Cyclone's reader cache, LCM's in a socket.
+    bridge.take_dds();
+    bus.handle_pending();
+  }
+
+  for (const std::string& line : bridge.summary()) spdlog::info("{}", line);
+  spdlog::info("malformed LCM messages dropped: {}", bus.malformed_count());
+  return 0;
+}
+
+int parse_and_run(int argc, char** argv) {
+  Options options;
+  CLI::App app{"ubersim DDS bridge: LCM channels <-> Cyclone DDS topics"};
+  ubersim::add_common_options(app, options.common);
+  app.add_option("--domain", options.domain, "DDS domain id")
+      ->check(CLI::Range(0, 232))
+      ->capture_default_str();
+  app.add_flag("--network", options.network,
+               "let DDS use Cyclone's default network interface (default: loopback only, as "
+               "LCM's ttl=0; CYCLONEDDS_URI, when set, always decides)");
+  app.add_option("--config", options.config,
+                 "bridge config: config/dds_bridge/NAME.cfg or a path to a .cfg file")
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  ubersim::setup_logging("dds_bridge", options.common.verbosity());
+  try {
+    return run(options);
+  } catch (const ubersim::ConfigError& error) {
+    spdlog::error("{}", error.what());
+    return 2;
+  } catch (const ubersim::dds::DdsError& error) {
+    spdlog::error("{}", error.what());
+    return 1;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return parse_and_run(argc, argv);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "ubersim_dds_bridge: %s\n", error.what());
+    return 1;
+  } catch (...) {
+    std::fprintf(stderr, "ubersim_dds_bridge: unknown error\n");
+    return 1;
+  }
+}
