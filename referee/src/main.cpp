@@ -221,6 +221,11 @@ class Referee {
 
   int setup() {
     const auto scenario = load_scenario_config(options_.common.config_root(), options_.scenario);
+    const auto field = link_.geometry(timeout());
+    if (field.name != scenario.field) {
+      std::cerr << "note: scenario " << scenario.name << " is made for field " << scenario.field
+                << "; physics runs " << field.name << " (robots are placed as the file says)\n";
+    }
     sim_control_t control{};
     control.action = sim_control_t::SETUP;
     for (const auto& r : scenario.robots) {
