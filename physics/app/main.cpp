@@ -2,6 +2,7 @@
 // /work/notes/physics.md). Exits 0 on SIGINT/SIGTERM or after --duration.
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <cstdio>
 
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
@@ -9,7 +10,9 @@
 #include "ubersim/physics/physics_server.hpp"
 #include "ubersim/shutdown.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app{"ubersim physics server: owns the simulated world (ODE) and steps it"};
   ubersim::CommonOptions common;
   ubersim::add_common_options(app, common);
@@ -58,4 +61,17 @@ int main(int argc, char** argv) {
   } catch (...) {
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "ubersim_physics: %s\n", error.what());
+  } catch (...) {
+    std::fprintf(stderr, "ubersim_physics: unknown error\n");
+  }
+  return 1;
 }

@@ -224,7 +224,7 @@ int run_benchmark(const BenchOptions& options) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"ubersim physics benchmark: simulated seconds per wall second"};
   BenchOptions o;
   app.add_option("-l,--lcm-url", o.url, "where SIM_STATE goes (memq:// = in-process)")
@@ -245,4 +245,15 @@ int main(int argc, char** argv) {
   } catch (...) {
     return 1;
   }
+}
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "ubersim_physics_bench: %s\n", error.what());
+  } catch (...) {
+    std::fprintf(stderr, "ubersim_physics_bench: unknown error\n");
+  }
+  return 1;
 }
