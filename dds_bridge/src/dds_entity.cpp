@@ -1,6 +1,9 @@
 #include "ubersim/dds_bridge/dds_entity.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <cstdlib>
+#include <string_view>
 
 namespace ubersim::dds {
 
@@ -23,6 +26,34 @@ void DdsEntity::reset() {
   // deleting it again is expected and harmless.
   if (handle_ > 0) (void)dds_delete(handle_);
   handle_ = 0;
+}
+
+namespace {
+
+void log_to_spdlog(void* /*userdata*/, const dds_log_data_t* data) {
+  // `message` points past Cyclone's own header (time stamp, thread).
+  std::string_view text(data->message, data->size);
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
+  if ((data->priority & (DDS_LC_FATAL | DDS_LC_ERROR)) != 0) {
+    spdlog::error("cyclone: {}", text);
+  } else if ((data->priority & DDS_LC_WARNING) != 0 &&
+             text.find("not multicast-capable") == std::string_view::npos) {
+    spdlog::warn("cyclone: {}", text);
+  } else {
+    // Informational, and the expected notice that lo has no multicast
+    // (Cyclone then discovers peers by unicast, which is what we want).
+    spdlog::debug("cyclone: {}", text);
+  }
+}
+
+}  // namespace
+
+CycloneLogToSpdlog::CycloneLogToSpdlog() {
+  dds_set_log_sink(log_to_spdlog, nullptr);
+}
+
+CycloneLogToSpdlog::~CycloneLogToSpdlog() {
+  dds_set_log_sink(nullptr, nullptr);
 }
 
 bool cyclone_configured_by_environment() {

@@ -35,6 +35,7 @@ int run(const Options& options) {
   const ChannelNames channels = options.common.channels();
 
   ShutdownSignal shutdown;
+  const dds::CycloneLogToSpdlog cyclone_log;
   MessageBus bus(with_receive_buffer(options.common.lcm_url));
   const dds::DdsParticipant participant =
       dds::join_domain(static_cast<dds_domainid_t>(options.domain),

@@ -50,6 +50,16 @@ struct DdsParticipant {
 // Throws DdsError (e.g. for a domain id out of range, or a domain this
 // process already joined with another configuration).
 DdsParticipant join_domain(dds_domainid_t domain, DdsNetwork network);
+// While it lives, Cyclone's own log messages (warnings, errors) go through
+// spdlog instead of straight to stderr.
+class CycloneLogToSpdlog {
+ public:
+  CycloneLogToSpdlog();
+  ~CycloneLogToSpdlog();
+  CycloneLogToSpdlog(const CycloneLogToSpdlog&) = delete;
+  CycloneLogToSpdlog& operator=(const CycloneLogToSpdlog&) = delete;
+};
+
 // True when CYCLONEDDS_URI is set (Cyclone is configured by the user).
 bool cyclone_configured_by_environment();
 
