@@ -1,0 +1,55 @@
+#pragma once
+// What the viewer page receives and sends, as JSON. Every message the server
+// pushes is built here from LCM messages, so the page never sees LCM and the
+// encoding can be tested without a browser. Lengths in m, angles in rad,
+// times in s (sim time), like the messages they come from; non-finite numbers
+// become null (JSON has no NaN).
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <ubersim/field_geometry_t.hpp>
+#include <ubersim/radio_packet_t.hpp>
+#include <ubersim/sim_control_ack_t.hpp>
+#include <ubersim/sim_control_t.hpp>
+#include <ubersim/sim_state_t.hpp>
+#include <ubersim/vision_frame_t.hpp>
+#include <ubersim/vision_geometry_t.hpp>
+
+namespace ubersim::viewer {
+
+// {sim_time, step, paused, speed_factor, ball: {x,y,z,vx,vy,vz} | null,
+//  robots: [{team: "yellow"|"blue", id, type, x, y, orientation, vx, vy, omega, ball_contact}]}
+nlohmann::json encode_sim_state(const sim_state_t& state);
+
+// {camera_id, frame_number, t_capture, t_sent, balls: [{x, y, confidence}],
+//  yellow: [{id, x, y, orientation, confidence}], blue: [...]}
+nlohmann::json encode_vision_frame(const vision_frame_t& frame);
+
+// Every field_geometry_t field by its name.
+nlohmann::json encode_field_geometry(const field_geometry_t& field);
+
+// [{camera_id, x, y, z}] : where each camera hangs, from a vision_geometry_t.
+nlohmann::json encode_cameras(const vision_geometry_t& geometry);
+
+// {team, sequence, t_sent, commands: [{id, mode: "local"|"global"|"wheels", vx, vy, omega,
+//  kick, chip, dribbler}]}
+nlohmann::json encode_radio_packet(const radio_packet_t& packet);
+
+// {request_id, ok, message, sim_time}
+nlohmann::json encode_ack(const sim_control_ack_t& ack);
+
+// A control request from the page, e.g. {"action":"pause"}, {"action":"speed","factor":2},
+// {"action":"place_ball","x":0.5,"y":-1}, {"action":"place_robot","team":"blue","id":3,
+// "x":1,"y":2,"orientation":0}. Actions: pause, resume, reset, speed, place_ball, place_robot.
+struct ParsedControl {
+  std::optional<sim_control_t> request;  // set when the text was a valid request
+  std::string error;                     // why not, otherwise
+};
+// Coordinates beyond this (m) from the centre are refused (no field is that big).
+inline constexpr double kMaxPlacementDistance = 20.0;
+// Speed factors beyond this are refused (physics takes any; a typo should not).
+inline constexpr double kMaxSpeedFactor = 100.0;
+ParsedControl parse_control_request(const std::string& text, std::int64_t request_id,
+                                    const std::string& sender);
+
+}  // namespace ubersim::viewer

@@ -1,0 +1,229 @@
+#include "ubersim/viewer/json_encoding.hpp"
+
+#include <cmath>
+#include <ubersim/team_t.hpp>
+
+namespace ubersim::viewer {
+namespace {
+
+using nlohmann::json;
+
+// Millimetre / milliradian resolution is far finer than any pixel on the page,
+// and short numbers keep a 22-robot frame small at 60 Hz.
+json number(double value, double resolution = 1e-4) {
+  if (!std::isfinite(value)) return nullptr;
+  return std::round(value / resolution) * resolution;
+}
+
+const char* team_text(int team) {
+  switch (team) {
+    case team_t::YELLOW:
+      return "yellow";
+    case team_t::BLUE:
+      return "blue";
+    default:
+      return "unknown";
+  }
+}
+
+const char* mode_text(int mode) {
+  switch (mode) {
+    case robot_command_t::MODE_LOCAL_VELOCITY:
+      return "local";
+    case robot_command_t::MODE_GLOBAL_VELOCITY:
+      return "global";
+    case robot_command_t::MODE_WHEEL_SPEEDS:
+      return "wheels";
+    default:
+      return "unknown";
+  }
+}
+
+json encode_vision_robots(const std::vector<vision_robot_t>& robots) {
+  json out = json::array();
+  for (const auto& robot : robots) {
+    out.push_back({{"id", robot.robot_id},
+                   {"x", number(robot.x)},
+                   {"y", number(robot.y)},
+                   {"orientation", number(robot.orientation)},
+                   {"confidence", number(robot.confidence, 1e-3)}});
+  }
+  return out;
+}
+
+bool finite_number(const json& value) {
+  return value.is_number() && std::isfinite(value.get<double>());
+}
+
+}  // namespace
+
+json encode_sim_state(const sim_state_t& state) {
+  json robots = json::array();
+  for (const auto& robot : state.robots) {
+    robots.push_back({{"team", team_text(robot.team)},
+                      {"id", robot.robot_id},
+                      {"type", robot.robot_type},
+                      {"x", number(robot.x)},
+                      {"y", number(robot.y)},
+                      {"orientation", number(robot.orientation)},
+                      {"vx", number(robot.vx)},
+                      {"vy", number(robot.vy)},
+                      {"omega", number(robot.omega)},
+                      {"ball_contact", robot.ball_contact}});
+  }
+  json ball = nullptr;
+  if (state.ball_present) {
+    const auto& b = state.ball;
+    ball = {{"x", number(b.position[0])},         {"y", number(b.position[1])},
+            {"z", number(b.position[2])},         {"vx", number(b.linear_velocity[0])},
+            {"vy", number(b.linear_velocity[1])}, {"vz", number(b.linear_velocity[2])}};
+  }
+  return {{"sim_time", number(state.sim_time, 1e-6)},
+          {"step", state.step},
+          {"paused", state.paused},
+          {"speed_factor", number(state.speed_factor, 1e-6)},
+          {"ball", ball},
+          {"robots", robots}};
+}
+
+json encode_vision_frame(const vision_frame_t& frame) {
+  json balls = json::array();
+  for (const auto& ball : frame.balls) {
+    balls.push_back({{"x", number(ball.x)},
+                     {"y", number(ball.y)},
+                     {"confidence", number(ball.confidence, 1e-3)}});
+  }
+  return {{"camera_id", frame.camera_id},
+          {"frame_number", frame.frame_number},
+          {"t_capture", number(frame.t_capture, 1e-6)},
+          {"t_sent", number(frame.t_sent, 1e-6)},
+          {"balls", balls},
+          {"yellow", encode_vision_robots(frame.robots_yellow)},
+          {"blue", encode_vision_robots(frame.robots_blue)}};
+}
+
+json encode_field_geometry(const field_geometry_t& f) {
+  return {{"name", f.name},
+          {"field_length", number(f.field_length)},
+          {"field_width", number(f.field_width)},
+          {"boundary_width", number(f.boundary_width)},
+          {"line_width", number(f.line_width)},
+          {"goal_width", number(f.goal_width)},
+          {"goal_depth", number(f.goal_depth)},
+          {"goal_height", number(f.goal_height)},
+          {"goal_wall_thickness", number(f.goal_wall_thickness)},
+          {"wall_height", number(f.wall_height)},
+          {"wall_thickness", number(f.wall_thickness)},
+          {"center_circle_radius", number(f.center_circle_radius)},
+          {"penalty_area_depth", number(f.penalty_area_depth)},
+          {"penalty_area_width", number(f.penalty_area_width)},
+          {"ball_radius", number(f.ball_radius)},
+          {"penalty_mark_distance", number(f.penalty_mark_distance)}};
+}
+
+json encode_cameras(const vision_geometry_t& geometry) {
+  json cameras = json::array();
+  for (const auto& camera : geometry.cameras) {
+    cameras.push_back({{"camera_id", camera.camera_id},
+                       {"x", number(camera.position[0])},
+                       {"y", number(camera.position[1])},
+                       {"z", number(camera.position[2])}});
+  }
+  return cameras;
+}
+
+json encode_radio_packet(const radio_packet_t& packet) {
+  json commands = json::array();
+  for (const auto& command : packet.commands) {
+    commands.push_back({{"id", command.robot_id},
+                        {"mode", mode_text(command.mode)},
+                        {"vx", number(command.vx)},
+                        {"vy", number(command.vy)},
+                        {"omega", number(command.omega)},
+                        {"kick", number(command.kick_speed)},
+                        {"chip", number(command.chip_speed)},
+                        {"dribbler", number(command.dribbler_speed)}});
+  }
+  return {{"team", team_text(packet.team)},
+          {"sequence", packet.sequence},
+          {"t_sent", number(packet.t_sent, 1e-6)},
+          {"commands", commands}};
+}
+
+json encode_ack(const sim_control_ack_t& ack) {
+  return {{"request_id", ack.request_id},
+          {"ok", ack.ok},
+          {"message", ack.message},
+          {"sim_time", number(ack.sim_time, 1e-6)}};
+}
+
+ParsedControl parse_control_request(const std::string& text, std::int64_t request_id,
+                                    const std::string& sender) {
+  const json request = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (request.is_discarded() || !request.is_object()) return {std::nullopt, "not a JSON object"};
+  const auto action_it = request.find("action");
+  if (action_it == request.end() || !action_it->is_string()) {
+    return {std::nullopt, "no \"action\" string"};
+  }
+  const std::string action = action_it->get<std::string>();
+  // A number the request must carry, finite and within +-limit.
+  const auto read = [&request](const char* key, double limit, double& out) {
+    const auto it = request.find(key);
+    if (it == request.end() || !finite_number(*it)) return false;
+    out = it->get<double>();
+    return std::abs(out) <= limit;
+  };
+
+  sim_control_t control{};
+  control.request_id = request_id;
+  control.sender = sender;
+  control.num_robots = 0;
+  control.has_ball = false;
+  if (action == "pause") {
+    control.action = sim_control_t::PAUSE;
+  } else if (action == "resume") {
+    control.action = sim_control_t::RESUME;
+  } else if (action == "reset") {
+    control.action = sim_control_t::RESET;
+  } else if (action == "speed") {
+    control.action = sim_control_t::SET_SPEED;
+    if (!read("factor", kMaxSpeedFactor, control.speed_factor) || control.speed_factor < 0) {
+      return {std::nullopt, "speed needs \"factor\" in [0, 100] (0 = as fast as possible)"};
+    }
+  } else if (action == "place_ball") {
+    control.action = sim_control_t::PLACE;
+    control.has_ball = true;
+    if (!read("x", kMaxPlacementDistance, control.ball.position[0]) ||
+        !read("y", kMaxPlacementDistance, control.ball.position[1])) {
+      return {std::nullopt, "place_ball needs finite \"x\" and \"y\" within 20 m"};
+    }
+  } else if (action == "place_robot") {
+    control.action = sim_control_t::PLACE;
+    robot_placement_t robot{};
+    const auto team = request.find("team");
+    if (team == request.end() || !team->is_string() || (*team != "yellow" && *team != "blue")) {
+      return {std::nullopt, "place_robot needs \"team\": \"yellow\" or \"blue\""};
+    }
+    robot.team = *team == "yellow" ? team_t::YELLOW : team_t::BLUE;
+    const auto id = request.find("id");
+    if (id == request.end() || !id->is_number_integer() || id->get<std::int64_t>() < 0 ||
+        id->get<std::int64_t>() > 1000) {
+      return {std::nullopt, "place_robot needs an integer \"id\" in [0, 1000]"};
+    }
+    robot.robot_id = id->get<std::int32_t>();
+    robot.present = true;  // the page moves robots; it never removes one
+    if (!read("x", kMaxPlacementDistance, robot.x) || !read("y", kMaxPlacementDistance, robot.y)) {
+      return {std::nullopt, "place_robot needs finite \"x\" and \"y\" within 20 m"};
+    }
+    if (request.contains("orientation") && !read("orientation", 100.0, robot.orientation)) {
+      return {std::nullopt, "place_robot: \"orientation\" must be a finite angle (rad)"};
+    }
+    control.robots.push_back(robot);
+    control.num_robots = 1;
+  } else {
+    return {std::nullopt, "unknown action \"" + action + "\""};
+  }
+  return {control, ""};
+}
+
+}  // namespace ubersim::viewer

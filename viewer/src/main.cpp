@@ -1,0 +1,191 @@
+// ubersim_viewer: the live field viewer. Subscribes to ground truth, vision,
+// field geometry and both teams' radio commands, and serves a web page that
+// draws them, pushing it one snapshot per display frame over a WebSocket. The
+// page's controls (pause, speed, reset, drag to place) go out on SIM_CONTROL.
+// See /work/notes/viewer.md.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <deque>
+#include <mutex>
+#include <ubersim/field_geometry_t.hpp>
+#include <ubersim/radio_packet_t.hpp>
+#include <ubersim/sim_control_ack_t.hpp>
+#include <ubersim/sim_control_t.hpp>
+#include <ubersim/sim_state_t.hpp>
+#include <ubersim/vision_frame_t.hpp>
+#include <ubersim/vision_geometry_t.hpp>
+
+#include "ubersim/cli.hpp"
+#include "ubersim/logging.hpp"
+#include "ubersim/message_bus.hpp"
+#include "ubersim/shutdown.hpp"
+#include "ubersim/viewer/json_encoding.hpp"
+#include "ubersim/viewer/viewer_model.hpp"
+#include "ubersim/viewer/web_server.hpp"
+
+#ifndef UBERSIM_VIEWER_WEB_DIR
+#error "UBERSIM_VIEWER_WEB_DIR must name the page's folder"
+#endif
+
+namespace {
+
+struct Options {
+  ubersim::CommonOptions common;
+  std::string bind = "127.0.0.1";
+  int port = 8080;
+  double display_rate = 60;
+  std::string web_dir = UBERSIM_VIEWER_WEB_DIR;
+};
+
+// Requests from pages arrive on the server's thread; LCM is used by the main
+// thread only, so they wait here. Bounded: a page cannot flood physics.
+class ControlInbox {
+ public:
+  static constexpr std::size_t kCapacity = 64;
+  bool push(std::string text) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (queue_.size() >= kCapacity) return false;
+    queue_.push_back(std::move(text));
+    return true;
+  }
+  std::deque<std::string> take() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return std::exchange(queue_, {});
+  }
+
+ private:
+  std::mutex mutex_;
+  std::deque<std::string> queue_;
+};
+
+int run(const Options& options) {
+  using namespace ubersim;
+  using Clock = viewer::ViewerModel::Clock;
+  const ChannelNames channels = options.common.channels();
+
+  ShutdownSignal shutdown;
+  MessageBus bus(with_receive_buffer(options.common.lcm_url));
+  viewer::ViewerModel model;
+  model.set_channel_names({{"SIM_STATE", channels(Channel::SimState)},
+                           {"VISION", channels(Channel::Vision)},
+                           {"VISION_GEOMETRY", channels(Channel::VisionGeometry)},
+                           {"SIM_GEOMETRY", channels(Channel::SimGeometry)},
+                           {"RADIO_YELLOW", channels.radio(Team::Yellow)},
+                           {"RADIO_BLUE", channels.radio(Team::Blue)}});
+
+  bus.subscribe<sim_state_t>(channels(Channel::SimState),
+                             [&](const sim_state_t& m) { model.on_sim_state(m, Clock::now()); });
+  bus.subscribe<vision_frame_t>(channels(Channel::Vision),
+                                [&](const vision_frame_t& m) { model.on_vision(m, Clock::now()); });
+  bus.subscribe<vision_geometry_t>(
+      channels(Channel::VisionGeometry),
+      [&](const vision_geometry_t& m) { model.on_vision_geometry(m, Clock::now()); });
+  bus.subscribe<field_geometry_t>(channels(Channel::SimGeometry), [&](const field_geometry_t& m) {
+    model.on_sim_geometry(m, Clock::now());
+  });
+  for (Team team : kTeams) {
+    bus.subscribe<radio_packet_t>(channels.radio(team), [&model, team](const radio_packet_t& m) {
+      model.on_radio(static_cast<int>(team), m, Clock::now());
+    });
+  }
+  bus.subscribe<sim_control_ack_t>(channels(Channel::SimControlAck),
+                                   [&](const sim_control_ack_t& ack) {
+                                     if (ack.sender == "viewer") model.on_ack(ack);
+                                   });
+
+  ControlInbox inbox;
+  ThrottledLog inbox_full;
+  viewer::WebServerOptions server_options;
+  server_options.bind_address = options.bind;
+  server_options.port = static_cast<std::uint16_t>(options.port);
+  server_options.web_dir = options.web_dir;
+  viewer::WebServer server(server_options, [&](const std::string& text) {
+    if (!inbox.push(text)) inbox_full.warn("inbox", "page requests arrive faster than handled");
+  });
+  std::printf("viewer: http://%s:%u/\n", options.bind.c_str(), server.port());
+  std::fflush(stdout);
+  spdlog::info("serving {} at http://{}:{}/ ; {} frames/s; LCM {}", options.web_dir, options.bind,
+               server.port(), options.display_rate, options.common.lcm_url);
+
+  // Ask physics for the field at once rather than wait for its next periodic one.
+  std::int64_t next_request_id = 1;
+  sim_control_t geometry_request{};
+  geometry_request.request_id = next_request_id++;
+  geometry_request.sender = "viewer";
+  geometry_request.action = sim_control_t::REQUEST_GEOMETRY;
+  bus.publish(channels(Channel::SimControl), geometry_request);
+
+  ThrottledLog bad_request;
+  const auto frame_period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(1.0 / options.display_rate));
+  auto next_frame = Clock::now();
+  while (!shutdown.requested()) {
+    const auto wait =
+        std::chrono::duration_cast<std::chrono::milliseconds>(next_frame - Clock::now());
+    bus.wait_and_handle(static_cast<int>(std::max<long long>(0, wait.count())), &shutdown);
+    for (const std::string& text : inbox.take()) {
+      auto parsed = viewer::parse_control_request(text, next_request_id, "viewer");
+      if (!parsed.request) {
+        bad_request.warn("request", "ignored a page request: " + parsed.error);
+        continue;
+      }
+      ++next_request_id;
+      spdlog::debug("page request: {}", text);
+      bus.publish(channels(Channel::SimControl), *parsed.request);
+    }
+    const auto now = Clock::now();
+    if (now < next_frame) continue;
+    next_frame += frame_period;
+    if (next_frame < now) next_frame = now + frame_period;  // fell behind: do not catch up
+    const auto stats = server.stats();
+    const nlohmann::json server_info = {{"clients", stats.clients},
+                                        {"display_rate", options.display_rate},
+                                        {"frames_skipped", stats.frames_skipped},
+                                        {"malformed", bus.malformed_count()}};
+    if (stats.clients > 0) {
+      server.publish(std::make_shared<const std::string>(model.snapshot(now, server_info)));
+    }
+  }
+  const auto stats = server.stats();
+  spdlog::info(
+      "frames sent {}, skipped for slow pages {}, replaced before sending {}; "
+      "malformed LCM messages dropped {}",
+      stats.frames_sent, stats.frames_skipped, stats.frames_replaced, bus.malformed_count());
+  return 0;
+}
+
+int parse_and_run(int argc, char** argv) {
+  Options options;
+  CLI::App app{"ubersim viewer: the field, ground truth, vision and commands in a web browser"};
+  ubersim::add_common_options(app, options.common);
+  app.add_option("--port", options.port, "HTTP/WebSocket port (0 = any free port)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  app.add_option("--bind", options.bind,
+                 "address to listen on (0.0.0.0 lets other machines in: there is no password)")
+      ->capture_default_str();
+  app.add_option("--display-rate", options.display_rate,
+                 "snapshots per second sent to each page (messages are coalesced to this)")
+      ->check(CLI::Range(1.0, 240.0))
+      ->capture_default_str();
+  app.add_option("--web-dir", options.web_dir, "folder of the page's files")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  ubersim::setup_logging("viewer", options.common.verbosity());
+  return run(options);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return parse_and_run(argc, argv);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "ubersim_viewer: %s\n", error.what());
+    return 1;
+  } catch (...) {
+    std::fprintf(stderr, "ubersim_viewer: unknown error\n");
+    return 1;
+  }
+}
