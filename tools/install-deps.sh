@@ -15,6 +15,7 @@ packages=(
   libspdlog-dev libfmt-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   # isolated multicast tests (unshare, ip)
   util-linux iproute2
+  libprotobuf-dev protobuf-compiler  # optional SSL protocol bridge
   # optional DDS bridge
   cyclonedds-dev cyclonedds-tools
   # plots for the validation report

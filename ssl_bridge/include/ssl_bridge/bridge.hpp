@@ -1,0 +1,82 @@
+#pragma once
+// The bridge process' core: LCM on one side, SSL protocol UDP sockets on the
+// other, one thread, one poll loop.
+#include <netinet/in.h>
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <ubersim/sim_control_ack_t.hpp>
+
+#include "ssl_bridge/robot_control_translation.hpp"
+#include "ssl_bridge/sim_control_translation.hpp"
+#include "ssl_bridge/udp_socket.hpp"
+#include "ssl_bridge/vision_translation.hpp"
+#include "ubersim/channels.hpp"
+#include "ubersim/logging.hpp"
+#include "ubersim/message_bus.hpp"
+#include "ubersim/shutdown.hpp"
+
+namespace ubersim::ssl {
+
+struct BridgeOptions {
+  std::string vision_address = "224.5.23.2";  // multicast group (or a unicast address)
+  int vision_port = 10020;
+  int vision_ttl = 0;                          // 0: never leaves the host
+  std::string vision_interface = "127.0.0.1";  // address of the interface it is sent on
+  std::string listen_address = "127.0.0.1";    // control and robot control sockets
+  int control_port = 10300;
+  int blue_port = 10301;
+  int yellow_port = 10302;
+  double ack_timeout = 1.0;  // s of wall time to wait for physics before answering anyway
+  SimControlSettings sim_control;
+  std::optional<WheelMapping> wheels;
+  GeometryExtras geometry;
+};
+
+class SslBridge {
+ public:
+  SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOptions options);
+  // Runs until shutdown is requested.
+  void run(const ShutdownSignal& shutdown);
+  void log_summary() const;
+
+ private:
+  struct PendingResponse {
+    sockaddr_in client{};
+    std::map<int64_t, bool> awaiting;  // request ids not yet acknowledged
+    SimulatorResponse response;
+    std::chrono::steady_clock::time_point deadline;
+  };
+
+  void on_vision(const vision_frame_t& frame);
+  void on_geometry(const vision_geometry_t& geometry);
+  void on_ack(const sim_control_ack_t& ack);
+  void handle_control_datagram(const std::vector<uint8_t>& bytes, const sockaddr_in& from);
+  void handle_robot_datagram(Team team, const std::vector<uint8_t>& bytes,
+                             const sockaddr_in& from);
+  void send_vision(const SSL_WrapperPacket& packet);
+  void answer(PendingResponse& pending);
+  void expire_pending();
+
+  MessageBus& bus_;
+  ChannelNames channels_;
+  BridgeOptions options_;
+  sockaddr_in vision_destination_{};
+  UdpSocket vision_socket_;
+  UdpSocket control_socket_;
+  UdpSocket blue_socket_;
+  UdpSocket yellow_socket_;
+  std::optional<sim_state_t> state_;
+  std::map<Team, radio_feedback_t> feedback_;
+  std::map<int64_t, std::shared_ptr<PendingResponse>> pending_by_request_;
+  int64_t next_request_id_ = 1;
+  int64_t radio_sequence_ = 0;
+  ThrottledLog bad_input_;
+  std::map<std::string, uint64_t> counters_;
+};
+
+}  // namespace ubersim::ssl

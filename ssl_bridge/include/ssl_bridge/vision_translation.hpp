@@ -1,0 +1,26 @@
+#pragma once
+// VISION / VISION_GEOMETRY (SI units) -> SSL-Vision wrapper packets (mm).
+#include <messages_robocup_ssl_wrapper.pb.h>
+
+#include <optional>
+#include <ubersim/vision_frame_t.hpp>
+#include <ubersim/vision_geometry_t.hpp>
+
+namespace ubersim::ssl {
+
+// The straight-kick ball model of our ball config, as SSL geometry reports it.
+struct BallModel {
+  double sliding_deceleration = 0;  // m/s^2, positive
+  double rolling_deceleration = 0;  // m/s^2, positive
+  double slide_to_roll_ratio = 0;   // unitless
+};
+
+struct GeometryExtras {
+  std::optional<BallModel> ball_model;
+  double max_robot_radius = 0;  // m, 0 = not reported
+};
+
+SSL_WrapperPacket detection_packet(const vision_frame_t& frame);
+SSL_WrapperPacket geometry_packet(const vision_geometry_t& geometry, const GeometryExtras& extras);
+
+}  // namespace ubersim::ssl

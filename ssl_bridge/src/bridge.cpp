@@ -1,0 +1,203 @@
+#include "ssl_bridge/bridge.hpp"
+
+#include <poll.h>
+
+#include <array>
+#include <google/protobuf/unknown_field_set.h>
+#include <ubersim/sim_control_ack_t.hpp>
+
+namespace ubersim::ssl {
+namespace {
+
+constexpr const char* kSender = "ubersim_ssl_bridge";
+
+// Decodes a datagram; false when it does not decode. Fields we do not know
+// (a newer protocol, or bytes that happen to decode) become an error too.
+bool decode(const std::vector<uint8_t>& bytes, google::protobuf::Message& message, Errors& errors) {
+  if (!message.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()))) {
+    add_error(errors, kErrorMalformed,
+              "datagram does not decode as " + message.GetTypeName() + " (" +
+                  std::to_string(bytes.size()) + " bytes)");
+    return false;
+  }
+  if (!message.GetReflection()->GetUnknownFields(message).empty()) {
+    add_error(errors, kErrorUnknownFields,
+              message.GetTypeName() + " carries fields ubersim does not know; they were ignored");
+  }
+  return true;
+}
+
+}  // namespace
+
+SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOptions options)
+    : bus_(bus),
+      channels_(channels),
+      options_(std::move(options)),
+      vision_destination_(make_address(options_.vision_address, options_.vision_port)),
+      vision_socket_(UdpSocket::multicast_sender(options_.vision_ttl, options_.vision_interface)),
+      control_socket_(UdpSocket::bound(options_.listen_address, options_.control_port)),
+      blue_socket_(UdpSocket::bound(options_.listen_address, options_.blue_port)),
+      yellow_socket_(UdpSocket::bound(options_.listen_address, options_.yellow_port)) {
+  bus_.subscribe<vision_frame_t>(channels_(Channel::Vision),
+                                 [this](const vision_frame_t& f) { on_vision(f); });
+  bus_.subscribe<vision_geometry_t>(channels_(Channel::VisionGeometry),
+                                    [this](const vision_geometry_t& g) { on_geometry(g); });
+  bus_.subscribe<sim_state_t>(
+      channels_(Channel::SimState), [this](const sim_state_t& s) { state_ = s; }, 10);
+  bus_.subscribe<sim_control_ack_t>(channels_(Channel::SimControlAck),
+                                    [this](const sim_control_ack_t& a) { on_ack(a); });
+  for (Team team : kTeams) {
+    bus_.subscribe<radio_feedback_t>(channels_.radio_feedback(team),
+                                     [this, team](const radio_feedback_t& f) { feedback_[team] = f; });
+  }
+}
+
+void SslBridge::send_vision(const SSL_WrapperPacket& packet) {
+  std::string bytes;
+  packet.SerializeToString(&bytes);
+  if (vision_socket_.send_to(bytes, vision_destination_)) {
+    ++counters_["vision packets sent"];
+  } else {
+    bad_input_.warn("vision_send", "could not send a vision packet");
+  }
+}
+
+void SslBridge::on_vision(const vision_frame_t& frame) { send_vision(detection_packet(frame)); }
+
+void SslBridge::on_geometry(const vision_geometry_t& geometry) {
+  send_vision(geometry_packet(geometry, options_.geometry));
+}
+
+void SslBridge::on_ack(const sim_control_ack_t& ack) {
+  if (ack.sender != kSender) return;
+  const auto found = pending_by_request_.find(ack.request_id);
+  if (found == pending_by_request_.end()) return;
+  const std::shared_ptr<PendingResponse> pending = found->second;
+  pending_by_request_.erase(found);
+  pending->awaiting.erase(ack.request_id);
+  if (!ack.ok) {
+    SimulatorError* error = pending->response.add_errors();
+    error->set_code(kErrorPhysics);
+    error->set_message("physics refused the request: " + ack.message);
+  }
+  if (pending->awaiting.empty()) answer(*pending);
+}
+
+void SslBridge::answer(PendingResponse& pending) {
+  std::string bytes;
+  pending.response.SerializeToString(&bytes);
+  control_socket_.send_to(bytes, pending.client);
+  ++counters_["control responses"];
+}
+
+void SslBridge::expire_pending() {
+  const auto now = std::chrono::steady_clock::now();
+  for (auto it = pending_by_request_.begin(); it != pending_by_request_.end();) {
+    const std::shared_ptr<PendingResponse> pending = it->second;
+    if (now < pending->deadline) {
+      ++it;
+      continue;
+    }
+    // Answer once for the whole command, naming what physics never acknowledged.
+    for (auto& [id, unused] : pending->awaiting) pending_by_request_.erase(id);
+    SimulatorError* error = pending->response.add_errors();
+    error->set_code(kErrorNoAnswer);
+    error->set_message("physics did not acknowledge in time; is ubersim_physics running?");
+    pending->awaiting.clear();
+    answer(*pending);
+    it = pending_by_request_.begin();
+  }
+}
+
+void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
+                                        const sockaddr_in& from) {
+  ++counters_["control datagrams"];
+  auto pending = std::make_shared<PendingResponse>();
+  pending->client = from;
+  Errors errors;
+  SimulatorCommand command;
+  if (decode(bytes, command, errors)) {
+    SimControlTranslation translation = translate_simulator_command(
+        command, state_ ? &*state_ : nullptr, options_.sim_control);
+    errors.insert(errors.end(), translation.errors.begin(), translation.errors.end());
+    if (translation.vision_port) {
+      vision_destination_.sin_port = htons(static_cast<uint16_t>(*translation.vision_port));
+      spdlog::info("vision now sent to port {}", *translation.vision_port);
+    }
+    for (sim_control_t& request : translation.requests) {
+      request.request_id = next_request_id_++;
+      request.sender = kSender;
+      pending->awaiting[request.request_id] = true;
+      pending_by_request_[request.request_id] = pending;
+      bus_.publish(channels_(Channel::SimControl), request);
+    }
+  } else {
+    ++counters_["control datagrams malformed"];
+    bad_input_.warn("control", "malformed datagram on the simulation control port");
+  }
+  for (const SimulatorError& error : errors) *pending->response.add_errors() = error;
+  pending->deadline = std::chrono::steady_clock::now() +
+                      std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                          std::chrono::duration<double>(options_.ack_timeout));
+  if (pending->awaiting.empty()) answer(*pending);
+}
+
+void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& bytes,
+                                      const sockaddr_in& from) {
+  const std::string name = team_name(team);
+  ++counters_[name + " robot control datagrams"];
+  RobotControlResponse response;
+  Errors errors;
+  RobotControl control;
+  if (decode(bytes, control, errors)) {
+    RobotControlTranslation translation =
+        translate_robot_control(control, team, options_.wheels);
+    errors.insert(errors.end(), translation.errors.begin(), translation.errors.end());
+    translation.packet.sequence = ++radio_sequence_;
+    translation.packet.t_sent = state_ ? state_->sim_time : 0.0;
+    bus_.publish(channels_.radio(team), translation.packet);
+  } else {
+    ++counters_[name + " robot control datagrams malformed"];
+    bad_input_.warn("robot_" + name, "malformed datagram on the " + name + " robot control port");
+  }
+  for (const SimulatorError& error : errors) *response.add_errors() = error;
+  const auto feedback = feedback_.find(team);
+  add_feedback(feedback == feedback_.end() ? nullptr : &feedback->second, response);
+  std::string out;
+  response.SerializeToString(&out);
+  (team == Team::Blue ? blue_socket_ : yellow_socket_).send_to(out, from);
+}
+
+void SslBridge::run(const ShutdownSignal& shutdown) {
+  spdlog::info("vision to {}:{} (ttl {}, via {}); simulation control {}:{}; robot control blue "
+               "{}:{}, yellow {}:{}",
+               options_.vision_address, options_.vision_port, options_.vision_ttl,
+               options_.vision_interface, options_.listen_address, options_.control_port,
+               options_.listen_address, options_.blue_port, options_.listen_address,
+               options_.yellow_port);
+  while (!shutdown.requested()) {
+    std::array<pollfd, 5> fds{{{bus_.lcm().getFileno(), POLLIN, 0},
+                               {control_socket_.fd(), POLLIN, 0},
+                               {blue_socket_.fd(), POLLIN, 0},
+                               {yellow_socket_.fd(), POLLIN, 0},
+                               {shutdown.fd(), POLLIN, 0}}};
+    ::poll(fds.data(), fds.size(), 50);
+    bus_.handle_pending();
+    sockaddr_in from{};
+    while (auto bytes = control_socket_.receive(from)) handle_control_datagram(*bytes, from);
+    while (auto bytes = blue_socket_.receive(from)) handle_robot_datagram(Team::Blue, *bytes, from);
+    while (auto bytes = yellow_socket_.receive(from)) {
+      handle_robot_datagram(Team::Yellow, *bytes, from);
+    }
+    expire_pending();
+  }
+}
+
+void SslBridge::log_summary() const {
+  std::string text;
+  for (const auto& [name, count] : counters_) text += " " + name + "=" + std::to_string(count);
+  spdlog::info("summary:{}; LCM messages dropped as malformed={}", text.empty() ? " nothing" : text,
+               bus_.malformed_count());
+}
+
+}  // namespace ubersim::ssl

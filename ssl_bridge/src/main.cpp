@@ -1,0 +1,118 @@
+// ubersim_ssl_bridge: speaks the RoboCup SSL protocols for ubersim, so SSL
+// software written for grSim or the ER-Force simulator runs unchanged:
+// SSL-Vision wrapper packets out (from VISION / VISION_GEOMETRY), the SSL
+// simulation protocol in (simulation control -> SIM_CONTROL, robot control ->
+// RADIO_<TEAM>, feedback from RADIO_FEEDBACK_<TEAM>). See /work/notes/ssl_bridge.md.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "ssl_bridge/bridge.hpp"
+#include "ubersim/cli.hpp"
+#include "ubersim/config.hpp"
+#include "ubersim/config_paths.hpp"
+#include "ubersim/robot_config.hpp"
+
+namespace {
+
+struct Options {
+  ubersim::CommonOptions common;
+  ubersim::ssl::BridgeOptions bridge;
+  std::string robot_type = "omni4_ssl";
+  std::string ball = "ssl_golf_ball";
+};
+
+ubersim::ssl::BallModel load_ball_model(const std::string& config_dir, const std::string& name) {
+  const auto config =
+      ubersim::ConfigFile::load(ubersim::resolve_config(config_dir, "balls", name));
+  ubersim::ssl::BallModel model;
+  model.sliding_deceleration = config.real_in("SLIDING_DECELERATION", 0, 100);
+  model.rolling_deceleration = config.real_in("ROLLING_DECELERATION", 0, 100);
+  model.slide_to_roll_ratio = config.real_in("SLIDE_TO_ROLL_RATIO", 0, 1);
+  return model;  // the physics keys of the ball config are not ours to check
+}
+
+int run(Options& options) {
+  using namespace ubersim;
+  const std::string config_dir = options.common.config_root();
+  const RobotTypeConfig robot = load_robot_config(config_dir, options.robot_type);
+  options.bridge.sim_control.new_robot_type = options.robot_type;
+  options.bridge.sim_control.robot_radius = robot.radius;
+  options.bridge.wheels = ssl::wheel_mapping(robot);
+  options.bridge.geometry.max_robot_radius = robot.radius;
+  options.bridge.geometry.ball_model = load_ball_model(config_dir, options.ball);
+  if (!options.bridge.wheels) {
+    spdlog::warn("robot type {} has no wheel in each quadrant: wheel_velocity commands will be "
+                 "answered with an error",
+                 options.robot_type);
+  }
+
+  const ChannelNames channels = options.common.channels();
+  ShutdownSignal shutdown;
+  MessageBus bus(with_receive_buffer(options.common.lcm_url));
+  ssl::SslBridge bridge(bus, channels, options.bridge);
+  bridge.run(shutdown);
+  bridge.log_summary();
+  return 0;
+}
+
+int parse_and_run(int argc, char** argv) {
+  Options options;
+  auto& b = options.bridge;
+  CLI::App app{"ubersim SSL protocol bridge: SSL-Vision out, SSL simulation protocol in"};
+  ubersim::add_common_options(app, options.common);
+  app.add_option("--vision-address", b.vision_address, "SSL-Vision multicast group (or address)")
+      ->capture_default_str();
+  app.add_option("--vision-port", b.vision_port, "SSL-Vision port")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 65535));
+  app.add_option("--vision-ttl", b.vision_ttl, "multicast TTL (0: this host only)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 255));
+  app.add_option("--vision-interface", b.vision_interface,
+                 "address of the interface vision packets leave on")
+      ->capture_default_str();
+  app.add_option("--listen-address", b.listen_address,
+                 "address the simulation and robot control ports are bound to")
+      ->capture_default_str();
+  app.add_option("--control-port", b.control_port, "simulation control port")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 65535));
+  app.add_option("--blue-port", b.blue_port, "blue robot control port")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 65535));
+  app.add_option("--yellow-port", b.yellow_port, "yellow robot control port")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 65535));
+  app.add_option("--ack-timeout", b.ack_timeout,
+                 "seconds to wait for physics' acknowledgement before answering with an error")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 60.0));
+  app.add_option("--robot-type", options.robot_type,
+                 "robot config for robots added with present = true, and for wheel_velocity")
+      ->capture_default_str();
+  app.add_option("--ball", options.ball, "ball config whose model the geometry reports")
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  ubersim::setup_logging("ssl_bridge", options.common.verbosity());
+  try {
+    return run(options);
+  } catch (const ubersim::ConfigError& error) {
+    spdlog::error("{}", error.what());
+    return 2;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return parse_and_run(argc, argv);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "ubersim_ssl_bridge: %s\n", error.what());
+    return 1;
+  } catch (...) {
+    std::fprintf(stderr, "ubersim_ssl_bridge: unknown error\n");
+    return 1;
+  }
+}

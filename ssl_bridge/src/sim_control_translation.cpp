@@ -1,0 +1,206 @@
+#include "ssl_bridge/sim_control_translation.hpp"
+
+#include <cmath>
+#include <set>
+#include <ubersim/team_t.hpp>
+
+namespace ubersim::ssl {
+namespace {
+
+const robot_state_t* find_robot(const sim_state_t* state, int8_t team, int32_t id) {
+  if (state == nullptr) return nullptr;
+  for (const robot_state_t& robot : state->robots) {
+    if (robot.team == team && robot.robot_id == id) return &robot;
+  }
+  return nullptr;
+}
+
+bool all_finite(std::initializer_list<double> values) {
+  for (double v : values) {
+    if (!std::isfinite(v)) return false;
+  }
+  return true;
+}
+
+std::string robot_name(const RobotId& id) {
+  return std::string(id.team() == YELLOW ? "yellow " : "blue ") + std::to_string(id.id());
+}
+
+// Adds the placement for one TeleportRobot, or an error. Returns the
+// placement's (team, id) when one was added.
+bool translate_robot(const TeleportRobot& in, const sim_state_t* state,
+                     const SimControlSettings& settings, sim_control_t& place, Errors& errors) {
+  if (!in.id().has_id() || (in.id().team() != YELLOW && in.id().team() != BLUE)) {
+    add_error(errors, kErrorInvalid, "teleport_robot needs an id with team YELLOW or BLUE");
+    return false;
+  }
+  const std::string name = robot_name(in.id());
+  if (in.by_force()) {
+    add_error(errors, kErrorUnsupported,
+              "teleport_robot.by_force is not supported (" + name + " not moved)");
+    return false;
+  }
+  if (!all_finite({in.x(), in.y(), in.orientation(), in.v_x(), in.v_y(), in.v_angular()})) {
+    add_error(errors, kErrorInvalid, "teleport_robot with a non-finite value (" + name + ")");
+    return false;
+  }
+  robot_placement_t placement{};
+  placement.team = in.id().team() == YELLOW ? int8_t{team_t::YELLOW} : int8_t{team_t::BLUE};
+  placement.robot_id = static_cast<int32_t>(in.id().id());
+  const robot_state_t* current = find_robot(state, placement.team, placement.robot_id);
+  if (in.has_present() && !in.present()) {
+    placement.present = false;
+    place.robots.push_back(placement);
+    return true;
+  }
+  placement.present = true;
+  if (current == nullptr) {
+    if (!in.has_present()) {
+      add_error(errors, kErrorUnknownRobot,
+                name + " is not on the field; set present = true to add it");
+      return false;
+    }
+    if (!in.has_x() || !in.has_y()) {
+      add_error(errors, kErrorInvalid, "adding " + name + " needs x and y");
+      return false;
+    }
+    placement.robot_type = settings.new_robot_type;
+  }
+  placement.x = in.has_x() ? in.x() : current->x;
+  placement.y = in.has_y() ? in.y() : current->y;
+  placement.orientation = in.has_orientation() ? in.orientation() : (current ? current->orientation : 0.0);
+  placement.vx = in.v_x();
+  placement.vy = in.v_y();
+  placement.omega = in.v_angular();
+  place.robots.push_back(placement);
+  return true;
+}
+
+// teleport_safely: robots that would overlap the ball at its new place are
+// pushed radially out of the way and stopped.
+void clear_ball_target(double bx, double by, const sim_state_t* state,
+                       const SimControlSettings& settings, sim_control_t& place) {
+  if (state == nullptr) return;
+  const double clearance = settings.robot_radius + settings.ball_radius + 0.01;  // m
+  std::set<std::pair<int, int>> already;
+  for (const robot_placement_t& p : place.robots) already.insert({p.team, p.robot_id});
+  for (const robot_state_t& robot : state->robots) {
+    if (already.count({robot.team, robot.robot_id}) != 0) continue;
+    const double dx = robot.x - bx, dy = robot.y - by;
+    const double distance = std::hypot(dx, dy);
+    if (distance >= clearance) continue;
+    robot_placement_t p{};
+    p.team = robot.team;
+    p.robot_id = robot.robot_id;
+    p.present = true;
+    p.orientation = robot.orientation;
+    const double ux = distance > 1e-6 ? dx / distance : 1.0;
+    const double uy = distance > 1e-6 ? dy / distance : 0.0;
+    p.x = bx + ux * clearance;
+    p.y = by + uy * clearance;
+    place.robots.push_back(p);
+  }
+}
+
+void translate_ball(const TeleportBall& in, const sim_state_t* state,
+                    const SimControlSettings& settings, sim_control_t& place, Errors& errors) {
+  if (in.by_force()) {
+    add_error(errors, kErrorUnsupported, "teleport_ball.by_force is not supported (ball not moved)");
+    return;
+  }
+  if (!all_finite({in.x(), in.y(), in.z(), in.vx(), in.vy(), in.vz()})) {
+    add_error(errors, kErrorInvalid, "teleport_ball with a non-finite value");
+    return;
+  }
+  if ((!in.has_x() || !in.has_y()) && state == nullptr) {
+    add_error(errors, kErrorInvalid,
+              "teleport_ball without x and y before physics reported where the ball is");
+    return;
+  }
+  if (in.roll()) {
+    add_error(errors, kErrorUnsupported,
+              "teleport_ball.roll is not supported: the ball starts without spin (it slides, then "
+              "rolls); the teleport itself was done");
+  }
+  place.has_ball = true;
+  place.ball.position[0] = in.has_x() ? in.x() : state->ball.position[0];
+  place.ball.position[1] = in.has_y() ? in.y() : state->ball.position[1];
+  place.ball.position[2] = in.z();
+  place.ball.linear_velocity[0] = in.vx();
+  place.ball.linear_velocity[1] = in.vy();
+  place.ball.linear_velocity[2] = in.vz();
+  if (in.teleport_safely()) {
+    clear_ball_target(place.ball.position[0], place.ball.position[1], state, settings, place);
+  }
+}
+
+sim_control_t request(int8_t action) {
+  sim_control_t r{};
+  r.action = action;
+  return r;
+}
+
+void translate_speed(float speed, const sim_state_t* state, SimControlTranslation& out) {
+  if (!std::isfinite(speed) || speed < 0) {
+    add_error(out.errors, kErrorInvalid, "simulation_speed must be >= 0");
+    return;
+  }
+  if (speed == 0) {  // the protocol's 0 stops the simulation
+    out.requests.push_back(request(sim_control_t::PAUSE));
+    return;
+  }
+  sim_control_t speed_request = request(sim_control_t::SET_SPEED);
+  speed_request.speed_factor = speed;
+  out.requests.push_back(speed_request);
+  if (state == nullptr || state->paused) out.requests.push_back(request(sim_control_t::RESUME));
+}
+
+void translate_config(const SimulatorConfig& config, SimControlTranslation& out) {
+  if (config.has_geometry()) {
+    add_error(out.errors, kErrorUnsupported,
+              "config.geometry is not supported: choose the field with the scenario "
+              "(ubersim_physics --scenario)");
+  }
+  if (config.robot_specs_size() > 0) {
+    add_error(out.errors, kErrorUnsupported,
+              "config.robot_specs is not supported: robot types are config files "
+              "(config/robots/*.cfg), chosen per robot by the scenario or the referee");
+  }
+  if (config.has_realism_config()) {
+    add_error(out.errors, kErrorUnsupported,
+              "config.realism_config is not supported: noise, latency and loss come from the "
+              "vision and radio emulator profiles");
+  }
+  if (config.has_vision_port()) {
+    if (config.vision_port() == 0 || config.vision_port() > 65535) {
+      add_error(out.errors, kErrorInvalid, "config.vision_port must be 1..65535");
+    } else {
+      out.vision_port = static_cast<int>(config.vision_port());
+    }
+  }
+}
+
+}  // namespace
+
+SimControlTranslation translate_simulator_command(const SimulatorCommand& command,
+                                                  const sim_state_t* state,
+                                                  const SimControlSettings& settings) {
+  SimControlTranslation out;
+  if (command.has_control()) {
+    const SimulatorControl& control = command.control();
+    sim_control_t place = request(sim_control_t::PLACE);
+    for (const TeleportRobot& robot : control.teleport_robot()) {
+      translate_robot(robot, state, settings, place, out.errors);
+    }
+    if (control.has_teleport_ball()) {
+      translate_ball(control.teleport_ball(), state, settings, place, out.errors);
+    }
+    place.num_robots = static_cast<int32_t>(place.robots.size());
+    if (place.has_ball || place.num_robots > 0) out.requests.push_back(place);
+    if (control.has_simulation_speed()) translate_speed(control.simulation_speed(), state, out);
+  }
+  if (command.has_config()) translate_config(command.config(), out);
+  return out;
+}
+
+}  // namespace ubersim::ssl
