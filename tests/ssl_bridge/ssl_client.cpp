@@ -1,0 +1,118 @@
+#include "ssl_client.hpp"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <vector>
+
+namespace ssl_test {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int remaining_ms(Clock::time_point deadline) {
+  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+  return left.count() < 0 ? 0 : static_cast<int>(left.count());
+}
+
+std::optional<std::string> receive_one(int fd, Clock::time_point deadline) {
+  pollfd p{fd, POLLIN, 0};
+  if (::poll(&p, 1, remaining_ms(deadline)) <= 0) return std::nullopt;
+  std::vector<char> buffer(65536);
+  const ssize_t size = ::recv(fd, buffer.data(), buffer.size(), 0);
+  if (size < 0) return std::nullopt;
+  return std::string(buffer.data(), static_cast<size_t>(size));
+}
+
+Clock::time_point after(double seconds) {
+  return Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                            std::chrono::duration<double>(seconds));
+}
+
+}  // namespace
+
+VisionReceiver::VisionReceiver(const std::string& group, int port) {
+  fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd_ < 0) throw std::runtime_error("socket");
+  const int one = 1;
+  ::setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_ANY);
+  if (::bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
+    throw std::runtime_error("bind vision port");
+  }
+  ip_mreq membership{};
+  ::inet_pton(AF_INET, group.c_str(), &membership.imr_multiaddr);
+  ::inet_pton(AF_INET, "127.0.0.1", &membership.imr_interface);
+  if (::setsockopt(fd_, IPPROTO_IP, IP_ADD_MEMBERSHIP, &membership, sizeof membership) != 0) {
+    throw std::runtime_error("join vision multicast group");
+  }
+}
+
+VisionReceiver::~VisionReceiver() { ::close(fd_); }
+
+std::optional<SSL_WrapperPacket> VisionReceiver::receive(double timeout_s) {
+  const auto deadline = after(timeout_s);
+  while (auto bytes = receive_one(fd_, deadline)) {
+    SSL_WrapperPacket packet;
+    if (packet.ParseFromString(*bytes)) return packet;
+    ++undecodable_;
+  }
+  return std::nullopt;
+}
+
+bool VisionReceiver::receive_until(const std::function<bool(const SSL_WrapperPacket&)>& accept,
+                                   double timeout_s) {
+  const auto deadline = after(timeout_s);
+  while (Clock::now() < deadline) {
+    const auto packet = receive(remaining_ms(deadline) / 1000.0);
+    if (packet && accept(*packet)) return true;
+  }
+  return false;
+}
+
+UdpClient::UdpClient(int port) : port_(port) {
+  fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd_ < 0) throw std::runtime_error("socket");
+}
+
+UdpClient::~UdpClient() { ::close(fd_); }
+
+void UdpClient::send(const std::string& bytes) {
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<uint16_t>(port_));
+  ::inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
+  ::sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
+}
+
+std::optional<std::string> UdpClient::receive(double timeout_s) {
+  return receive_one(fd_, after(timeout_s));
+}
+
+std::optional<SimulatorResponse> command(UdpClient& client, const SimulatorCommand& request,
+                                         double timeout_s) {
+  client.send(request.SerializeAsString());
+  const auto bytes = client.receive(timeout_s);
+  SimulatorResponse response;
+  if (!bytes || !response.ParseFromString(*bytes)) return std::nullopt;
+  return response;
+}
+
+std::optional<RobotControlResponse> control(UdpClient& client, const RobotControl& request,
+                                            double timeout_s) {
+  client.send(request.SerializeAsString());
+  const auto bytes = client.receive(timeout_s);
+  RobotControlResponse response;
+  if (!bytes || !response.ParseFromString(*bytes)) return std::nullopt;
+  return response;
+}
+
+}  // namespace ssl_test

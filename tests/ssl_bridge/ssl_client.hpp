@@ -1,0 +1,55 @@
+#pragma once
+// A minimal SSL client for tests, written against the published protocol
+// only: raw UDP sockets and the generated protobuf classes, as a team's
+// software would use them (no code of the bridge).
+#include <messages_robocup_ssl_wrapper.pb.h>
+#include <ssl_simulation_control.pb.h>
+#include <ssl_simulation_robot_control.pb.h>
+#include <ssl_simulation_robot_feedback.pb.h>
+
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace ssl_test {
+
+// Joins the SSL-Vision multicast group on the loopback interface.
+class VisionReceiver {
+ public:
+  explicit VisionReceiver(const std::string& group = "224.5.23.2", int port = 10020);
+  ~VisionReceiver();
+  VisionReceiver(const VisionReceiver&) = delete;
+  VisionReceiver& operator=(const VisionReceiver&) = delete;
+  // The next packet that decodes, or nullopt after timeout_s.
+  std::optional<SSL_WrapperPacket> receive(double timeout_s);
+  // Receives until accept() returns true for a packet; false on timeout.
+  bool receive_until(const std::function<bool(const SSL_WrapperPacket&)>& accept,
+                     double timeout_s);
+  int undecodable() const { return undecodable_; }
+
+ private:
+  int fd_ = -1;
+  int undecodable_ = 0;
+};
+
+// Sends datagrams to one port on 127.0.0.1 and receives the answers.
+class UdpClient {
+ public:
+  explicit UdpClient(int port);
+  ~UdpClient();
+  UdpClient(const UdpClient&) = delete;
+  UdpClient& operator=(const UdpClient&) = delete;
+  void send(const std::string& bytes);
+  std::optional<std::string> receive(double timeout_s);
+
+ private:
+  int fd_ = -1;
+  int port_;
+};
+
+std::optional<SimulatorResponse> command(UdpClient& client, const SimulatorCommand& request,
+                                         double timeout_s = 3);
+std::optional<RobotControlResponse> control(UdpClient& client, const RobotControl& request,
+                                            double timeout_s = 3);
+
+}  // namespace ssl_test
