@@ -48,6 +48,8 @@ PhysicsConfig load_physics_config(const ConfigFile& config, const std::string& n
   }
 
   p.tip_angle = config.real_in("TIP_ANGLE_DEG", 5.0, 90.0) * M_PI / 180.0;
+  p.max_linear_speed = config.real_in("MAX_LINEAR_SPEED", 1.0, 1e6);
+  p.max_angular_speed = config.real_in("MAX_ANGULAR_SPEED", 1.0, 1e7);
 
   p.state_publish_rate = config.real_in("STATE_PUBLISH_RATE", 0.0, p.step_rate);
   p.geometry_publish_period = config.real_in("GEOMETRY_PUBLISH_PERIOD", 0.01, 3600.0);

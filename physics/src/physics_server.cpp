@@ -54,7 +54,8 @@ PhysicsServer::PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNam
       options_(std::move(options)),
       pacer_(world_.dt(), options_.speed < 0 ? -1.0 : options_.speed,
              world_.setup().physics.max_pacing_lag),
-      paused_(options_.paused) {
+      paused_(options_.paused),
+      next_state_time_(first_state_time()) {
   bus_.subscribe<sim_commands_t>(channels(Channel::SimCommands), [this](const sim_commands_t& p) {
     ++stats_.packets_received;
     world_.submit(p);
@@ -143,6 +144,12 @@ void PhysicsServer::wait_until(Clock::time_point deadline, const ShutdownSignal*
   }
 }
 
+double PhysicsServer::first_state_time() const {
+  // Step 0 is published at start (and after a reset); then one per 1 / rate.
+  const double rate = world_.setup().physics.state_publish_rate;
+  return rate > 0 ? 1.0 / rate : 0.0;
+}
+
 void PhysicsServer::step_and_publish(bool publish_every_step) {
   world_.step();
   ++stats_.steps;
@@ -213,7 +220,7 @@ void PhysicsServer::on_control(const sim_control_t& request) {
       return;
     case sim_control_t::RESET:
       world_.reset();
-      next_state_time_ = 0;
+      next_state_time_ = first_state_time();
       pacer_.restart(now, world_.step_index());
       publish_state();
       acknowledge(request, true, "reset to scenario " + options_.scenario);

@@ -218,6 +218,7 @@ void World::apply_command(Team team, int id, const robot_command_t& raw, double 
 }
 
 void World::step() {
+  check_safety(false);
   apply_due_commands();
   const double now = time();
   for (auto& r : robots_) r->before_step(now, dt_);
@@ -245,7 +246,7 @@ void World::step() {
   dJointGroupEmpty(contacts_.get());
   for (auto& r : robots_) r->after_step();
   ++step_;
-  check_safety();
+  check_safety(true);
 }
 
 bool World::inside_walls(double x, double y, double margin) const {
@@ -253,12 +254,25 @@ bool World::inside_walls(double x, double y, double margin) const {
          std::abs(y) <= setup_.field.half_width_to_wall() + margin;
 }
 
-void World::check_safety() {
-  // Beyond the walls' outer faces nothing can be legitimately.
+bool World::body_sane(dBodyID b) const {
+  if (!body_finite(b)) return false;
+  const dReal* v = dBodyGetLinearVel(b);
+  const dReal* w = dBodyGetAngularVel(b);
+  const double max_v = setup_.physics.max_linear_speed;
+  const double max_w = setup_.physics.max_angular_speed;
+  return v[0] * v[0] + v[1] * v[1] + v[2] * v[2] <= max_v * max_v &&
+         w[0] * w[0] + w[1] * w[1] + w[2] * w[2] <= max_w * max_w;
+}
+
+void World::check_safety(bool after_step) {
+  // Beyond the walls' outer faces nothing can be legitimately. Before a step
+  // this keeps a broken body away from ODE (which aborts on a non-finite
+  // quaternion); after it, it keeps it out of what we publish.
   const double margin = setup_.field.wall_thickness;
   const dBodyID ball = ball_->body();
   const dReal* bp = dBodyGetPosition(ball);
-  if (!body_finite(ball) || !inside_walls(bp[0], bp[1], margin) || bp[2] < -setup_.ball.radius) {
+  const bool ball_sane = body_sane(ball);
+  if (!ball_sane || !inside_walls(bp[0], bp[1], margin) || bp[2] < -setup_.ball.radius) {
     // Over the wall or through a fault: back inside where it was last seen
     // good, on the floor, at rest.
     ++counters_.bodies_reset;
@@ -268,11 +282,11 @@ void World::check_safety() {
     const double y = std::clamp(ball_last_good_[1], -setup_.field.half_width_to_wall() + r,
                                 setup_.field.half_width_to_wall() - r);
     log_.warn("reset:ball",
-              "ball " +
-                  std::string(body_finite(ball) ? "left the field" : "had a non-finite state") +
+              std::string("ball ") +
+                  (ball_sane ? "left the field" : "had a non-finite or runaway state") +
                   ": put back at (" + std::to_string(x) + ", " + std::to_string(y) + ") at rest");
     place_ball(x, y, 0, 0, 0, 0);
-  } else {
+  } else if (after_step) {
     ball_last_good_ = {bp[0], bp[1], bp[2]};
   }
 
@@ -280,22 +294,24 @@ void World::check_safety() {
   for (auto& r : robots_) {
     body_buffer_.clear();
     r->bodies(body_buffer_);
-    bool finite = true;
-    for (dBodyID b : body_buffer_) finite = finite && body_finite(b);
+    bool sane = true;
+    for (dBodyID b : body_buffer_) sane = sane && body_sane(b);
     double x, y;
     r->position(x, y);
-    if (!finite || !inside_walls(x, y, margin)) {
+    if (!sane || !inside_walls(x, y, margin)) {
       ++counters_.bodies_reset;
       const PlanarState good = r->last_good_state();
       log_.warn("reset:" + robot_name(r->team(), r->id()),
                 robot_name(r->team(), r->id()) +
-                    " had a non-finite state or left the field: put back at (" +
-                    std::to_string(good.x) + ", " + std::to_string(good.y) + ") at rest");
+                    (sane ? " left the field" : " had a non-finite or runaway state") +
+                    ": put back at (" + std::to_string(good.x) + ", " + std::to_string(good.y) +
+                    ") at rest");
       PlanarState rest = good;
       rest.vx = rest.vy = rest.omega = 0;
       r->place(rest);
       continue;
     }
+    if (!after_step) continue;
     if (r->uprightness() < upright_limit) {
       ++counters_.robots_set_upright;
       log_.warn("upright:" + robot_name(r->team(), r->id()),

@@ -277,6 +277,52 @@ TEST_P(WorldTest, PlacementRequestsAreCheckedBeforeAnythingMoves) {
   EXPECT_FALSE(world.place(request, false).ok);
 }
 
+TEST_P(WorldTest, TippedRobotIsSetUpright) {
+  World world(empty_world(GetParam()));
+  PlanarState pose;
+  pose.x = 1.0;
+  pose.heading = 0.5;
+  Robot& robot = world.add_robot(Team::Blue, 1, "omni4_ssl", pose);
+  // Knock it over: 60 degrees about its x axis.
+  dMatrix3 tilted;
+  dRFromEulerAngles(tilted, 60 * M_PI / 180, 0, 0.5);
+  dBodySetRotation(robot.chassis(), tilted);
+  world.step();
+  // The jointed robot is caught by the tip check; the planar one cannot tip:
+  // its plane-2D joint and re-projection bring it back at once.
+  EXPECT_EQ(world.counters().robots_set_upright, GetParam() == DriveModel::Jointed ? 1u : 0u);
+  EXPECT_GT(robot.uprightness(), 0.999);
+  run_for(world, 0.5);
+  EXPECT_GT(robot.uprightness(), 0.99);
+  EXPECT_NEAR(robot.planar_state().x, 1.0, 0.05);
+}
+
+TEST_P(WorldTest, NonFiniteBodiesAreReset) {
+  World world(empty_world(GetParam()));
+  PlanarState pose;
+  pose.x = -1.0;
+  Robot& robot = world.add_robot(Team::Yellow, 2, "omni4_ssl", pose);
+  run_for(world, 0.1);
+  dBodySetLinearVel(robot.chassis(), std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  dBodySetAngularVel(world.ball().body(), 0, std::numeric_limits<double>::infinity(), 0);
+  world.step();
+  EXPECT_EQ(world.counters().bodies_reset, 2u);
+  sim_state_t state{};
+  world.fill_state(state);
+  for (double v : state.ball.angular_velocity) EXPECT_TRUE(std::isfinite(v));
+  EXPECT_NEAR(state.robots[0].x, -1.0, 0.01);
+  EXPECT_TRUE(std::isfinite(state.robots[0].vx));
+  // A body flung beyond the walls, or exploding, is brought back too.
+  dBodySetPosition(world.ball().body(), 50, 0, 0.0215);
+  world.step();
+  EXPECT_EQ(world.counters().bodies_reset, 3u);
+  EXPECT_LT(std::abs(world.ball().position()[0]), world.setup().field.half_length_to_wall());
+  dBodySetAngularVel(robot.chassis(), 0, 0, 1e6);
+  world.step();
+  EXPECT_EQ(world.counters().bodies_reset, 4u);
+  EXPECT_LT(std::abs(robot.planar_state().omega), 1.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(BothDriveModels, WorldTest,
                          ::testing::Values(DriveModel::Jointed, DriveModel::Planar),
                          drive_model_test_name);

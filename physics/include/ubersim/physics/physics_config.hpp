@@ -31,7 +31,9 @@ struct PhysicsConfig {
   int chassis_outline_segments = 0;
   int planar_solver_iterations = 0;
 
-  double tip_angle = 0;  // rad
+  double tip_angle = 0;          // rad
+  double max_linear_speed = 0;   // m/s: a body faster than this has exploded
+  double max_angular_speed = 0;  // rad/s: likewise
 
   double state_publish_rate = 0;       // Hz of sim time, 0 = every step
   double geometry_publish_period = 0;  // s of wall time

@@ -66,6 +66,7 @@ class PhysicsServer {
   // Waits until `deadline` or a message or a signal; handles messages.
   void wait_until(Pacer::Clock::time_point deadline, const ShutdownSignal* shutdown);
   bool duration_reached() const;
+  double first_state_time() const;
 
   World world_;
   MessageBus& bus_;

@@ -114,7 +114,10 @@ class World {
   void build();
   void apply_due_commands();
   void apply_command(Team team, int id, const robot_command_t& raw, double timeout);
-  void check_safety();
+  // Resets broken bodies (non-finite, beyond the speed caps, outside the
+  // walls); after a step also sets tipped robots upright and notes good poses.
+  void check_safety(bool after_step);
+  bool body_sane(dBodyID body) const;
   bool inside_walls(double x, double y, double margin) const;
   void move_ball_out_of_robots(std::string& notes);
 

@@ -1,0 +1,63 @@
+// The server loop in-process on memq:// (no network): publication rate,
+// commands over the bus, and the end of --duration.
+#include <gtest/gtest.h>
+
+#include <ubersim/sim_commands_t.hpp>
+#include <ubersim/sim_state_t.hpp>
+
+#include "physics_test_support.hpp"
+#include "ubersim/message_bus.hpp"
+#include "ubersim/physics/physics_server.hpp"
+
+namespace ubersim::physics::testing {
+namespace {
+
+TEST(PhysicsServer, PublishesAtTheConfiguredRateAndStopsAtItsDuration) {
+  WorldSetup setup = load_world_setup(kConfigDir, "field2002_5v5", "default");
+  setup.physics.state_publish_rate = 60;  // every 4th step at 240 Hz
+  MessageBus bus("memq://");
+  ChannelNames channels;
+  std::vector<sim_state_t> states;
+  bus.subscribe<sim_state_t>(
+      channels(Channel::SimState), [&](const sim_state_t& s) { states.push_back(s); }, 100000);
+  ServerOptions options;
+  options.speed = 0;
+  options.duration = 1.0;
+  PhysicsServer server(setup, bus, channels, options);
+  EXPECT_EQ(server.run(nullptr), 0);
+  bus.handle_pending();
+  EXPECT_EQ(server.world().step_index(), 240);
+  // One at start (step 0), then one per 1/60 s of sim time.
+  ASSERT_EQ(states.size(), 61u);
+  for (std::size_t i = 1; i < states.size(); ++i) {
+    EXPECT_EQ(states[i].step, static_cast<int64_t>(4 * i));
+    EXPECT_EQ(states[i].speed_factor, 0.0);
+  }
+  EXPECT_EQ(states.back().num_robots, 10);
+}
+
+TEST(PhysicsServer, CommandsOverTheBusMoveRobots) {
+  WorldSetup setup = load_world_setup(kConfigDir, "division_b_6v6", "default");
+  MessageBus bus("memq://");
+  ChannelNames channels;
+  ServerOptions options;
+  options.speed = 0;
+  options.duration = 1.0;
+  PhysicsServer server(setup, bus, channels, options);
+  sim_commands_t packet{};
+  packet.team = 1;
+  packet.t_apply = 0.25;
+  packet.commands = {velocity_command(3, 1.0, 0, 0)};
+  packet.num_commands = 1;
+  bus.publish(channels(Channel::SimCommands), packet);
+  const double x0 = server.world().robot(Team::Blue, 3)->planar_state().x;
+  EXPECT_EQ(server.run(nullptr), 0);
+  const Robot& robot = *server.world().robot(Team::Blue, 3);
+  EXPECT_NEAR(robot.last_command_time(), 0.25, 1e-9);
+  // Blue faces -x: 1 m/s forward is towards -x.
+  EXPECT_LT(robot.planar_state().x, x0 - 0.3);
+  EXPECT_EQ(server.stats().packets_received, 1);
+}
+
+}  // namespace
+}  // namespace ubersim::physics::testing
