@@ -153,9 +153,11 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
     RobotControlTranslation translation =
         translate_robot_control(control, team, options_.wheels);
     errors.insert(errors.end(), translation.errors.begin(), translation.errors.end());
-    translation.packet.sequence = ++radio_sequence_;
-    translation.packet.t_sent = state_ ? state_->sim_time : 0.0;
-    bus_.publish(channels_.radio(team), translation.packet);
+    if (translation.packet.num_commands > 0) {  // nothing to say: no packet on the radio
+      translation.packet.sequence = ++radio_sequence_;
+      translation.packet.t_sent = state_ ? state_->sim_time : 0.0;
+      bus_.publish(channels_.radio(team), translation.packet);
+    }
   } else {
     ++counters_[name + " robot control datagrams malformed"];
     bad_input_.warn("robot_" + name, "malformed datagram on the " + name + " robot control port");
