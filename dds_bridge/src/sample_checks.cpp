@@ -82,10 +82,13 @@ Admission validate(radio_packet_t& packet, Team channel_team, const radio::Comma
     admission.forward = false;
     return admission;
   }
-  admission.entries_removed = packet.commands.size() - validated.packet.commands.size();
   // A packet that had entries and lost them all carries nothing: dropped, as
   // the radio emulator drops it. A packet sent empty goes on as it came.
-  if (validated.packet.commands.empty() && !packet.commands.empty()) admission.forward = false;
+  if (validated.packet.commands.empty() && !packet.commands.empty()) {
+    admission.forward = false;
+    return admission;
+  }
+  admission.entries_removed = packet.commands.size() - validated.packet.commands.size();
   packet = std::move(validated.packet);
   return admission;
 }

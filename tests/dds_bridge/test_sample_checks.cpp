@@ -69,6 +69,7 @@ TEST(SampleChecks, PacketWithOnlyBadEntriesIsDropped) {
   packet.commands[2].mode = 9;
   const auto admission = dds::admit_radio(packet, Team::Yellow, kLimits);
   EXPECT_FALSE(admission.forward);
+  EXPECT_EQ(admission.entries_removed, 0u);  // counted as one dropped packet instead
   EXPECT_TRUE(has(admission, "NaN/Inf"));
   EXPECT_TRUE(has(admission, "absurd value"));
   EXPECT_TRUE(has(admission, "unknown mode"));
