@@ -20,6 +20,8 @@ packages=(
   cyclonedds-dev cyclonedds-tools
   # plots for the validation report
   gnuplot-nox
+  # browser viewer: HTTP/WebSocket server and JSON; headless chromium for its end-to-end test
+  libwebsocketpp-dev libasio-dev nlohmann-json3-dev chromium
 )
 
 missing=()

@@ -27,13 +27,15 @@ usage: tools/launch.sh [options]
   --demo-mode MODE     play | positions | figure8 (default play)
   --log FILE           record every channel with lcm-logger into FILE
   --log-dir DIR        where process logs go (default: a new folder under /tmp)
+  --viewer             start the browser viewer (ubersim_viewer) and print its address
+  --viewer-port P      the viewer's port on 127.0.0.1 (default 8080)
   --quiet              less process log output
 USAGE
 }
 
 scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix=""
-vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0
+vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port=8080
 while [ $# -gt 0 ]; do
   case "$1" in
     --scenario) scenario=$2; shift 2 ;;
@@ -52,6 +54,8 @@ while [ $# -gt 0 ]; do
     --log) log_file=$2; shift 2 ;;
     --log-dir) log_dir=$2; shift 2 ;;
     --quiet) quiet=1; shift ;;
+    --viewer) viewer=1; shift ;;
+    --viewer-port) viewer_port=$2; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     *) echo "launch: unknown option '$1'" >&2; usage >&2; exit 2 ;;
   esac
@@ -69,6 +73,7 @@ case "$demo" in yellow|blue|both|none) ;; *) echo "launch: --demo takes yellow, 
 for program in ubersim_physics ubersim_vision ubersim_radio ubersim_demo_team; do
   [ -x "$bin_dir/$program" ] || { echo "launch: $bin_dir/$program not found: run tools/build.sh" >&2; exit 2; }
 done
+[ "$viewer" = 0 ] || [ -x "$bin_dir/ubersim_viewer" ] || { echo "launch: $bin_dir/ubersim_viewer not found: run tools/build.sh" >&2; exit 2; }
 [ -n "$log_dir" ] || log_dir=$(mktemp -d /tmp/ubersim-XXXXXX)
 mkdir -p "$log_dir"
 
@@ -104,10 +109,12 @@ for team in yellow blue; do
     start "demo_$team" "$bin_dir/ubersim_demo_team" "${common[@]}" --team "$team" --mode "$demo_mode"
   fi
 done
+[ "$viewer" = 1 ] && start viewer "$bin_dir/ubersim_viewer" "${common[@]}" --port "$viewer_port"
 physics_pid=${pids[1]:-}
 [ -n "$log_file" ] || physics_pid=${pids[0]}
 echo "channels: ${prefix}VISION ${prefix}VISION_GEOMETRY ${prefix}RADIO_YELLOW ${prefix}RADIO_BLUE ${prefix}RADIO_FEEDBACK_YELLOW ${prefix}RADIO_FEEDBACK_BLUE ${prefix}SIM_STATE ${prefix}SIM_CONTROL"
 echo "watch:    tools/lcm-spy.sh -l '$lcm_url'      control: build/bin/ubersim_referee --help"
+[ "$viewer" = 1 ] && echo "viewer:   http://127.0.0.1:$viewer_port/   (open it in a browser)"
 [ "$vision" = 0 ] && echo "vision:   not started: a real vision server must publish ${prefix}VISION"
 [ "$radio" = 0 ] && echo "radio:    not started: a real radio server must listen on ${prefix}RADIO_YELLOW / ${prefix}RADIO_BLUE"
 echo "Ctrl-C stops everything."

@@ -69,7 +69,7 @@ json encode_sim_state(const sim_state_t& state) {
                       {"vx", number(robot.vx)},
                       {"vy", number(robot.vy)},
                       {"omega", number(robot.omega)},
-                      {"ball_contact", robot.ball_contact}});
+                      {"ball_contact", static_cast<bool>(robot.ball_contact)}});
   }
   json ball = nullptr;
   if (state.ball_present) {
@@ -80,7 +80,7 @@ json encode_sim_state(const sim_state_t& state) {
   }
   return {{"sim_time", number(state.sim_time, 1e-6)},
           {"step", state.step},
-          {"paused", state.paused},
+          {"paused", static_cast<bool>(state.paused)},
           {"speed_factor", number(state.speed_factor, 1e-6)},
           {"ball", ball},
           {"robots", robots}};
@@ -152,7 +152,7 @@ json encode_radio_packet(const radio_packet_t& packet) {
 
 json encode_ack(const sim_control_ack_t& ack) {
   return {{"request_id", ack.request_id},
-          {"ok", ack.ok},
+          {"ok", static_cast<bool>(ack.ok)},
           {"message", ack.message},
           {"sim_time", number(ack.sim_time, 1e-6)}};
 }

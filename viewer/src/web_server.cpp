@@ -67,7 +67,7 @@ struct WebServer::Impl {
     const std::string name = served_file_name(connection->get_resource());
     std::ifstream file;
     if (!name.empty()) file.open(options.web_dir + "/" + name, std::ios::binary);
-    if (!file) {
+    if (name.empty() || !file.is_open()) {
       connection->set_status(websocketpp::http::status_code::not_found);
       connection->set_body("not found\n");
       connection->append_header("Content-Type", "text/plain");
