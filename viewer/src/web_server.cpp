@@ -59,6 +59,7 @@ struct WebServer::Impl {
 
   std::atomic<std::uint64_t> clients{0};
   std::atomic<std::uint64_t> sent{0};
+  std::atomic<std::uint64_t> bytes{0};
   std::atomic<std::uint64_t> skipped{0};
   std::atomic<std::uint64_t> replaced{0};
 
@@ -103,6 +104,7 @@ struct WebServer::Impl {
         ++skipped;
       } else {
         ++sent;
+        bytes += frame->size();
       }
     }
   }
