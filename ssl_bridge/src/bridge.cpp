@@ -1,9 +1,9 @@
 #include "ssl_bridge/bridge.hpp"
 
+#include <google/protobuf/unknown_field_set.h>
 #include <poll.h>
 
 #include <array>
-#include <google/protobuf/unknown_field_set.h>
 #include <ubersim/sim_control_ack_t.hpp>
 
 namespace ubersim::ssl {
@@ -47,8 +47,9 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
   bus_.subscribe<sim_control_ack_t>(channels_(Channel::SimControlAck),
                                     [this](const sim_control_ack_t& a) { on_ack(a); });
   for (Team team : kTeams) {
-    bus_.subscribe<radio_feedback_t>(channels_.radio_feedback(team),
-                                     [this, team](const radio_feedback_t& f) { feedback_[team] = f; });
+    bus_.subscribe<radio_feedback_t>(
+        channels_.radio_feedback(team),
+        [this, team](const radio_feedback_t& f) { feedback_[team] = f; });
   }
 }
 
@@ -62,7 +63,9 @@ void SslBridge::send_vision(const SSL_WrapperPacket& packet) {
   }
 }
 
-void SslBridge::on_vision(const vision_frame_t& frame) { send_vision(detection_packet(frame)); }
+void SslBridge::on_vision(const vision_frame_t& frame) {
+  send_vision(detection_packet(frame));
+}
 
 void SslBridge::on_geometry(const vision_geometry_t& geometry) {
   send_vision(geometry_packet(geometry, options_.geometry));
@@ -117,8 +120,8 @@ void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
   Errors errors;
   SimulatorCommand command;
   if (decode(bytes, command, errors)) {
-    SimControlTranslation translation = translate_simulator_command(
-        command, state_ ? &*state_ : nullptr, options_.sim_control);
+    SimControlTranslation translation =
+        translate_simulator_command(command, state_ ? &*state_ : nullptr, options_.sim_control);
     errors.insert(errors.end(), translation.errors.begin(), translation.errors.end());
     if (translation.vision_port) {
       vision_destination_.sin_port = htons(static_cast<uint16_t>(*translation.vision_port));
@@ -150,8 +153,7 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
   Errors errors;
   RobotControl control;
   if (decode(bytes, control, errors)) {
-    RobotControlTranslation translation =
-        translate_robot_control(control, team, options_.wheels);
+    RobotControlTranslation translation = translate_robot_control(control, team, options_.wheels);
     errors.insert(errors.end(), translation.errors.begin(), translation.errors.end());
     if (translation.packet.num_commands > 0) {  // nothing to say: no packet on the radio
       translation.packet.sequence = ++radio_sequence_;
@@ -171,12 +173,12 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
 }
 
 void SslBridge::run(const ShutdownSignal& shutdown) {
-  spdlog::info("vision to {}:{} (ttl {}, via {}); simulation control {}:{}; robot control blue "
-               "{}:{}, yellow {}:{}",
-               options_.vision_address, options_.vision_port, options_.vision_ttl,
-               options_.vision_interface, options_.listen_address, options_.control_port,
-               options_.listen_address, options_.blue_port, options_.listen_address,
-               options_.yellow_port);
+  spdlog::info(
+      "vision to {}:{} (ttl {}, via {}); simulation control {}:{}; robot control blue "
+      "{}:{}, yellow {}:{}",
+      options_.vision_address, options_.vision_port, options_.vision_ttl, options_.vision_interface,
+      options_.listen_address, options_.control_port, options_.listen_address, options_.blue_port,
+      options_.listen_address, options_.yellow_port);
   while (!shutdown.requested()) {
     std::array<pollfd, 5> fds{{{bus_.lcm().getFileno(), POLLIN, 0},
                                {control_socket_.fd(), POLLIN, 0},

@@ -22,8 +22,7 @@ struct Options {
 };
 
 ubersim::ssl::BallModel load_ball_model(const std::string& config_dir, const std::string& name) {
-  const auto config =
-      ubersim::ConfigFile::load(ubersim::resolve_config(config_dir, "balls", name));
+  const auto config = ubersim::ConfigFile::load(ubersim::resolve_config(config_dir, "balls", name));
   ubersim::ssl::BallModel model;
   model.sliding_deceleration = config.real_in("SLIDING_DECELERATION", 0, 100);
   model.rolling_deceleration = config.real_in("ROLLING_DECELERATION", 0, 100);
@@ -41,9 +40,10 @@ int run(Options& options) {
   options.bridge.geometry.max_robot_radius = robot.radius;
   options.bridge.geometry.ball_model = load_ball_model(config_dir, options.ball);
   if (!options.bridge.wheels) {
-    spdlog::warn("robot type {} has no wheel in each quadrant: wheel_velocity commands will be "
-                 "answered with an error",
-                 options.robot_type);
+    spdlog::warn(
+        "robot type {} has no wheel in each quadrant: wheel_velocity commands will be "
+        "answered with an error",
+        options.robot_type);
   }
 
   const ChannelNames channels = options.common.channels();

@@ -63,8 +63,8 @@ bool translate_move(const RobotCommand& in, const std::optional<WheelMapping>& w
   }
   if (!finite({out.vx, out.vy, out.omega}) ||
       (out.mode == robot_command_t::MODE_WHEEL_SPEEDS &&
-       !finite({out.wheel_speeds[0], out.wheel_speeds[1], out.wheel_speeds[2],
-                out.wheel_speeds[3]}))) {
+       !finite(
+           {out.wheel_speeds[0], out.wheel_speeds[1], out.wheel_speeds[2], out.wheel_speeds[3]}))) {
     add_error(errors, kErrorInvalid, "non-finite velocity for " + robot + " (command dropped)");
     return false;
   }
@@ -77,9 +77,9 @@ void translate_kick(const RobotCommand& in, robot_command_t& out, Errors& errors
     const double speed = in.kick_speed();
     const double angle = in.kick_angle();
     if (!finite({speed, angle}) || speed < 0 || angle < 0 || angle >= 90) {
-      add_error(errors, kErrorInvalid,
-                "kick_speed must be >= 0 and kick_angle in [0, 90) degrees (" + robot +
-                    ": no kick)");
+      add_error(
+          errors, kErrorInvalid,
+          "kick_speed must be >= 0 and kick_angle in [0, 90) degrees (" + robot + ": no kick)");
     } else if (angle == 0) {
       out.kick_speed = speed;
     } else {

@@ -68,7 +68,8 @@ bool translate_robot(const TeleportRobot& in, const sim_state_t* state,
   }
   placement.x = in.has_x() ? in.x() : current->x;
   placement.y = in.has_y() ? in.y() : current->y;
-  placement.orientation = in.has_orientation() ? in.orientation() : (current ? current->orientation : 0.0);
+  placement.orientation =
+      in.has_orientation() ? in.orientation() : (current ? current->orientation : 0.0);
   placement.vx = in.v_x();
   placement.vy = in.v_y();
   placement.omega = in.v_angular();
@@ -105,7 +106,8 @@ void clear_ball_target(double bx, double by, const sim_state_t* state,
 void translate_ball(const TeleportBall& in, const sim_state_t* state,
                     const SimControlSettings& settings, sim_control_t& place, Errors& errors) {
   if (in.by_force()) {
-    add_error(errors, kErrorUnsupported, "teleport_ball.by_force is not supported (ball not moved)");
+    add_error(errors, kErrorUnsupported,
+              "teleport_ball.by_force is not supported (ball not moved)");
     return;
   }
   if (!all_finite({in.x(), in.y(), in.z(), in.vx(), in.vy(), in.vz()})) {

@@ -28,7 +28,8 @@ int open_socket() {
 }  // namespace
 
 sockaddr_in make_address(const std::string& ip, int port) {
-  if (port <= 0 || port > 65535) throw std::invalid_argument("port out of range: " + std::to_string(port));
+  if (port <= 0 || port > 65535)
+    throw std::invalid_argument("port out of range: " + std::to_string(port));
   sockaddr_in address{};
   address.sin_family = AF_INET;
   address.sin_port = htons(static_cast<uint16_t>(port));
@@ -82,8 +83,8 @@ UdpSocket::~UdpSocket() {
 std::optional<std::vector<uint8_t>> UdpSocket::receive(sockaddr_in& from) {
   std::vector<uint8_t> buffer(65536);
   socklen_t length = sizeof from;
-  const ssize_t size = ::recvfrom(fd_, buffer.data(), buffer.size(), 0,
-                                  reinterpret_cast<sockaddr*>(&from), &length);
+  const ssize_t size =
+      ::recvfrom(fd_, buffer.data(), buffer.size(), 0, reinterpret_cast<sockaddr*>(&from), &length);
   if (size < 0) return std::nullopt;
   buffer.resize(static_cast<size_t>(size));
   return buffer;

@@ -4,6 +4,8 @@
 
 namespace ubersim::ssl {
 
-int m_to_whole_mm(double metres) { return static_cast<int>(std::lround(m_to_mm(metres))); }
+int m_to_whole_mm(double metres) {
+  return static_cast<int>(std::lround(m_to_mm(metres)));
+}
 
 }  // namespace ubersim::ssl

@@ -50,10 +50,10 @@ void add_markings(const field_geometry_t& f, SSL_GeometryFieldSize& field) {
            -pw, lw);
   add_line(field, "LeftFieldRightPenaltyStretch", LeftFieldRightPenaltyStretch, -hl, pw, -hl + pd,
            pw, lw);
-  add_line(field, "RightFieldLeftPenaltyStretch", RightFieldLeftPenaltyStretch, hl, pw, hl - pd,
-           pw, lw);
-  add_line(field, "RightFieldRightPenaltyStretch", RightFieldRightPenaltyStretch, hl, -pw,
-           hl - pd, -pw, lw);
+  add_line(field, "RightFieldLeftPenaltyStretch", RightFieldLeftPenaltyStretch, hl, pw, hl - pd, pw,
+           lw);
+  add_line(field, "RightFieldRightPenaltyStretch", RightFieldRightPenaltyStretch, hl, -pw, hl - pd,
+           -pw, lw);
   SSL_FieldCircularArc* circle = field.add_field_arcs();
   circle->set_name("CenterCircle");
   circle->set_type(CenterCircle);
@@ -120,7 +120,8 @@ SSL_WrapperPacket detection_packet(const vision_frame_t& frame) {
     b->set_pixel_x(static_cast<float>(ball.pixel_x));
     b->set_pixel_y(static_cast<float>(ball.pixel_y));
   }
-  for (const vision_robot_t& robot : frame.robots_yellow) fill_robot(robot, *out->add_robots_yellow());
+  for (const vision_robot_t& robot : frame.robots_yellow)
+    fill_robot(robot, *out->add_robots_yellow());
   for (const vision_robot_t& robot : frame.robots_blue) fill_robot(robot, *out->add_robots_blue());
   return packet;
 }

@@ -30,8 +30,8 @@ std::optional<std::string> receive_one(int fd, Clock::time_point deadline) {
 }
 
 Clock::time_point after(double seconds) {
-  return Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                            std::chrono::duration<double>(seconds));
+  return Clock::now() +
+         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
 }
 
 }  // namespace
@@ -56,7 +56,9 @@ VisionReceiver::VisionReceiver(const std::string& group, int port) {
   }
 }
 
-VisionReceiver::~VisionReceiver() { ::close(fd_); }
+VisionReceiver::~VisionReceiver() {
+  ::close(fd_);
+}
 
 std::optional<SSL_WrapperPacket> VisionReceiver::receive(double timeout_s) {
   const auto deadline = after(timeout_s);
@@ -83,7 +85,9 @@ UdpClient::UdpClient(int port) : port_(port) {
   if (fd_ < 0) throw std::runtime_error("socket");
 }
 
-UdpClient::~UdpClient() { ::close(fd_); }
+UdpClient::~UdpClient() {
+  ::close(fd_);
+}
 
 void UdpClient::send(const std::string& bytes) {
   sockaddr_in to{};

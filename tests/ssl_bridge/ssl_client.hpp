@@ -23,8 +23,7 @@ class VisionReceiver {
   // The next packet that decodes, or nullopt after timeout_s.
   std::optional<SSL_WrapperPacket> receive(double timeout_s);
   // Receives until accept() returns true for a packet; false on timeout.
-  bool receive_until(const std::function<bool(const SSL_WrapperPacket&)>& accept,
-                     double timeout_s);
+  bool receive_until(const std::function<bool(const SSL_WrapperPacket&)>& accept, double timeout_s);
   int undecodable() const { return undecodable_; }
 
  private:

@@ -181,9 +181,8 @@ TEST_F(SslBridgeProcess, GeometryPacketCarriesFieldCamerasAndBallModel) {
   g.cameras = {camera, camera};
   g.cameras[1].camera_id = 1;
   g.num_cameras = 2;
-  const auto packet = publish_until_seen("VISION_GEOMETRY", g, [](const SSL_WrapperPacket& p) {
-    return p.has_geometry();
-  });
+  const auto packet = publish_until_seen(
+      "VISION_GEOMETRY", g, [](const SSL_WrapperPacket& p) { return p.has_geometry(); });
   ASSERT_TRUE(packet.has_value()) << bridge_->log();
   const SSL_GeometryData& geometry = packet->geometry();
   EXPECT_EQ(geometry.field().field_length(), 9000);

@@ -1,1 +1,194 @@
-// Filled in by the next commit.
+// The bridge in front of the real simulation: ubersim_physics (real time),
+// ubersim_vision and ubersim_radio as processes over real LCM, driven only
+// through the SSL protocols by a client that knows nothing of ubersim:
+// teleports show up in the next vision frames, robot commands move robots
+// (through the radio emulator), and the responses carry robot feedback.
+// ISOLATED: own network namespace, so the league's default ports are free.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "child_process.hpp"
+#include "ssl_client.hpp"
+
+namespace {
+
+using ubersim::test::ChildProcess;
+using Clock = std::chrono::steady_clock;
+
+bool wait_for_log(const ChildProcess& process, const std::string& text, double timeout_s) {
+  const auto deadline = Clock::now() + std::chrono::duration<double>(timeout_s);
+  while (Clock::now() < deadline) {
+    if (process.log().find(text) != std::string::npos) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+const SSL_DetectionRobot* find_blue(const SSL_WrapperPacket& packet, uint32_t id) {
+  if (!packet.has_detection()) return nullptr;
+  for (const auto& robot : packet.detection().robots_blue()) {
+    if (robot.robot_id() == id) return &robot;
+  }
+  return nullptr;
+}
+
+TeleportRobot* teleport_blue(SimulatorCommand& command, uint32_t id, float x, float y) {
+  TeleportRobot* robot = command.mutable_control()->add_teleport_robot();
+  robot->mutable_id()->set_id(id);
+  robot->mutable_id()->set_team(BLUE);
+  robot->set_x(x);
+  robot->set_y(y);
+  robot->set_orientation(0);
+  return robot;
+}
+
+std::string describe(const SimulatorResponse& response) {
+  std::string text;
+  for (const auto& e : response.errors()) text += e.code() + ": " + e.message() + "\n";
+  return text;
+}
+
+class SslBridgeSimulation : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string logs = ::testing::TempDir();
+    const std::string src = UBERSIM_SOURCE_DIR;
+    vision_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{UBERSIM_VISION_EXE, "--profile", "cmdragons02", "--seed", "3"},
+        logs + "ssl_sim_vision.log");
+    radio_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{UBERSIM_RADIO_EXE, "--profile",
+                                 src + "/tests/data/radio_lossless.cfg", "--seed", "3"},
+        logs + "ssl_sim_radio.log");
+    bridge_ = std::make_unique<ChildProcess>(std::vector<std::string>{UBERSIM_SSL_BRIDGE_EXE},
+                                             logs + "ssl_sim_bridge.log");
+    ASSERT_TRUE(wait_for_log(*radio_, "sim time from", 10)) << radio_->log();
+    ASSERT_TRUE(wait_for_log(*vision_, "subscribing", 10)) << vision_->log();
+    ASSERT_TRUE(wait_for_log(*bridge_, "vision to", 10)) << bridge_->log();
+    physics_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{UBERSIM_PHYSICS_EXE, "--scenario", "division_b_6v6"},
+        logs + "ssl_sim_physics.log");
+  }
+
+  void TearDown() override {
+    if (bridge_) {
+      EXPECT_EQ(bridge_->stop(10), 0) << bridge_->log();
+    }
+  }
+
+  // Sends the command until the robot answers with at least one response.
+  std::vector<RobotControlResponse> drive(const RobotControl& control, double seconds) {
+    std::vector<RobotControlResponse> responses;
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < end) {
+      if (auto response = ssl_test::control(blue_, control, 1)) responses.push_back(*response);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return responses;
+  }
+
+  ssl_test::VisionReceiver vision_rx_;
+  ssl_test::UdpClient control_{10300};
+  ssl_test::UdpClient blue_{10301};
+  std::unique_ptr<ChildProcess> vision_, radio_, bridge_, physics_;
+};
+
+}  // namespace
+
+TEST_F(SslBridgeSimulation, TeleportDriveAndFeedbackThroughTheSslProtocols) {
+  // Vision comes through as SSL-Vision packets: the kick-off line-up.
+  ASSERT_TRUE(vision_rx_.receive_until(
+      [](const SSL_WrapperPacket& p) { return find_blue(p, 2) != nullptr; }, 20))
+      << physics_->log() << vision_->log() << bridge_->log();
+  bool geometry_seen = false;
+  ASSERT_TRUE(vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        geometry_seen = geometry_seen || p.has_geometry();
+        return geometry_seen;
+      },
+      5));
+
+  // Teleport the ball; physics acknowledges, so no errors.
+  SimulatorCommand ball;
+  ball.mutable_control()->mutable_teleport_ball()->set_x(1.5f);
+  ball.mutable_control()->mutable_teleport_ball()->set_y(-1.0f);
+  auto response = ssl_test::command(control_, ball);
+  ASSERT_TRUE(response.has_value()) << bridge_->log();
+  EXPECT_EQ(response->errors_size(), 0) << describe(*response);
+  // Vision noise is 4 mm per axis: 25 mm is more than 6 sigma.
+  EXPECT_TRUE(vision_rx_.receive_until(
+      [](const SSL_WrapperPacket& p) {
+        if (!p.has_detection()) return false;
+        for (const auto& b : p.detection().balls()) {
+          if (std::hypot(b.x() - 1500.0, b.y() + 1000.0) < 25.0) return true;
+        }
+        return false;
+      },
+      5));
+
+  // Teleport blue 2 to a free spot facing +x, then drive it forward at 1 m/s.
+  SimulatorCommand place;
+  teleport_blue(place, 2, -1.0f, 2.0f);
+  response = ssl_test::command(control_, place);
+  ASSERT_TRUE(response.has_value());
+  EXPECT_EQ(response->errors_size(), 0) << describe(*response);
+  double start_x = 0, start_y = 0;
+  ASSERT_TRUE(vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        const SSL_DetectionRobot* r = find_blue(p, 2);
+        if (r == nullptr || std::hypot(r->x() + 1000.0, r->y() - 2000.0) > 30.0) return false;
+        start_x = r->x();
+        start_y = r->y();
+        return true;
+      },
+      5));
+  RobotControl forward;
+  RobotCommand* command = forward.add_robot_commands();
+  command->set_id(2);
+  MoveLocalVelocity* v = command->mutable_move_command()->mutable_local_velocity();
+  v->set_forward(1.0f);
+  v->set_left(0);
+  v->set_angular(0);
+  const auto responses = drive(forward, 1.5);
+  ASSERT_FALSE(responses.empty());
+  bool feedback_for_robot = false;
+  for (const auto& r : responses) {
+    EXPECT_EQ(r.errors_size(), 0);
+    for (const auto& f : r.feedback()) feedback_for_robot = feedback_for_robot || f.id() == 2;
+  }
+  EXPECT_TRUE(feedback_for_robot);
+  // Real time on a loaded machine: at least 0.3 m of the ~1.3 m it can cover.
+  EXPECT_TRUE(vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        const SSL_DetectionRobot* r = find_blue(p, 2);
+        return r != nullptr && r->x() - start_x > 300.0 && std::abs(r->y() - start_y) < 150.0;
+      },
+      3))
+      << "robot did not move forward";
+
+  // Ball on the dribbler: the feedback reports ball contact.
+  SimulatorCommand dribble;
+  teleport_blue(dribble, 2, 0.0f, -2.0f);
+  dribble.mutable_control()->mutable_teleport_ball()->set_x(0.075f + 0.0215f + 0.001f);
+  dribble.mutable_control()->mutable_teleport_ball()->set_y(-2.0f);
+  response = ssl_test::command(control_, dribble);
+  ASSERT_TRUE(response.has_value());
+  EXPECT_EQ(response->errors_size(), 0) << describe(*response);
+  RobotControl hold;
+  RobotCommand* h = hold.add_robot_commands();
+  h->set_id(2);
+  h->set_dribbler_speed(3000.0f);  // rpm
+  bool contact = false;
+  const auto end = Clock::now() + std::chrono::seconds(5);
+  while (!contact && Clock::now() < end) {
+    if (auto r = ssl_test::control(blue_, hold, 1)) {
+      for (const auto& f : r->feedback())
+        contact = contact || (f.id() == 2 && f.dribbler_ball_contact());
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_TRUE(contact) << bridge_->log() << radio_->log();
+}

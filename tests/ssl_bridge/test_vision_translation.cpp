@@ -151,7 +151,8 @@ TEST(SslVisionTranslation, CalibrationIsWorldToCameraInMillimetres) {
                           {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
   const std::array<double, 3> t{c.tx(), c.ty(), c.tz()};
   for (int i = 0; i < 3; ++i) {
-    const double mapped = R[i][0] * centre[0] + R[i][1] * centre[1] + R[i][2] * centre[2] + t[static_cast<size_t>(i)];
+    const double mapped =
+        R[i][0] * centre[0] + R[i][1] * centre[1] + R[i][2] * centre[2] + t[static_cast<size_t>(i)];
     EXPECT_NEAR(mapped, 0.0, 1e-3) << "row " << i;
   }
   // Looking straight down: a point 4 m below the camera is 4000 mm along the

@@ -8,7 +8,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-
 #include <ubersim/sim_control_ack_t.hpp>
 
 #include "ssl_bridge/robot_control_translation.hpp"
@@ -56,8 +55,7 @@ class SslBridge {
   void on_geometry(const vision_geometry_t& geometry);
   void on_ack(const sim_control_ack_t& ack);
   void handle_control_datagram(const std::vector<uint8_t>& bytes, const sockaddr_in& from);
-  void handle_robot_datagram(Team team, const std::vector<uint8_t>& bytes,
-                             const sockaddr_in& from);
+  void handle_robot_datagram(Team team, const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void send_vision(const SSL_WrapperPacket& packet);
   void answer(PendingResponse& pending);
   void expire_pending();

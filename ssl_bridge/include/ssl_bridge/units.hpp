@@ -6,13 +6,25 @@ namespace ubersim::ssl {
 
 inline constexpr double kPi = 3.14159265358979323846;
 
-constexpr double m_to_mm(double metres) { return metres * 1000.0; }
-constexpr double mm_to_m(double millimetres) { return millimetres / 1000.0; }
-constexpr double deg_to_rad(double degrees) { return degrees * (kPi / 180.0); }
-constexpr double rad_to_deg(double radians) { return radians * (180.0 / kPi); }
+constexpr double m_to_mm(double metres) {
+  return metres * 1000.0;
+}
+constexpr double mm_to_m(double millimetres) {
+  return millimetres / 1000.0;
+}
+constexpr double deg_to_rad(double degrees) {
+  return degrees * (kPi / 180.0);
+}
+constexpr double rad_to_deg(double radians) {
+  return radians * (180.0 / kPi);
+}
 // Revolutions per minute <-> angular speed: 1 rpm = 2 pi rad / 60 s.
-constexpr double rpm_to_rad_per_s(double rpm) { return rpm * (2.0 * kPi / 60.0); }
-constexpr double rad_per_s_to_rpm(double rad_per_s) { return rad_per_s * (60.0 / (2.0 * kPi)); }
+constexpr double rpm_to_rad_per_s(double rpm) {
+  return rpm * (2.0 * kPi / 60.0);
+}
+constexpr double rad_per_s_to_rpm(double rad_per_s) {
+  return rad_per_s * (60.0 / (2.0 * kPi));
+}
 
 // Field sizes in SSL geometry are whole millimetres (int32).
 int m_to_whole_mm(double metres);
