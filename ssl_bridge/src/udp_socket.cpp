@@ -42,8 +42,7 @@ sockaddr_in make_address(const std::string& ip, int port) {
 UdpSocket UdpSocket::bound(const std::string& ip, int port) {
   const sockaddr_in address = make_address(ip, port);
   const int fd = open_socket();
-  const int one = 1;
-  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  // No SO_REUSEADDR: a second bridge on the same ports must fail, not share them.
   if (::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
     fail(fd, "bind " + ip + ":" + std::to_string(port));
   }

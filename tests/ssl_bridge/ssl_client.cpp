@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <stdexcept>
 #include <vector>
 
@@ -35,6 +36,26 @@ Clock::time_point after(double seconds) {
 }
 
 }  // namespace
+
+TestPorts TestPorts::from_environment() {
+  int lcm_port = 7667;  // LCM's default
+  if (const char* url = std::getenv("LCM_DEFAULT_URL")) {
+    const std::string text(url);
+    const auto colon = text.rfind(':');
+    if (colon != std::string::npos) lcm_port = std::atoi(text.c_str() + colon + 1);
+  }
+  TestPorts ports;
+  ports.control = lcm_port + 1;
+  ports.blue = lcm_port + 2;
+  ports.yellow = lcm_port + 3;
+  ports.vision = lcm_port + 4;
+  return ports;
+}
+
+std::vector<std::string> TestPorts::bridge_options() const {
+  return {"--vision-port", std::to_string(vision), "--control-port", std::to_string(control),
+          "--blue-port",   std::to_string(blue),   "--yellow-port",  std::to_string(yellow)};
+}
 
 VisionReceiver::VisionReceiver(const std::string& group, int port) {
   fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);

@@ -10,8 +10,21 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace ssl_test {
+
+// The ports a test uses. In its own network namespace any would do; without
+// one (run_isolated.sh's fallback) each test binary must keep to ports of its
+// own, so they follow the LCM port run_isolated.sh derived from the test name.
+struct TestPorts {
+  int vision = 10020;
+  int control = 10300;
+  int blue = 10301;
+  int yellow = 10302;
+  static TestPorts from_environment();              // LCM port + 1 .. + 4
+  std::vector<std::string> bridge_options() const;  // --vision-port ... for the bridge
+};
 
 // Joins the SSL-Vision multicast group on the loopback interface.
 class VisionReceiver {

@@ -56,14 +56,16 @@ using Trajectory = std::map<int64_t, Pose>;
 
 Trajectory run_scenario(bool through_bridge, const std::string& name) {
   const std::string logs = ::testing::TempDir();
+  const ssl_test::TestPorts ports = ssl_test::TestPorts::from_environment();
   ChildProcess radio(
       {UBERSIM_RADIO_EXE, "--profile",
        std::string(UBERSIM_SOURCE_DIR) + "/tests/data/radio_lossless.cfg", "--seed", "5"},
       logs + name + "_radio.log");
   std::unique_ptr<ChildProcess> bridge;
   if (through_bridge) {
-    bridge = std::make_unique<ChildProcess>(std::vector<std::string>{UBERSIM_SSL_BRIDGE_EXE},
-                                            logs + name + "_bridge.log");
+    std::vector<std::string> argv{UBERSIM_SSL_BRIDGE_EXE};
+    for (const std::string& option : ports.bridge_options()) argv.push_back(option);
+    bridge = std::make_unique<ChildProcess>(argv, logs + name + "_bridge.log");
     if (!wait_for_log(*bridge, "vision to", 10)) throw std::runtime_error(bridge->log());
   }
   if (!wait_for_log(radio, "sim time from", 10)) throw std::runtime_error(radio.log());
@@ -112,7 +114,7 @@ Trajectory run_scenario(bool through_bridge, const std::string& name) {
   if (!ready) throw std::runtime_error("physics did not answer: " + physics.log());
   if (!control(ubersim::sim_control_t::STEP, 1)) throw std::runtime_error("no step");
 
-  ssl_test::UdpClient blue(10301);
+  ssl_test::UdpClient blue(ports.blue);
   poses.clear();
   for (int i = 0; i < kCommands; ++i) {
     double forward, left, angular;

@@ -78,9 +78,9 @@ void expect_robot(const ubersim::vision_robot_t& in, const SSL_DetectionRobot& o
 class SslBridgeProcess : public ::testing::Test {
  protected:
   void SetUp() override {
-    bridge_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{UBERSIM_SSL_BRIDGE_EXE, "--ack-timeout", "0.3"},
-        ::testing::TempDir() + "ssl_bridge_process.log");
+    std::vector<std::string> argv{UBERSIM_SSL_BRIDGE_EXE, "--ack-timeout", "0.3"};
+    for (const std::string& option : ports_.bridge_options()) argv.push_back(option);
+    bridge_ = std::make_unique<ChildProcess>(argv, ::testing::TempDir() + "ssl_bridge_process.log");
     ASSERT_TRUE(wait_for_log(*bridge_, "vision to", 10)) << bridge_->log();
     bus_.subscribe<ubersim::radio_packet_t>(
         "RADIO_BLUE", [this](const ubersim::radio_packet_t& p) { radio_blue_.push_back(p); });
@@ -121,7 +121,8 @@ class SslBridgeProcess : public ::testing::Test {
     return radio_blue_.size() >= count;
   }
 
-  ssl_test::VisionReceiver vision_;
+  const ssl_test::TestPorts ports_ = ssl_test::TestPorts::from_environment();
+  ssl_test::VisionReceiver vision_{"224.5.23.2", ports_.vision};
   ubersim::MessageBus bus_{ubersim::with_receive_buffer(ubersim::default_lcm_url())};
   std::unique_ptr<ChildProcess> bridge_;
   std::vector<ubersim::radio_packet_t> radio_blue_;
@@ -204,7 +205,7 @@ TEST_F(SslBridgeProcess, GeometryPacketCarriesFieldCamerasAndBallModel) {
 }
 
 TEST_F(SslBridgeProcess, RobotCommandsBecomeRadioPacketsWithExactUnits) {
-  ssl_test::UdpClient blue(10301);
+  ssl_test::UdpClient blue(ports_.blue);
   RobotControl control;
   RobotCommand* c = control.add_robot_commands();
   c->set_id(3);
@@ -244,7 +245,7 @@ TEST_F(SslBridgeProcess, RobotControlResponseCarriesTheLatestFeedback) {
   b.robot_id = 2;
   feedback.robots = {a, b};
   feedback.num_robots = 2;
-  ssl_test::UdpClient yellow(10302);
+  ssl_test::UdpClient yellow(ports_.yellow);
   RobotControl control;
   control.add_robot_commands()->set_id(1);
   std::optional<RobotControlResponse> response;
@@ -263,8 +264,8 @@ TEST_F(SslBridgeProcess, RobotControlResponseCarriesTheLatestFeedback) {
 }
 
 TEST_F(SslBridgeProcess, GarbageIsAnsweredWithAnErrorAndTheBridgeKeepsRunning) {
-  ssl_test::UdpClient control_port(10300);
-  ssl_test::UdpClient blue(10301);
+  ssl_test::UdpClient control_port(ports_.control);
+  ssl_test::UdpClient blue(ports_.blue);
   // Truncated: field 1, length-delimited, length varint never ends.
   const std::string garbage("\x0a\xff\xff\xff", 4);
   for (int round = 0; round < 3; ++round) {
@@ -323,7 +324,7 @@ TEST_F(SslBridgeProcess, GarbageIsAnsweredWithAnErrorAndTheBridgeKeepsRunning) {
 }
 
 TEST_F(SslBridgeProcess, UnsupportedAndUnansweredControlIsNeverSilent) {
-  ssl_test::UdpClient control_port(10300);
+  ssl_test::UdpClient control_port(ports_.control);
   SimulatorCommand specs;
   RobotSpecs* spec = specs.mutable_config()->add_robot_specs();
   spec->mutable_id()->set_id(0);
@@ -341,6 +342,15 @@ TEST_F(SslBridgeProcess, UnsupportedAndUnansweredControlIsNeverSilent) {
   ASSERT_TRUE(response.has_value());
   ASSERT_EQ(response->errors_size(), 1);
   EXPECT_EQ(response->errors(0).code(), "UBERSIM_NO_ANSWER");
+}
+
+TEST(SslBridgeOptions, DefaultsAreTheLeagueConventions) {
+  ChildProcess help({UBERSIM_SSL_BRIDGE_EXE, "--help"}, ::testing::TempDir() + "ssl_help.log");
+  EXPECT_EQ(help.wait(10), 0);
+  const std::string text = help.log();
+  for (const char* expected : {"224.5.23.2", "10020", "10300", "10301", "10302", "127.0.0.1"}) {
+    EXPECT_NE(text.find(expected), std::string::npos) << expected << " missing in\n" << text;
+  }
 }
 
 TEST_F(SslBridgeProcess, ExitsZeroOnSigint) {

@@ -63,8 +63,9 @@ class SslBridgeSimulation : public ::testing::Test {
         std::vector<std::string>{UBERSIM_RADIO_EXE, "--profile",
                                  src + "/tests/data/radio_lossless.cfg", "--seed", "3"},
         logs + "ssl_sim_radio.log");
-    bridge_ = std::make_unique<ChildProcess>(std::vector<std::string>{UBERSIM_SSL_BRIDGE_EXE},
-                                             logs + "ssl_sim_bridge.log");
+    std::vector<std::string> argv{UBERSIM_SSL_BRIDGE_EXE};
+    for (const std::string& option : ports_.bridge_options()) argv.push_back(option);
+    bridge_ = std::make_unique<ChildProcess>(argv, logs + "ssl_sim_bridge.log");
     ASSERT_TRUE(wait_for_log(*radio_, "sim time from", 10)) << radio_->log();
     ASSERT_TRUE(wait_for_log(*vision_, "subscribing", 10)) << vision_->log();
     ASSERT_TRUE(wait_for_log(*bridge_, "vision to", 10)) << bridge_->log();
@@ -90,9 +91,10 @@ class SslBridgeSimulation : public ::testing::Test {
     return responses;
   }
 
-  ssl_test::VisionReceiver vision_rx_;
-  ssl_test::UdpClient control_{10300};
-  ssl_test::UdpClient blue_{10301};
+  const ssl_test::TestPorts ports_ = ssl_test::TestPorts::from_environment();
+  ssl_test::VisionReceiver vision_rx_{"224.5.23.2", ports_.vision};
+  ssl_test::UdpClient control_{ports_.control};
+  ssl_test::UdpClient blue_{ports_.blue};
   std::unique_ptr<ChildProcess> vision_, radio_, bridge_, physics_;
 };
 
