@@ -140,11 +140,13 @@ HeadlessChromium::HeadlessChromium(const std::string& chromium, const std::strin
   const std::filesystem::path profile = std::filesystem::path(work_dir) / "chromium-profile";
   std::filesystem::create_directories(profile);
   process_ = std::make_unique<ubersim::test::ChildProcess>(
-      std::vector<std::string>{chromium, "--headless", "--no-sandbox", "--disable-gpu",
-                               "--disable-background-networking", "--disable-component-update",
-                               "--disable-sync", "--no-first-run", "--disable-extensions",
-                               "--mute-audio", "--window-size=1280,800",
-                               "--remote-debugging-port=0", "--remote-debugging-address=127.0.0.1",
+      // Under timeout(1): should this test crash, its browser still ends soon after.
+      std::vector<std::string>{"/usr/bin/timeout", "--kill-after=5", "170", chromium, "--headless",
+                               "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+                               "--disable-component-update", "--disable-sync", "--no-first-run",
+                               "--disable-extensions", "--mute-audio", "--disable-crash-reporter",
+                               "--window-size=1280,800", "--remote-debugging-port=0",
+                               "--remote-debugging-address=127.0.0.1",
                                "--user-data-dir=" + profile.string(), "about:blank"},
       (std::filesystem::path(work_dir) / "chromium.log").string());
   connection_ = std::make_unique<CdpConnection>(wait_for_devtools_url(profile, *process_));

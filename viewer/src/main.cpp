@@ -149,9 +149,10 @@ int run(const Options& options) {
   }
   const auto stats = server.stats();
   spdlog::info(
-      "frames sent {}, skipped for slow pages {}, replaced before sending {}; "
+      "frames sent {} (mean {} bytes), skipped for slow pages {}, replaced before sending {}; "
       "malformed LCM messages dropped {}",
-      stats.frames_sent, stats.frames_skipped, stats.frames_replaced, bus.malformed_count());
+      stats.frames_sent, stats.frames_sent > 0 ? stats.bytes_sent / stats.frames_sent : 0,
+      stats.frames_skipped, stats.frames_replaced, bus.malformed_count());
   return 0;
 }
 

@@ -188,7 +188,13 @@ void WebServer::publish(std::shared_ptr<const std::string> frame) {
 }
 
 WebServerStats WebServer::stats() const {
-  return {impl_->clients.load(), impl_->sent.load(), impl_->skipped.load(), impl_->replaced.load()};
+  WebServerStats stats;
+  stats.clients = impl_->clients.load();
+  stats.frames_sent = impl_->sent.load();
+  stats.bytes_sent = impl_->bytes.load();
+  stats.frames_skipped = impl_->skipped.load();
+  stats.frames_replaced = impl_->replaced.load();
+  return stats;
 }
 
 }  // namespace ubersim::viewer

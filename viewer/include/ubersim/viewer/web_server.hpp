@@ -23,6 +23,7 @@ struct WebServerOptions {
 struct WebServerStats {
   std::uint64_t clients = 0;
   std::uint64_t frames_sent = 0;      // frames handed to a socket, summed over pages
+  std::uint64_t bytes_sent = 0;       // their payload bytes
   std::uint64_t frames_skipped = 0;   // frames a page was too far behind to take
   std::uint64_t frames_replaced = 0;  // frames replaced by a newer one before any send
 };
