@@ -363,19 +363,22 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options options;
-  CLI::App app{"DDS bridge benchmark: added latency and sustained rate"};
-  app.add_option("--domain", options.domain, "DDS domain id")->capture_default_str();
-  app.add_option("--messages", options.messages, "SIM_STATEs for the latency phase")
-      ->capture_default_str();
-  app.add_option("--rate", options.rate, "Hz, SIM_STATE rate of the latency phase")
-      ->capture_default_str();
-  app.add_option("--offered", options.offered, "Hz, rates tried for the sustained rate");
-  CLI11_PARSE(app, argc, argv);
   try {
+    Options options;
+    CLI::App app{"DDS bridge benchmark: added latency and sustained rate"};
+    app.add_option("--domain", options.domain, "DDS domain id")->capture_default_str();
+    app.add_option("--messages", options.messages, "SIM_STATEs for the latency phase")
+        ->capture_default_str();
+    app.add_option("--rate", options.rate, "Hz, SIM_STATE rate of the latency phase")
+        ->capture_default_str();
+    app.add_option("--offered", options.offered, "Hz, rates tried for the sustained rate");
+    CLI11_PARSE(app, argc, argv);
     return run(options);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "ubersim_dds_bridge_benchmark: %s\n", error.what());
+    return 1;
+  } catch (...) {
+    std::fprintf(stderr, "ubersim_dds_bridge_benchmark: unknown error\n");
     return 1;
   }
 }

@@ -34,7 +34,7 @@ constexpr dds_domainid_t kDomain = 42;
 constexpr double kTimeout = 15;  // s; discovery and delivery take well under 1 s unloaded
 
 std::string write_config(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
+  std::string path = ::testing::TempDir() + name;
   std::ofstream(path) << text;
   return path;
 }
@@ -263,7 +263,7 @@ TEST_P(DdsBridgeEcho, NothingEchoesBack) {
       a, dds_test::make_topic<dds::DdsRadioPacket>(a, "rt/ubersim/radio_yellow"),
       TopicUse::Command);
   ASSERT_TRUE(dds_test::wait_for_writers(vision_reader, kTimeout)) << bridge_log();
-  ASSERT_TRUE(dds_test::wait_for_readers(radio_writer, kTimeout, both_ways ? 2 : 2))
+  ASSERT_TRUE(dds_test::wait_for_readers(radio_writer, kTimeout, 2))
       << bridge_log();  // the bridge's reader and B's
   warm_up_vision(vision_reader);
   dds_test::pump_for(bus_, 0.3, [&] {

@@ -34,22 +34,28 @@ using DdsSimControlAck = ubersim_msgs_msg_dds__SimControlAck_;
 template <class T>
 struct DdsType;
 
-#define UBERSIM_DDS_TYPE(CType, Descriptor)                                   \
-  template <>                                                                 \
-  struct DdsType<CType> {                                                     \
-    static const dds_topic_descriptor_t* descriptor() { return &Descriptor; } \
-  }
+template <const dds_topic_descriptor_t* Descriptor>
+struct DdsTypeWith {
+  static const dds_topic_descriptor_t* descriptor() { return Descriptor; }
+};
 
-UBERSIM_DDS_TYPE(DdsVisionFrame, ubersim_msgs_msg_dds__VisionFrame__desc);
-UBERSIM_DDS_TYPE(DdsFieldGeometry, ubersim_msgs_msg_dds__FieldGeometry__desc);
-UBERSIM_DDS_TYPE(DdsVisionGeometry, ubersim_msgs_msg_dds__VisionGeometry__desc);
-UBERSIM_DDS_TYPE(DdsRadioPacket, ubersim_msgs_msg_dds__RadioPacket__desc);
-UBERSIM_DDS_TYPE(DdsRadioFeedback, ubersim_msgs_msg_dds__RadioFeedback__desc);
-UBERSIM_DDS_TYPE(DdsSimCommands, ubersim_msgs_msg_dds__SimCommands__desc);
-UBERSIM_DDS_TYPE(DdsSimState, ubersim_msgs_msg_dds__SimState__desc);
-UBERSIM_DDS_TYPE(DdsSimControl, ubersim_msgs_msg_dds__SimControl__desc);
-UBERSIM_DDS_TYPE(DdsSimControlAck, ubersim_msgs_msg_dds__SimControlAck__desc);
-
-#undef UBERSIM_DDS_TYPE
+template <>
+struct DdsType<DdsVisionFrame> : DdsTypeWith<&ubersim_msgs_msg_dds__VisionFrame__desc> {};
+template <>
+struct DdsType<DdsFieldGeometry> : DdsTypeWith<&ubersim_msgs_msg_dds__FieldGeometry__desc> {};
+template <>
+struct DdsType<DdsVisionGeometry> : DdsTypeWith<&ubersim_msgs_msg_dds__VisionGeometry__desc> {};
+template <>
+struct DdsType<DdsRadioPacket> : DdsTypeWith<&ubersim_msgs_msg_dds__RadioPacket__desc> {};
+template <>
+struct DdsType<DdsRadioFeedback> : DdsTypeWith<&ubersim_msgs_msg_dds__RadioFeedback__desc> {};
+template <>
+struct DdsType<DdsSimCommands> : DdsTypeWith<&ubersim_msgs_msg_dds__SimCommands__desc> {};
+template <>
+struct DdsType<DdsSimState> : DdsTypeWith<&ubersim_msgs_msg_dds__SimState__desc> {};
+template <>
+struct DdsType<DdsSimControl> : DdsTypeWith<&ubersim_msgs_msg_dds__SimControl__desc> {};
+template <>
+struct DdsType<DdsSimControlAck> : DdsTypeWith<&ubersim_msgs_msg_dds__SimControlAck__desc> {};
 
 }  // namespace ubersim::dds
