@@ -41,7 +41,13 @@ SimRig::SimRig(const RigPaths& paths, const RigOptions& options)
 
   bus_ = std::make_unique<MessageBus>(with_receive_buffer(default_lcm_url()));
   bus_->subscribe<sim_state_t>(channels_(Channel::SimState), [this](const sim_state_t& s) {
+    // Physics publishes a step's state again after a placement and, while idle
+    // in lockstep, once a second of wall time: handlers see each step once, so
+    // that what they record does not depend on the wall clock.
+    const bool new_step = s.step > state_.step || dispatched_step_ < 0;
     state_ = s;
+    if (!new_step || s.step == dispatched_step_) return;
+    dispatched_step_ = s.step;
     for (auto& handler : state_handlers_) handler(s);
   });
   bus_->subscribe<vision_frame_t>(channels_(Channel::Vision), [this](const vision_frame_t& f) {

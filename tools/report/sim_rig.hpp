@@ -62,7 +62,8 @@ class SimRig {
   SimRig(const SimRig&) = delete;
   SimRig& operator=(const SimRig&) = delete;
 
-  // Every SIM_STATE and every camera frame (marker frames excluded), in order.
+  // Each step's SIM_STATE once (not the repeats physics publishes after a
+  // placement or while idle), and every camera frame (marker frames excluded).
   void on_state(std::function<void(const sim_state_t&)> handler);
   void on_frame(std::function<void(const vision_frame_t&)> handler);
 
@@ -103,6 +104,7 @@ class SimRig {
   std::vector<std::function<void(const vision_frame_t&)>> frame_handlers_;
   std::map<std::int64_t, sim_control_ack_t> acks_;
   sim_state_t state_{};
+  std::int64_t dispatched_step_ = -1;  // step of the last state passed to the handlers
   int marker_camera_ = -1;
   double marker_time_ = -1;  // t_capture of the newest marker frame (s)
   std::int64_t request_id_ = 0;
