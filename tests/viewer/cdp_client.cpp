@@ -33,22 +33,23 @@ class CdpConnection {
     client_.clear_access_channels(websocketpp::log::alevel::all);
     client_.clear_error_channels(websocketpp::log::elevel::all);
     client_.init_asio();
-    client_.set_open_handler([this](websocketpp::connection_hdl) {
+    client_.set_open_handler([this](const websocketpp::connection_hdl&) {
       std::lock_guard<std::mutex> lock(mutex_);
       open_ = true;
       changed_.notify_all();
     });
-    client_.set_fail_handler([this](websocketpp::connection_hdl) {
+    client_.set_fail_handler([this](const websocketpp::connection_hdl&) {
       std::lock_guard<std::mutex> lock(mutex_);
       failed_ = true;
       changed_.notify_all();
     });
-    client_.set_close_handler([this](websocketpp::connection_hdl) {
+    client_.set_close_handler([this](const websocketpp::connection_hdl&) {
       std::lock_guard<std::mutex> lock(mutex_);
       failed_ = true;
       changed_.notify_all();
     });
-    client_.set_message_handler([this](websocketpp::connection_hdl, Client::message_ptr message) {
+    client_.set_message_handler([this](const websocketpp::connection_hdl&,
+                                       const Client::message_ptr& message) {
       auto reply = nlohmann::json::parse(message->get_payload(), nullptr, false);
       // Events carry no id; replies to our requests carry the request's.
       if (reply.is_discarded() || !reply.contains("id") || !reply["id"].is_number_integer()) return;
@@ -126,7 +127,7 @@ std::string wait_for_devtools_url(const std::filesystem::path& profile,
     std::ifstream file(profile / "DevToolsActivePort");
     std::string port, path;
     if (std::getline(file, port) && std::getline(file, path) && !port.empty() && !path.empty()) {
-      return "ws://127.0.0.1:" + port + path;
+      return std::string("ws://127.0.0.1:").append(port).append(path);
     }
     if (!process.running()) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(100));

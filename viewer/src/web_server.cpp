@@ -63,7 +63,7 @@ struct WebServer::Impl {
   std::atomic<std::uint64_t> skipped{0};
   std::atomic<std::uint64_t> replaced{0};
 
-  void serve_http(Handle handle) {
+  void serve_http(const Handle& handle) {
     Server::connection_ptr connection = server.get_con_from_hdl(handle);
     const std::string name = served_file_name(connection->get_resource());
     std::ifstream file;
@@ -120,18 +120,18 @@ WebServer::WebServer(const WebServerOptions& options, MessageHandler on_message)
   server.clear_error_channels(websocketpp::log::elevel::all);
   server.init_asio();
   server.set_reuse_addr(true);
-  server.set_max_message_size(64 * 1024);  // control requests are tiny
-  server.set_http_handler([&impl](Handle handle) { impl.serve_http(handle); });
-  server.set_open_handler([&impl](Handle handle) {
+  server.set_max_message_size(std::size_t{64} * 1024);  // control requests are tiny
+  server.set_http_handler([&impl](const Handle& handle) { impl.serve_http(handle); });
+  server.set_open_handler([&impl](const Handle& handle) {
     impl.connections.insert(handle);
     impl.clients = impl.connections.size();
   });
-  server.set_close_handler([&impl](Handle handle) {
+  server.set_close_handler([&impl](const Handle& handle) {
     impl.connections.erase(handle);
     impl.clients = impl.connections.size();
   });
-  server.set_fail_handler([&impl](Handle handle) { impl.connections.erase(handle); });
-  server.set_message_handler([&impl](Handle, Server::message_ptr message) {
+  server.set_fail_handler([&impl](const Handle& handle) { impl.connections.erase(handle); });
+  server.set_message_handler([&impl](const Handle&, const Server::message_ptr& message) {
     if (message->get_opcode() == websocketpp::frame::opcode::text) {
       impl.on_message(message->get_payload());
     }
