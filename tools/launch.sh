@@ -29,13 +29,15 @@ usage: tools/launch.sh [options]
   --log-dir DIR        where process logs go (default: a new folder under /tmp)
   --viewer             start the browser viewer (ubersim_viewer) and print its address
   --viewer-port P      the viewer's port on 127.0.0.1 (default 8080)
+  --ssl-bridge         start the SSL protocol bridge (SSL-Vision on 224.5.23.2:10020, simulation
+                       control on 10300, robot control on 10301 blue / 10302 yellow)
   --quiet              less process log output
 USAGE
 }
 
 scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix=""
-vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port=8080
+vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port=8080 ssl_bridge=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --scenario) scenario=$2; shift 2 ;;
@@ -56,6 +58,7 @@ while [ $# -gt 0 ]; do
     --quiet) quiet=1; shift ;;
     --viewer) viewer=1; shift ;;
     --viewer-port) viewer_port=$2; shift 2 ;;
+    --ssl-bridge) ssl_bridge=1; shift ;;
     -h|--help) usage; exit 0 ;;
     *) echo "launch: unknown option '$1'" >&2; usage >&2; exit 2 ;;
   esac
@@ -73,6 +76,7 @@ case "$demo" in yellow|blue|both|none) ;; *) echo "launch: --demo takes yellow, 
 for program in ubersim_physics ubersim_vision ubersim_radio ubersim_demo_team; do
   [ -x "$bin_dir/$program" ] || { echo "launch: $bin_dir/$program not found: run tools/build.sh" >&2; exit 2; }
 done
+[ "$ssl_bridge" = 0 ] || [ -x "$bin_dir/ubersim_ssl_bridge" ] || { echo "launch: $bin_dir/ubersim_ssl_bridge not found (is protobuf installed?): run tools/build.sh" >&2; exit 2; }
 [ "$viewer" = 0 ] || [ -x "$bin_dir/ubersim_viewer" ] || { echo "launch: $bin_dir/ubersim_viewer not found: run tools/build.sh" >&2; exit 2; }
 [ -n "$log_dir" ] || log_dir=$(mktemp -d /tmp/ubersim-XXXXXX)
 mkdir -p "$log_dir"
@@ -109,11 +113,13 @@ for team in yellow blue; do
     start "demo_$team" "$bin_dir/ubersim_demo_team" "${common[@]}" --team "$team" --mode "$demo_mode"
   fi
 done
+[ "$ssl_bridge" = 1 ] && start ssl_bridge "$bin_dir/ubersim_ssl_bridge" "${common[@]}"
 [ "$viewer" = 1 ] && start viewer "$bin_dir/ubersim_viewer" "${common[@]}" --port "$viewer_port"
 physics_pid=${pids[1]:-}
 [ -n "$log_file" ] || physics_pid=${pids[0]}
 echo "channels: ${prefix}VISION ${prefix}VISION_GEOMETRY ${prefix}RADIO_YELLOW ${prefix}RADIO_BLUE ${prefix}RADIO_FEEDBACK_YELLOW ${prefix}RADIO_FEEDBACK_BLUE ${prefix}SIM_STATE ${prefix}SIM_CONTROL"
 echo "watch:    tools/lcm-spy.sh -l '$lcm_url'      control: build/bin/ubersim_referee --help"
+[ "$ssl_bridge" = 1 ] && echo "ssl:      SSL-Vision 224.5.23.2:10020, simulation control 127.0.0.1:10300, robot control 10301 (blue) / 10302 (yellow)"
 [ "$viewer" = 1 ] && echo "viewer:   http://127.0.0.1:$viewer_port/   (open it in a browser)"
 [ "$vision" = 0 ] && echo "vision:   not started: a real vision server must publish ${prefix}VISION"
 [ "$radio" = 0 ] && echo "radio:    not started: a real radio server must listen on ${prefix}RADIO_YELLOW / ${prefix}RADIO_BLUE"
