@@ -235,7 +235,7 @@ TEST_F(ViewerServerTest, APageThatStopsReadingCostsFramesNotMemory) {
               static_cast<unsigned long long>(stats.frames_sent),
               static_cast<unsigned long long>(stats.frames_skipped),
               static_cast<unsigned long long>(stats.frames_replaced), growth_kb);
-  EXPECT_LT(stats.frames_sent, 40u) << "only what fits the socket and the 256 kB allowance";
+  EXPECT_LT(stats.frames_sent, 40u) << "only what fits the socket and the 64 kB allowance";
   EXPECT_GT(stats.frames_skipped, 200u);
   EXPECT_LT(growth_kb, 20 * 1024) << "80 MB were offered; little may stay";
 }

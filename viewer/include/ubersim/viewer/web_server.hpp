@@ -17,7 +17,7 @@ struct WebServerOptions {
   std::string bind_address = "127.0.0.1";
   std::uint16_t port = 8080;  // 0 = any free port (see WebServer::port())
   std::string web_dir;        // the page's files
-  std::size_t max_buffered_bytes = std::size_t{256} * 1024;
+  std::size_t max_buffered_bytes = std::size_t{64} * 1024;  // ~7 frames of 22 robots
 };
 
 struct WebServerStats {
