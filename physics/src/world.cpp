@@ -4,8 +4,6 @@
 #include <cmath>
 #include <map>
 #include <mutex>
-#include <set>
-#include <sstream>
 
 #include "ubersim/config_paths.hpp"
 #include "ubersim/scenario_config.hpp"
@@ -13,22 +11,8 @@
 namespace ubersim::physics {
 namespace {
 
-constexpr int kMaxRobotId = 99;  // the scenario format's two-digit ids (YELLOW_0 .. BLUE_99)
-
 std::string robot_name(Team team, int id) {
   return std::string(team_name(team)) + " " + std::to_string(id);
-}
-
-bool finite_all(const dReal* v, int n) {
-  for (int i = 0; i < n; ++i) {
-    if (!std::isfinite(v[i])) return false;
-  }
-  return true;
-}
-
-bool body_finite(dBodyID b) {
-  return finite_all(dBodyGetPosition(b), 3) && finite_all(dBodyGetQuaternion(b), 4) &&
-         finite_all(dBodyGetLinearVel(b), 3) && finite_all(dBodyGetAngularVel(b), 3);
 }
 
 }  // namespace
@@ -249,81 +233,6 @@ void World::step() {
   check_safety(true);
 }
 
-bool World::inside_walls(double x, double y, double margin) const {
-  return std::abs(x) <= setup_.field.half_length_to_wall() + margin &&
-         std::abs(y) <= setup_.field.half_width_to_wall() + margin;
-}
-
-bool World::body_sane(dBodyID b) const {
-  if (!body_finite(b)) return false;
-  const dReal* v = dBodyGetLinearVel(b);
-  const dReal* w = dBodyGetAngularVel(b);
-  const double max_v = setup_.physics.max_linear_speed;
-  const double max_w = setup_.physics.max_angular_speed;
-  return v[0] * v[0] + v[1] * v[1] + v[2] * v[2] <= max_v * max_v &&
-         w[0] * w[0] + w[1] * w[1] + w[2] * w[2] <= max_w * max_w;
-}
-
-void World::check_safety(bool after_step) {
-  // Beyond the walls' outer faces nothing can be legitimately. Before a step
-  // this keeps a broken body away from ODE (which aborts on a non-finite
-  // quaternion); after it, it keeps it out of what we publish.
-  const double margin = setup_.field.wall_thickness;
-  const dBodyID ball = ball_->body();
-  const dReal* bp = dBodyGetPosition(ball);
-  const bool ball_sane = body_sane(ball);
-  if (!ball_sane || !inside_walls(bp[0], bp[1], margin) || bp[2] < -setup_.ball.radius) {
-    // Over the wall or through a fault: back inside where it was last seen
-    // good, on the floor, at rest.
-    ++counters_.bodies_reset;
-    const double r = setup_.ball.radius;
-    const double x = std::clamp(ball_last_good_[0], -setup_.field.half_length_to_wall() + r,
-                                setup_.field.half_length_to_wall() - r);
-    const double y = std::clamp(ball_last_good_[1], -setup_.field.half_width_to_wall() + r,
-                                setup_.field.half_width_to_wall() - r);
-    log_.warn("reset:ball",
-              std::string("ball ") +
-                  (ball_sane ? "left the field" : "had a non-finite or runaway state") +
-                  ": put back at (" + std::to_string(x) + ", " + std::to_string(y) + ") at rest");
-    place_ball(x, y, 0, 0, 0, 0);
-  } else if (after_step) {
-    ball_last_good_ = {bp[0], bp[1], bp[2]};
-  }
-
-  const double upright_limit = std::cos(setup_.physics.tip_angle);
-  for (auto& r : robots_) {
-    body_buffer_.clear();
-    r->bodies(body_buffer_);
-    bool sane = true;
-    for (dBodyID b : body_buffer_) sane = sane && body_sane(b);
-    double x, y;
-    r->position(x, y);
-    if (!sane || !inside_walls(x, y, margin)) {
-      ++counters_.bodies_reset;
-      const PlanarState good = r->last_good_state();
-      log_.warn("reset:" + robot_name(r->team(), r->id()),
-                robot_name(r->team(), r->id()) +
-                    (sane ? " left the field" : " had a non-finite or runaway state") +
-                    ": put back at (" + std::to_string(good.x) + ", " + std::to_string(good.y) +
-                    ") at rest");
-      PlanarState rest = good;
-      rest.vx = rest.vy = rest.omega = 0;
-      r->place(rest);
-      continue;
-    }
-    if (!after_step) continue;
-    if (r->uprightness() < upright_limit) {
-      ++counters_.robots_set_upright;
-      log_.warn("upright:" + robot_name(r->team(), r->id()),
-                robot_name(r->team(), r->id()) + " tipped over: set upright where it was");
-      PlanarState rest = r->planar_state();
-      rest.vx = rest.vy = rest.omega = 0;
-      r->place(rest);
-    }
-    r->remember_good_state();
-  }
-}
-
 void World::fill_state(sim_state_t& out) const {
   out.sim_time = time();
   out.step = step_;
@@ -345,144 +254,6 @@ void World::fill_state(sim_state_t& out) const {
   for (std::size_t i = 0; i < robots_.size(); ++i) {
     robots_[i]->fill_state(out.robots[i], *ball_, time());
   }
-}
-
-void World::move_ball_out_of_robots(std::string& notes) {
-  const double r = setup_.ball.radius;
-  for (auto& robot : robots_) {
-    const dReal* bp = ball_->position();
-    const PlanarState s = robot->planar_state();
-    const double c = std::cos(s.heading);
-    const double sn = std::sin(s.heading);
-    const Vec2 local{c * (bp[0] - s.x) + sn * (bp[1] - s.y),
-                     -sn * (bp[0] - s.x) + c * (bp[1] - s.y)};
-    if (bp[2] > robot->type().height + r) continue;  // above it
-    Vec2 closest;
-    Vec2 normal;
-    const double distance = robot->outline().signed_distance(local, &closest, &normal);
-    if (distance >= r) continue;
-    const Vec2 out_local = closest + (r + setup_.physics.contact_surface_layer) * normal;
-    const Vec2 out = rotate(out_local, c, sn);
-    const dReal* v = ball_->velocity();
-    place_ball(s.x + out.x, s.y + out.y, bp[2], v[0], v[1], v[2]);
-    notes += "ball moved out of " + robot_name(robot->team(), robot->id()) + "; ";
-  }
-}
-
-PlaceOutcome World::place(const sim_control_t& request, bool remove_all_first) {
-  PlaceOutcome outcome;
-  // Check everything first: a bad request changes nothing.
-  std::set<std::pair<int, int>> seen;
-  std::vector<std::shared_ptr<const RobotTypeConfig>> types(request.robots.size());
-  for (std::size_t i = 0; i < request.robots.size(); ++i) {
-    const robot_placement_t& p = request.robots[i];
-    if (p.team != 0 && p.team != 1) {
-      outcome.message = "robot " + std::to_string(i) + ": unknown team " + std::to_string(p.team);
-      return outcome;
-    }
-    const Team team = static_cast<Team>(p.team);
-    if (p.robot_id < 0 || p.robot_id > kMaxRobotId) {
-      outcome.message =
-          "robot id " + std::to_string(p.robot_id) + " outside 0.." + std::to_string(kMaxRobotId);
-      return outcome;
-    }
-    if (!seen.insert({p.team, p.robot_id}).second) {
-      outcome.message = robot_name(team, p.robot_id) + " placed twice in one request";
-      return outcome;
-    }
-    if (!p.present) continue;
-    for (double v : {p.x, p.y, p.orientation, p.vx, p.vy, p.omega}) {
-      if (!std::isfinite(v)) {
-        outcome.message = robot_name(team, p.robot_id) + ": non-finite placement";
-        return outcome;
-      }
-    }
-    if (!p.robot_type.empty()) {
-      try {
-        types[i] = setup_.robot_types(p.robot_type);
-      } catch (const std::exception& e) {
-        outcome.message =
-            robot_name(team, p.robot_id) + ": robot type '" + p.robot_type + "': " + e.what();
-        return outcome;
-      }
-    } else if (remove_all_first || robot(team, p.robot_id) == nullptr) {
-      outcome.message = robot_name(team, p.robot_id) + " is new: it needs a robot_type";
-      return outcome;
-    }
-  }
-  if (request.has_ball) {
-    for (double v : {request.ball.position[0], request.ball.position[1], request.ball.position[2],
-                     request.ball.linear_velocity[0], request.ball.linear_velocity[1],
-                     request.ball.linear_velocity[2]}) {
-      if (!std::isfinite(v)) {
-        outcome.message = "non-finite ball placement";
-        return outcome;
-      }
-    }
-  }
-
-  std::string notes;
-  int placed = 0;
-  int removed = 0;
-  if (remove_all_first) {
-    removed = static_cast<int>(robots_.size());
-    robots_.clear();
-  }
-  for (std::size_t i = 0; i < request.robots.size(); ++i) {
-    const robot_placement_t& p = request.robots[i];
-    const Team team = static_cast<Team>(p.team);
-    if (!p.present) {
-      if (remove_robot(team, p.robot_id)) ++removed;
-      continue;
-    }
-    Robot* existing = robot(team, p.robot_id);
-    const auto type = types[i] ? types[i] : existing->type_ptr();
-    // Inside the walls, and no faster than the robot can go.
-    const double limit_x = setup_.field.half_length_to_wall() - type->radius;
-    const double limit_y = setup_.field.half_width_to_wall() - type->radius;
-    PlanarState s;
-    s.x = std::clamp(p.x, -limit_x, limit_x);
-    s.y = std::clamp(p.y, -limit_y, limit_y);
-    if (s.x != p.x || s.y != p.y)
-      notes += robot_name(team, p.robot_id) + " kept inside the walls; ";
-    s.heading = p.orientation;
-    const double speed = std::hypot(p.vx, p.vy);
-    const double scale = speed > type->max_speed ? type->max_speed / speed : 1.0;
-    s.vx = p.vx * scale;
-    s.vy = p.vy * scale;
-    s.omega = std::clamp(p.omega, -type->max_angular_speed, type->max_angular_speed);
-    if (scale != 1.0 || s.omega != p.omega) {
-      notes += robot_name(team, p.robot_id) + " velocity clamped to its limits; ";
-    }
-    if (existing != nullptr && existing->type_ptr() == type) {
-      existing->place(s);
-      existing->remember_good_state();
-    } else {
-      add_robot(team, p.robot_id, type->name, s);
-    }
-    ++placed;
-  }
-  if (request.has_ball) {
-    const double r = setup_.ball.radius;
-    const double limit_x = setup_.field.half_length_to_wall() - r;
-    const double limit_y = setup_.field.half_width_to_wall() - r;
-    const double x = std::clamp(request.ball.position[0], -limit_x, limit_x);
-    const double y = std::clamp(request.ball.position[1], -limit_y, limit_y);
-    if (x != request.ball.position[0] || y != request.ball.position[1]) {
-      notes += "ball kept inside the walls; ";
-    }
-    place_ball(x, y, request.ball.position[2], request.ball.linear_velocity[0],
-               request.ball.linear_velocity[1], request.ball.linear_velocity[2]);
-  }
-  // Wherever robots and ball ended up, the ball is never left inside a robot.
-  move_ball_out_of_robots(notes);
-  std::ostringstream message;
-  message << "placed " << placed << " robot(s), removed " << removed;
-  if (request.has_ball) message << ", placed the ball";
-  if (!notes.empty()) message << "; " << notes.substr(0, notes.size() - 2);
-  outcome.ok = true;
-  outcome.message = message.str();
-  return outcome;
 }
 
 }  // namespace ubersim::physics

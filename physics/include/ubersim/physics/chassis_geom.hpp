@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ubersim/physics/geometry2d.hpp"
+#include "ubersim/physics/polygon_collision.hpp"
 
 namespace ubersim::physics {
 
@@ -34,17 +35,5 @@ int chassis_geom_class();
 // A chassis geom in `space`. `outline` must outlive the geom.
 dGeomID create_chassis_geom(dSpaceID space, const ChassisOutline* outline);
 const ChassisOutline* chassis_outline_of(dGeomID geom);
-
-// Exposed for tests: 2D collision of two convex polygons (counter-clockwise,
-// with outward edge normals). normal points from a to b; up to 2 points.
-struct PolygonContact {
-  Vec2 normal;
-  int count = 0;
-  Vec2 points[2];
-  double depths[2] = {0, 0};
-};
-bool collide_polygons(const std::vector<Vec2>& a_vertices, const std::vector<Vec2>& a_normals,
-                      const std::vector<Vec2>& b_vertices, const std::vector<Vec2>& b_normals,
-                      PolygonContact* contact);
 
 }  // namespace ubersim::physics
