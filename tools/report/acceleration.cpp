@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "fit.hpp"
@@ -70,8 +71,14 @@ double fit_speed_slope(const std::vector<TrajectorySample>& samples, double begi
   return fit_line(t, v).slope;
 }
 
-double fit_position_curvature(const std::vector<TrajectorySample>& samples, double begin,
-                              double end) {
+// Acceleration from positions (VISION): twice the curvature of a quadratic fit,
+// with its standard error. NaN when the window holds too few frames.
+struct Estimate {
+  double value = std::numeric_limits<double>::quiet_NaN();
+  double standard_error = std::numeric_limits<double>::quiet_NaN();
+};
+Estimate fit_position_curvature(const std::vector<TrajectorySample>& samples, double begin,
+                                double end) {
   std::vector<double> t, s;
   for (const auto& p : samples) {
     if (p.t < begin || p.t > end) continue;
@@ -79,7 +86,12 @@ double fit_position_curvature(const std::vector<TrajectorySample>& samples, doub
     s.push_back(p.s);
   }
   const QuadraticFit fit = fit_quadratic(t, s);
-  return fit.points >= 5 ? 2 * fit.c2 : 0.0;
+  Estimate e;
+  if (fit.points >= 6) {
+    e.value = 2 * fit.c2;
+    e.standard_error = 2 * fit.c2_standard_error;
+  }
+  return e;
 }
 
 radio_packet_t forward_command(double t_sent, double speed) {
@@ -154,8 +166,10 @@ RampResult run_ramp(const ExperimentSetup& setup, const RampSettings& settings) 
     trial.seed = options.vision_seed;
     project(record.truth, record.vision, t0, trial.truth, trial.vision, &trial.sideways_drift);
     trial.truth_acceleration = fit_speed_slope(trial.truth, result.window_begin, result.window_end);
-    trial.vision_acceleration =
+    const Estimate vision =
         fit_position_curvature(trial.vision, result.window_begin, result.window_end);
+    trial.vision_acceleration = vision.value;
+    trial.vision_standard_error = vision.standard_error;
     std::vector<double> end_speeds;
     for (const auto& s : trial.truth) {
       if (s.t >= duration - 0.2) end_speeds.push_back(s.v);
@@ -222,7 +236,9 @@ SweepResult run_sweep(const ExperimentSetup& setup, const SweepSettings& setting
       if (begin < 0) begin = 0;
       if (end <= begin) end = truth.empty() ? 0 : truth.back().t;
       point.truth = fit_speed_slope(truth, begin, end);
-      point.vision = fit_position_curvature(vision, begin, end);
+      const Estimate seen = fit_position_curvature(vision, begin, end);
+      point.vision = seen.value;
+      point.vision_standard_error = seen.standard_error;
       result.points.push_back(point);
     }
   }

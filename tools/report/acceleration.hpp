@@ -46,7 +46,8 @@ struct RampTrial {
   std::vector<TrajectorySample> truth;   // every physics step
   std::vector<TrajectorySample> vision;  // every frame that saw the robot
   double truth_acceleration = 0;         // m/s^2, fitted in the window
-  double vision_acceleration = 0;        // m/s^2
+  double vision_acceleration = 0;        // m/s^2 (NaN: too few frames in the window)
+  double vision_standard_error = 0;      // m/s^2, of the fit
   double top_speed = 0;                  // m/s, mean ground-truth speed over the last 0.2 s
   double sideways_drift = 0;             // m, largest distance off the starting line
 };
@@ -76,11 +77,12 @@ struct SweepSettings {
 };
 
 struct SweepPoint {
-  bool wheel_speeds = true;    // false: velocity commands (on-board limit applies)
-  double commanded = 0;        // m/s^2
-  double truth = 0;            // m/s^2, achieved, ground truth
-  double vision = 0;           // m/s^2, achieved, from VISION (0 when too few frames)
-  bool reached_window = true;  // false: the robot never got through the speed window
+  bool wheel_speeds = true;          // false: velocity commands (on-board limit applies)
+  double commanded = 0;              // m/s^2
+  double truth = 0;                  // m/s^2, achieved, ground truth
+  double vision = 0;                 // m/s^2, achieved, from VISION (NaN: too few frames)
+  double vision_standard_error = 0;  // m/s^2, of that fit (few frames: large)
+  bool reached_window = true;        // false: the robot never got through the speed window
 };
 
 struct SweepResult {

@@ -38,7 +38,7 @@ LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
 QuadraticFit fit_quadratic(const std::vector<double>& x, const std::vector<double>& y) {
   QuadraticFit fit;
   const std::size_t n = std::min(x.size(), y.size());
-  if (n < 4) return fit;
+  if (n < 5) return fit;
   double centre = 0;
   for (std::size_t i = 0; i < n; ++i) centre += x[i];
   centre /= static_cast<double>(n);
@@ -53,6 +53,10 @@ QuadraticFit fit_quadratic(const std::vector<double>& x, const std::vector<doubl
     b(row) = y[i];
   }
   const Eigen::Vector3d c = a.colPivHouseholderQr().solve(b);
+  const double residual = (a * c - b).squaredNorm();
+  const Eigen::Matrix3d covariance =
+      (a.transpose() * a).inverse() * (residual / static_cast<double>(n - 3));
+  fit.c2_standard_error = std::sqrt(std::max(0.0, covariance(2, 2)));
   // Back from u = x - centre to x.
   fit.c2 = c(2);
   fit.c1 = c(1) - 2 * c(2) * centre;

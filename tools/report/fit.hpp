@@ -16,9 +16,10 @@ LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);
 
 struct QuadraticFit {
   double c0 = 0, c1 = 0, c2 = 0;  // y = c0 + c1 x + c2 x^2
+  double c2_standard_error = 0;   // from the residuals
   std::size_t points = 0;
 };
-// Centred on the mean of x for conditioning. Fewer than 4 points: points = 0.
+// Centred on the mean of x for conditioning. Fewer than 5 points: points = 0.
 QuadraticFit fit_quadratic(const std::vector<double>& x, const std::vector<double>& y);
 
 struct ErrorSummary {

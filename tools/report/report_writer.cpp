@@ -21,6 +21,11 @@ std::ofstream open(const std::string& dir, const std::string& name) {
   return out;
 }
 
+// A value for gnuplot: '?' (missing) when not finite.
+std::string number(double value) {
+  return std::isfinite(value) ? fmt::format("{:.5f}", value) : std::string("?");
+}
+
 std::string percent(double relative) {
   return fmt::format("{:+.1f} %", 100 * relative);
 }
@@ -117,12 +122,14 @@ void write_data_files(const std::string& dir, const FidelityResults& results) {
         i, type, i, s.prediction.acceleration, i, s.prediction.onboard_limit, i,
         s.prediction.torque_limited, i, s.prediction.traction_limited);
     auto out = open(dir, "sweep_" + type + ".dat");
-    out << "# commanded (m/s^2)  achieved, ground truth (m/s^2)  achieved, VISION (m/s^2); block 0 "
-           "wheel-speed commands, block 1 velocity commands\n";
+    out << "# commanded (m/s^2)  achieved, ground truth (m/s^2)  achieved, VISION (m/s^2)  its "
+           "standard error (m/s^2); '?' = too few frames; block 0 wheel-speed commands, block 1 "
+           "velocity commands\n";
     for (const bool wheels : {true, false}) {
       for (const auto& p : s.points) {
         if (p.wheel_speeds != wheels) continue;
-        out << fmt::format("{:.5f} {:.5f} {:.5f}\n", p.commanded, p.truth, p.vision);
+        out << fmt::format("{:.5f} {:.5f} {} {}\n", p.commanded, p.truth, number(p.vision),
+                           number(p.vision_standard_error));
       }
       out << "\n\n";
     }

@@ -22,7 +22,7 @@ set output dir.'/figure8_error.png'
 set size noratio
 set terminal pngcairo size 1400,700
 set multiplot layout 1, 2 title 'Figure-8 errors over time (the first lap starts from rest)'
-set key top right
+set key inside top right
 set xlabel 'time (s)'
 set ylabel 'tracking error (m)'
 set title 'tracking error: to the reference point at the same time'

@@ -19,7 +19,7 @@ do for [i=0:sweep_count-1] {
        pred with lines dt 2 lw 2 lc rgb 'black' title sprintf('predicted limit %.2f m/s^2', pred), \
        onboard with lines dt 4 lw 1.5 lc rgb '#2ca02c' title sprintf('on-board limit %.2f m/s^2', onboard), \
        dir.'/sweep_'.type.'.dat' index 0 using 1:2 with linespoints pt 7 ps 1.2 lc rgb '#1f77b4' title 'wheel-speed commands', \
-       dir.'/sweep_'.type.'.dat' index 0 using 1:3 with points pt 6 ps 1.2 lc rgb '#d62728' title 'the same from VISION', \
+       dir.'/sweep_'.type.'.dat' index 0 using 1:3:(2*$4) with yerrorbars pt 6 ps 1.2 lc rgb '#d62728' title 'the same from VISION (±2 standard errors)', \
        dir.'/sweep_'.type.'.dat' index 1 using 1:2 with linespoints pt 5 ps 1.0 lc rgb '#2ca02c' title 'velocity commands'
 }
 unset multiplot
