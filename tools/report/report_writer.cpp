@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 
 #include "fit.hpp"
@@ -161,8 +162,9 @@ void write_data_files(const std::string& dir, const FidelityResults& results) {
   if (!results.figure8.empty()) {
     auto path = open(dir, "figure8_path.dat");
     path << "# x (m)  y (m): the intended figure-8, one lap\n";
-    for (const auto& p : results.figure8.front().path) {
-      path << fmt::format("{:.6f} {:.6f}\n", p.x, p.y);
+    const auto& curve = results.figure8.front().path;
+    for (std::size_t i = 0; i < curve.size(); i += 4) {  // 1000 points draw it smoothly
+      path << fmt::format("{:.6f} {:.6f}\n", curve[i].x, curve[i].y);
     }
     path << fmt::format("{:.6f} {:.6f}\n", results.figure8.front().path.front().x,
                         results.figure8.front().path.front().y);
@@ -302,9 +304,12 @@ int write_fidelity_markdown(const std::string& dir, const FidelityResults& resul
         if (c.what.find("saturation") == std::string::npos) below.push_back(c);
       }
       const Check* wb = worst(below);
-      double velocity_plateau = 0;
+      // What velocity commands reach: the highest rate achieved with them.
+      std::optional<double> velocity_plateau;
       for (const auto& p : s.points) {
-        if (!p.wheel_speeds) velocity_plateau = std::max(velocity_plateau, p.truth);
+        if (!p.wheel_speeds) {
+          velocity_plateau = std::max(velocity_plateau.value_or(p.truth), p.truth);
+        }
       }
       md << fmt::format(
           "| {} | {:.2f} m/s^2 | {:.2f} m/s^2 | {:.2f} m/s^2 ({}) | {:.2f} m/s^2 | {} | ±10 % | {} "
@@ -314,7 +319,7 @@ int write_fidelity_markdown(const std::string& dir, const FidelityResults& resul
           percent(saturation.front().error()), verdict(saturation.front().met()),
           wb ? percent(wb->error()) : "-", verdict(count_missed(below) == 0),
           s.prediction.onboard_limit,
-          velocity_plateau > 0 ? fmt::format("{:.2f} m/s^2", velocity_plateau) : std::string("-"));
+          velocity_plateau ? fmt::format("{:.2f} m/s^2", *velocity_plateau) : std::string("-"));
     }
     md << "\n![Achieved against commanded acceleration](saturation.png)\n\n";
   }
