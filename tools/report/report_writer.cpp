@@ -329,7 +329,8 @@ int write_fidelity_markdown(const std::string& dir, const FidelityResults& resul
     const Figure8Settings& f = results.figure8.front().settings;
     md << "## 2. Figure-8 (the paper's Figure 8)\n\n";
     md << fmt::format(
-        "A {} follows a figure-8 {:g} m across at {:g} m/s under the demo team's published "
+        "Robot type `{}` follows a figure-8 {:g} m across at {:g} m/s under the demo team's "
+        "published "
         "controller (tools/demo_team: the world model from VISION, `track()` towards "
         "`figure_eight()` with the demo's gains, one radio packet per camera frame), {:g} laps "
         "from rest at the path's start; the errors leave out the first lap. *Tracking error*: "
@@ -369,7 +370,8 @@ int write_fidelity_markdown(const std::string& dir, const FidelityResults& resul
     const physics::BallConfig& c = ball.ball_config;
     md << "## 3. Ball\n\n";
     md << fmt::format(
-        "Kicked by a {}'s kicker, fired through the radio, on a 44 m carpet (a field file the "
+        "Kicked by the kicker of robot type `{}`, fired through the radio, on a 44 m carpet (a "
+        "field file the "
         "report writes) so that no kick reaches a wall; measured in ground truth. The model "
         "from `config/balls/{}.cfg`: sliding at {:g} m/s^2 until the speed is {:g} of the kick "
         "speed, then rolling at {:g} m/s^2 to rest (tools/report/predictions.hpp). Rest = "

@@ -105,14 +105,21 @@ echo "== figures (gnuplot)"
 )
 
 echo "== report.md"
-commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
-git -C "$root" diff --quiet HEAD 2>/dev/null || commit="$commit (with uncommitted changes)"
-cpu_model=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //')
+# When and where the measurements were made (kept when only re-assembling:
+# all three --skip-* options re-plot and re-write report.md from the files).
+if [ $do_fidelity = 1 ] || [ $do_bench = 1 ] || [ $do_cpu = 1 ]; then
+  commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
+  git -C "$root" diff --quiet HEAD 2>/dev/null || commit="$commit (with uncommitted changes)"
+  cpu_model=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //')
+  {
+    echo "Generated $(date -u '+%Y-%m-%d %H:%M UTC') on $(nproc) cores of ${cpu_model:-unknown CPU},"
+    echo "commit $commit, in $(( $(date +%s) - started )) s$([ $quick = 1 ] && echo ' (--quick: a smoke run, rougher figures)')."
+  } > "$out/run_info.md"
+fi
 {
   echo "# ubersim: fidelity and speed report"
   echo
-  echo "Generated $(date -u '+%Y-%m-%d %H:%M UTC') on $(nproc) cores of ${cpu_model:-unknown CPU},"
-  echo "commit $commit, in $(( $(date +%s) - started )) s$([ $quick = 1 ] && echo ' (--quick: a smoke run, rougher figures)')."
+  [ -f "$out/run_info.md" ] && cat "$out/run_info.md"
   echo "Regenerate with \`tools/report/run_report.sh OUT_DIR\` (\`--help\` for its options)."
   echo
   echo "The paper judged ÜberSim by putting the simulated robot beside the real one. Here the"
