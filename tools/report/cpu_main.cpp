@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -84,7 +85,9 @@ struct Measurement {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app{"ubersim CPU share of the process set in real time"};
   std::string out_dir;
   std::string bin_dir = std::filesystem::canonical("/proc/self/exe").parent_path().string();
@@ -119,8 +122,9 @@ int main(int argc, char** argv) {
       for (const auto& t : types) m.robot_types += (m.robot_types.empty() ? "" : ", ") + t;
 
       const auto log = [&](const std::string& what) {
-        return (std::filesystem::path(out_dir) / "work" / ("cpu_" + scenario + "_" + what + ".log"))
-            .string();
+        std::string file = "cpu_" + scenario;
+        file += "_" + what + ".log";
+        return (std::filesystem::path(out_dir) / "work" / file).string();
       };
       spdlog::info("{}: {} robots, {} s warm-up, {} s window", scenario, m.robots, warmup, seconds);
       ubersim::MessageBus bus(ubersim::with_receive_buffer(ubersim::default_lcm_url()));
@@ -232,6 +236,17 @@ int main(int argc, char** argv) {
     return 0;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
+    return 1;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ubersim_report_cpu: %s\n", e.what());
     return 1;
   }
 }

@@ -33,7 +33,7 @@ double ExperimentSetup::radio_latency(const std::string& profile) const {
 }
 
 std::string ExperimentSetup::write(const std::string& name, const std::string& text) const {
-  const std::string path = (std::filesystem::path(paths_.work_dir) / name).string();
+  std::string path = (std::filesystem::path(paths_.work_dir) / name).string();
   std::ofstream out(path);
   out << text;
   if (!out) throw std::runtime_error("cannot write " + path);

@@ -4,6 +4,7 @@
 // Exit code 0 when every target is met, 3 when some are missed (the report
 // is written either way), 1 on an error.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 
@@ -16,7 +17,9 @@
 #include "ubersim/config_paths.hpp"
 #include "ubersim/logging.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   using namespace ubersim::report;
   CLI::App app{"ubersim fidelity report: the paper's experiments against the real process set"};
   std::string out_dir;
@@ -88,6 +91,17 @@ int main(int argc, char** argv) {
     return 1;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
+    return 1;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ubersim_report_fidelity: %s\n", e.what());
     return 1;
   }
 }

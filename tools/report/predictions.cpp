@@ -7,8 +7,8 @@ namespace ubersim::report {
 
 DrivePrediction predict_forward_drive(const RobotTypeConfig& robot, double gravity) {
   DrivePrediction p;
-  const double supports =
-      static_cast<double>(robot.wheels.size() + robot.caster_positions.size() / 2);
+  const std::size_t casters = robot.caster_positions.size() / 2;  // x y pairs
+  const auto supports = static_cast<double>(robot.wheels.size() + casters);
   const double load = robot.mass * gravity / supports;  // N per support
   const double r = robot.wheel_radius;
   const double spin_inertia =

@@ -98,8 +98,9 @@ void write_data_files(const std::string& dir, const FidelityResults& results) {
     double end = 0;
     for (const auto& trial : r.trials) {
       truth << "# seed " << trial.seed << "\n";
-      for (const auto& s : trial.truth)
+      for (const auto& s : trial.truth) {
         truth << fmt::format("{:.5f} {:.6f} {:.6f}\n", s.t, s.s, s.v);
+      }
       truth << "\n\n";
       vision << "# seed " << trial.seed << "\n";
       for (const auto& s : trial.vision) {
@@ -108,8 +109,10 @@ void write_data_files(const std::string& dir, const FidelityResults& results) {
       vision << "\n\n";
       if (!trial.truth.empty()) end = std::max(end, trial.truth.back().t);
     }
-    for (double t = 0; t <= end + 1e-9; t += 1.0 / 240) {
-      const TrajectorySample s = ideal_ramp(r, t);
+    const double step = 1.0 / 240;
+    const auto steps = static_cast<int>(std::ceil(end / step));
+    for (int k = 0; k <= steps; ++k) {
+      const TrajectorySample s = ideal_ramp(r, k * step);
       ideal << fmt::format("{:.5f} {:.6f} {:.6f}\n", s.t, s.s, s.v);
     }
   }
@@ -188,7 +191,9 @@ void write_data_files(const std::string& dir, const FidelityResults& results) {
     auto model = open(dir, "kick_model.dat");
     model << "# t (s)  s (m)  v (m/s): the config's sliding/rolling model; one block per kick\n";
     for (const auto& k : ball.kicks) {
-      for (double t = 0; t <= k.model.time + 0.05; t += 0.02) {
+      const auto points = static_cast<int>(std::ceil((k.model.time + 0.05) / 0.02));
+      for (int i = 0; i <= points; ++i) {
+        const double t = 0.02 * i;
         model << fmt::format("{:.4f} {:.5f} {:.5f}\n", t,
                              roll_out_distance(ball.ball_config, k.commanded, t),
                              roll_out_speed(ball.ball_config, k.commanded, t));
