@@ -19,8 +19,8 @@ constexpr int kStepsPerCommand = 4;  // 60 Hz radio at 240 Hz physics
 ExperimentSetup::ExperimentSetup(RigPaths paths, std::string ball)
     : paths_(std::move(paths)), ball_name_(std::move(ball)) {
   std::filesystem::create_directories(paths_.work_dir);
-  gravity_ =
-      ConfigFile::load(resolve_config(paths_.config_dir, "physics", "default")).real("GRAVITY");
+  gravity_ = ConfigFile::load(resolve_config(paths_.config_dir, "physics", paths_.physics_config))
+                 .real("GRAVITY");
   ball_ = physics::load_ball_config(paths_.config_dir, ball_name_);
 }
 

@@ -19,7 +19,7 @@ class ExperimentSetup {
   explicit ExperimentSetup(RigPaths paths, std::string ball = "ssl_golf_ball");
 
   const RigPaths& paths() const { return paths_; }
-  double gravity() const { return gravity_; }  // m/s^2, config/physics/default.cfg
+  double gravity() const { return gravity_; }  // m/s^2, GRAVITY of the physics config
   const physics::BallConfig& ball() const { return ball_; }
   RobotTypeConfig robot(const std::string& type) const;
   // LATENCY (s) of a radio profile (name or path).

@@ -4,6 +4,7 @@
 // Exit code 0 when every target is met, 3 when some are missed (the report
 // is written either way), 1 on an error.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -19,21 +20,34 @@
 
 namespace {
 
+// Every robot type the config folder ships, by name, sorted.
+std::vector<std::string> shipped_robot_types(const std::string& config_dir) {
+  std::vector<std::string> types;
+  for (const auto& file :
+       std::filesystem::directory_iterator(std::filesystem::path(config_dir) / "robots")) {
+    if (file.path().extension() == ".cfg") types.push_back(file.path().stem().string());
+  }
+  std::sort(types.begin(), types.end());
+  return types;
+}
+
 int run(int argc, char** argv) {
   using namespace ubersim::report;
   CLI::App app{"ubersim fidelity report: the paper's experiments against the real process set"};
   std::string out_dir;
   std::string bin_dir = std::filesystem::canonical("/proc/self/exe").parent_path().string();
   std::string config_dir = ubersim::default_config_dir().string();
-  std::vector<std::string> types = {"diff_drive_cmdragons02", "omni3_cmdragons02", "omni4_ssl",
-                                    "omni4_ssl_planar"};
+  std::vector<std::string> types;  // default: every robot type in <config>/robots
   std::vector<std::string> parts = {"ramp", "sweep", "figure8", "ball"};
+  std::string physics_config = "default";
   int trials = 5;
   bool quick = false;
   app.add_option("-o,--out", out_dir, "folder for data files and fidelity.md")->required();
   app.add_option("--bin-dir", bin_dir, "where ubersim_physics, _vision, _radio are")
       ->capture_default_str();
   app.add_option("--config-dir", config_dir, "config folder")->capture_default_str();
+  app.add_option("--physics-config", physics_config, "physics config (name or path)")
+      ->capture_default_str();
   app.add_option("--types", types, "robot types for the acceleration tests")->capture_default_str();
   app.add_option("--parts", parts, "ramp sweep figure8 ball")->capture_default_str();
   app.add_option("--trials", trials, "ramp trials per robot type")->capture_default_str();
@@ -43,8 +57,10 @@ int run(int argc, char** argv) {
 
   try {
     const std::set<std::string> want(parts.begin(), parts.end());
+    if (types.empty()) types = shipped_robot_types(config_dir);
     std::filesystem::create_directories(out_dir);
-    const RigPaths paths{bin_dir, config_dir, (std::filesystem::path(out_dir) / "work").string()};
+    const RigPaths paths{bin_dir, config_dir, (std::filesystem::path(out_dir) / "work").string(),
+                         physics_config};
     const ExperimentSetup setup(paths);
     FidelityResults results;
     for (const auto& type : types) {

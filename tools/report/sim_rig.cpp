@@ -68,7 +68,8 @@ SimRig::SimRig(const RigPaths& paths, const RigOptions& options)
   const std::string config_dir = paths_.config_dir;
   physics_ = std::make_unique<ChildProcess>(
       std::vector<std::string>{program("ubersim_physics"), "--lockstep", "--scenario",
-                               options_.scenario, "--config-dir", config_dir},
+                               options_.scenario, "--physics-config", paths_.physics_config,
+                               "--config-dir", config_dir},
       log("physics"));
   sim_control_t ping{};
   ping.action = sim_control_t::PING;

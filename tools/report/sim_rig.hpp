@@ -38,9 +38,10 @@ namespace ubersim::report {
 
 // Where the programs, the config and the scratch files are.
 struct RigPaths {
-  std::string bin_dir;     // ubersim_physics, ubersim_vision, ubersim_radio
-  std::string config_dir;  // the config/ folder
-  std::string work_dir;    // generated config files and the processes' logs
+  std::string bin_dir;                     // ubersim_physics, ubersim_vision, ubersim_radio
+  std::string config_dir;                  // the config/ folder
+  std::string work_dir;                    // generated config files and the processes' logs
+  std::string physics_config = "default";  // ubersim_physics --physics-config (name or path)
 };
 
 struct RigOptions {

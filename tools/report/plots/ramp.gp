@@ -3,7 +3,9 @@ load dir.'/values.gp'
 load 'common.gp'
 columns = ramp_count > 1 ? 2 : 1
 rows = (ramp_count + columns - 1) / columns
+set terminal pngcairo size 1400, 80 + 430 * rows font ',11' enhanced
 
+set key bottom right
 do for [quantity in "speed position"] {
   set output dir.'/ramp_'.quantity.'.png'
   set multiplot layout rows, columns title (quantity eq 'speed' ? \

@@ -1,9 +1,10 @@
 # Figure 2: achieved against commanded acceleration, with the config's predictions.
 load dir.'/values.gp'
 load 'common.gp'
-set output dir.'/saturation.png'
 columns = sweep_count > 1 ? 2 : 1
 rows = (sweep_count + columns - 1) / columns
+set terminal pngcairo size 1400, 80 + 430 * rows font ',11' enhanced
+set output dir.'/saturation.png'
 set multiplot layout rows, columns title 'Achieved against commanded acceleration (ground truth; VISION for wheel-speed ramps)'
 set xlabel 'commanded ramp (m/s^2)'
 set ylabel 'achieved (m/s^2)'
