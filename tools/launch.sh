@@ -101,6 +101,10 @@ echo "ubersim: scenario $scenario, profile $profile, speed $( [ "$lockstep" = 1 
 if [ -n "$log_file" ]; then
   # lcm-logger 1.3.1 lists -l in its help but accepts only the long form.
   start lcm-logger lcm-logger --lcm-url="$lcm_url" -f -q --channel="${prefix}.*" "$log_file"
+  # The logger must be listening before anything publishes: it creates the
+  # file just before it subscribes, so wait for the file (at most 2 s).
+  for _ in $(seq 20); do [ -e "$log_file" ] && break; sleep 0.1; done
+  sleep 0.1
 fi
 physics_args=(--scenario "$scenario" --speed "$speed")
 [ "$lockstep" = 1 ] && physics_args+=(--lockstep)
@@ -126,22 +130,36 @@ echo "watch:    tools/lcm-spy.sh -l '$lcm_url'      control: build/bin/ubersim_r
 echo "Ctrl-C stops everything."
 
 failed=0
-stop_all() {
-  local pid
-  for pid in "${pids[@]}"; do kill -TERM "$pid" 2>/dev/null; done
+# Sends SIGTERM to the given indices of pids[], waits up to 2 s, kills what is left.
+stop_indices() {
+  local i
+  for i in "$@"; do kill -TERM "${pids[$i]}" 2>/dev/null; done
   for _ in $(seq 20); do
     local alive=0
-    for pid in "${pids[@]}"; do kill -0 "$pid" 2>/dev/null && alive=1; done
+    for i in "$@"; do kill -0 "${pids[$i]}" 2>/dev/null && alive=1; done
     [ "$alive" = 0 ] && break
     sleep 0.1
   done
-  for i in "${!pids[@]}"; do
+  for i in "$@"; do
     if kill -0 "${pids[$i]}" 2>/dev/null; then
       echo "launch: ${names[$i]} did not stop within 2 s: killing it" >&2
       kill -KILL "${pids[$i]}" 2>/dev/null
       failed=1
     fi
   done
+}
+stop_all() {
+  # lcm-logger stops last, once every producer has exited, so that the log
+  # holds every message anyone could have received during the run.
+  local i producers=() loggers=()
+  for i in "${!pids[@]}"; do
+    if [ "${names[$i]}" = lcm-logger ]; then loggers+=("$i"); else producers+=("$i"); fi
+  done
+  [ "${#producers[@]}" = 0 ] || stop_indices "${producers[@]}"
+  if [ "${#loggers[@]}" != 0 ]; then
+    sleep 0.2  # let the logger drain what is still in its socket buffer
+    stop_indices "${loggers[@]}"
+  fi
   for i in "${!pids[@]}"; do
     wait "${pids[$i]}" 2>/dev/null
     local status=$?
