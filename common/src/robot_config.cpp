@@ -81,6 +81,8 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
   r.wheel_mass = config.real_in("WHEEL_MASS", 0.001, 10.0);
   r.wheel_friction = config.real_in("WHEEL_FRICTION", 0.0, 10.0);
   r.wheel_lateral_friction = config.real_in("WHEEL_LATERAL_FRICTION", 0.0, 10.0);
+  r.wheel_contact_stiffness = config.real_in("WHEEL_CONTACT_STIFFNESS", 100.0, 1e9);
+  r.wheel_contact_damping = config.real_in("WHEEL_CONTACT_DAMPING", 0.0, 1e7);
   r.motor_max_torque = config.real_in("MOTOR_MAX_TORQUE", 0.0, 100.0);
   r.motor_max_speed = config.real_in("MOTOR_MAX_SPEED", 0.0, 10000.0);
   if (r.drive == DriveKind::Differential) {

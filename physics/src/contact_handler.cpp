@@ -38,9 +38,14 @@ void ContactHandler::touch(dGeomID a, dGeomID b) {
   const auto* tb = static_cast<const GeomTag*>(dGeomGetData(b));
   if (ta == nullptr || tb == nullptr) return;
   if (ta->robot != nullptr && ta->robot == tb->robot) return;  // a robot's own parts
-  if ((ta->kind == GeomKind::Wheel && tb->kind == GeomKind::Ground) ||
-      (tb->kind == GeomKind::Wheel && ta->kind == GeomKind::Ground)) {
-    touch_wheel(ta->kind == GeomKind::Wheel ? a : b, ta->kind == GeomKind::Wheel ? b : a);
+  // Wheels and ball casters are the robot's supports on the floor.
+  auto is_support = [](GeomKind k) { return k == GeomKind::Wheel || k == GeomKind::Caster; };
+  if (is_support(ta->kind) && tb->kind == GeomKind::Ground) {
+    touch_support(a, b);
+    return;
+  }
+  if (is_support(tb->kind) && ta->kind == GeomKind::Ground) {
+    touch_support(b, a);
     return;
   }
   const int n = dCollide(a, b, physics_.max_contacts, buffer_.data(), sizeof(dContactGeom));
@@ -75,15 +80,16 @@ bool tangent_direction(const double* v, const double* normal, double minimum, do
 
 }  // namespace
 
-void ContactHandler::touch_wheel(dGeomID wheel, dGeomID ground) {
-  // A wheel touches the floor within a small margin, not only when it sinks
-  // in: four wheels (or wheels and casters) on one rigid chassis are
-  // statically indeterminate, and a wheel hovering a rounding error above the
-  // floor would otherwise lose all grip.
+void ContactHandler::touch_support(dGeomID support, dGeomID ground) {
+  // A wheel or caster touches the floor within a small margin, not only when
+  // it sinks in: four wheels (or wheels and casters) on one rigid chassis are
+  // statically indeterminate, and a support hovering a rounding error above
+  // the floor would otherwise lose its grip, or (a caster) come and go from
+  // one step to the next and knock the chassis each time it comes back.
   dVector4 plane;
   dGeomPlaneGetParams(ground, plane);
-  const dReal* centre = dGeomGetPosition(wheel);
-  const double radius = dGeomSphereGetRadius(wheel);
+  const dReal* centre = dGeomGetPosition(support);
+  const double radius = dGeomSphereGetRadius(support);
   const double gap =
       plane[0] * centre[0] + plane[1] * centre[1] + plane[2] * centre[2] - plane[3] - radius;
   if (gap > physics_.wheel_contact_margin) return;
@@ -93,14 +99,14 @@ void ContactHandler::touch_wheel(dGeomID wheel, dGeomID ground) {
     contact.geom.normal[k] = plane[k];
   }
   contact.geom.depth = std::max(0.0, -gap);
-  contact.geom.g1 = wheel;
+  contact.geom.g1 = support;
   contact.geom.g2 = ground;
   contact.geom.side1 = contact.geom.side2 = -1;
-  const auto* wheel_tag = static_cast<const GeomTag*>(dGeomGetData(wheel));
-  surface_for(wheel, ground, *wheel_tag, *static_cast<const GeomTag*>(dGeomGetData(ground)),
+  const auto* support_tag = static_cast<const GeomTag*>(dGeomGetData(support));
+  surface_for(support, ground, *support_tag, *static_cast<const GeomTag*>(dGeomGetData(ground)),
               contact);
   const dJointID joint = dJointCreateContact(world_, group_, &contact);
-  dJointAttach(joint, dGeomGetBody(wheel), nullptr);
+  dJointAttach(joint, dGeomGetBody(support), nullptr);
   ++contacts_;
 }
 
@@ -162,6 +168,17 @@ void ContactHandler::surface_for(dGeomID a, dGeomID b, const GeomTag& ta, const 
     const double load = type.mass * physics_.gravity / supports;
     s.mu = type.wheel_friction * load;
     s.mu2 = type.wheel_lateral_friction * load;
+    // The tyre is a stiff spring and damper, not a rigid support: ODE's
+    // ERP/CFM for a spring k and damper c over one step h. Besides being
+    // what a tyre is, this makes the support (wheels plus casters on a rigid
+    // chassis) determinate for the solver: with rigid contacts QuickStep's
+    // few iterations leave the two wheels of a differential drive with
+    // unbalanced forces that yaw it (docs/physics.md, "Tyre compliance").
+    const double spring_per_step = type.wheel_contact_stiffness * physics_.dt();
+    const double denominator = spring_per_step + type.wheel_contact_damping;
+    s.mode |= dContactSoftERP | dContactSoftCFM;
+    s.soft_erp = spring_per_step / denominator;
+    s.soft_cfm = 1.0 / denominator;
   } else if (is(GeomKind::Ground, GeomKind::Chassis)) {
     s.mode = dContactApprox1;
     s.mu = physics_.chassis_ground_friction;

@@ -21,9 +21,8 @@ namespace {
 
 using namespace ubersim::report;
 
-// The shipped robot types a scenario uses. diff_drive_cmdragons02_jointed is left
-// out: it is shipped as a known problem (it spins out under QuickStep with 10
-// iterations, see its config file); the full report shows it failing.
+// The shipped robot types a scenario uses (the full report adds the planar
+// variant of the differential drive).
 const char* kTypes[] = {"diff_drive_cmdragons02", "omni3_cmdragons02", "omni4_ssl",
                         "omni4_ssl_planar"};
 

@@ -39,6 +39,8 @@ struct RobotTypeConfig {
   double wheel_mass = 0;                 // kg (jointed model only)
   double wheel_friction = 0;             // unitless, along the rolling direction
   double wheel_lateral_friction = 0;     // unitless, across it (small for omni rollers)
+  double wheel_contact_stiffness = 0;    // N/m, tyre against floor (jointed model only)
+  double wheel_contact_damping = 0;      // N s/m, likewise
   double motor_max_torque = 0;           // N m at the wheel
   double motor_max_speed = 0;            // rad/s at the wheel
   std::vector<double> caster_positions;  // m, x y pairs (differential drive)

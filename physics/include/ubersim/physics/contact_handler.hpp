@@ -22,7 +22,7 @@ class ContactHandler {
  private:
   static void near_callback(void* data, dGeomID a, dGeomID b);
   void touch(dGeomID a, dGeomID b);
-  void touch_wheel(dGeomID wheel, dGeomID ground);
+  void touch_support(dGeomID support, dGeomID ground);
   void surface_for(dGeomID a, dGeomID b, const GeomTag& ta, const GeomTag& tb, dContact& c) const;
 
   const PhysicsConfig& physics_;
