@@ -163,6 +163,7 @@ struct BenchOptions {
   std::vector<std::string> scenarios = {"division_a_11v11", "division_b_6v6", "field2002_5v5"};
   std::vector<std::string> models = {"jointed", "planar"};
   std::string only;
+  double state_rate = -1;  // Hz of sim time; < 0: the physics config's STATE_PUBLISH_RATE
 };
 
 int run_benchmark(const BenchOptions& options) {
@@ -188,18 +189,25 @@ int run_benchmark(const BenchOptions& options) {
     return 0;
   }
 
+  const PhysicsConfig default_physics = load_physics_config(config_dir, "default");
+  const double state_rate =
+      options.state_rate >= 0 ? options.state_rate : default_physics.state_publish_rate;
+  const std::string state_rate_text =
+      state_rate > 0 ? "at " + std::to_string(static_cast<int>(state_rate)) + " Hz of sim time"
+                     : std::string("every step");
   std::printf(
       "ubersim physics benchmark: 240 Hz, QuickStep %d iterations, as fast as possible,\n"
-      "SIM_STATE published every step on %s, commands at 60 Hz; best of %d runs.\n"
+      "SIM_STATE published %s on %s, commands at 60 Hz; best of %d runs.\n"
       "Load average at start: %s (the machine is shared: figures vary with load).\n\n",
-      load_physics_config(config_dir, "default").solver_iterations, url.c_str(), repeat,
+      default_physics.solver_iterations, state_rate_text.c_str(), url.c_str(), repeat,
       load_average().c_str());
   std::printf("%-18s %-6s %-8s %12s %12s %12s %10s\n", "scenario", "robots", "model", "server [x]",
               "world [x]", "bare ODE [x]", "overhead");
   for (const std::string& scenario : scenarios) {
     for (const std::string& model_name : models) {
       const DriveModel model = model_name == "planar" ? DriveModel::Planar : DriveModel::Jointed;
-      const WorldSetup setup = setup_for(config_dir, scenario, model);
+      WorldSetup setup = setup_for(config_dir, scenario, model);
+      if (options.state_rate >= 0) setup.physics.state_publish_rate = options.state_rate;
       const double sim = seconds > 0 ? seconds : (model == DriveModel::Jointed ? 20.0 : 60.0);
       double server = 0, world = 0, bare = 0;
       for (int i = 0; i < repeat; ++i) {
@@ -235,6 +243,8 @@ int run(int argc, char** argv) {
   app.add_option("--scenarios", o.scenarios, "scenarios to run")->capture_default_str();
   app.add_option("--pacing", o.pacing, "only check real-time pacing for this many sim seconds");
   app.add_option("--models", o.models, "drive models to run")->capture_default_str();
+  app.add_option("--state-rate", o.state_rate,
+                 "SIM_STATE rate (Hz of sim time, 0 = every step; default: the physics config's)");
   app.add_option("--only", o.only, "run just one variant: server, world or bare (for profiling)");
   CLI11_PARSE(app, argc, argv);
   try {
