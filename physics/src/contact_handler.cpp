@@ -94,8 +94,12 @@ void ContactHandler::touch_support(dGeomID support, dGeomID ground) {
       plane[0] * centre[0] + plane[1] * centre[1] + plane[2] * centre[2] - plane[3] - radius;
   if (gap > physics_.wheel_contact_margin) return;
   dContact contact{};
+  // The contact point is on the unloaded rim (one radius below the centre),
+  // not on the floor: a compliant tyre sinks a little (WHEEL_CONTACT_STIFFNESS),
+  // and a contact at the floor would make the wheel roll on a smaller radius,
+  // i.e. drive a few per cent slower than its encoders say.
   for (int k = 0; k < 3; ++k) {
-    contact.geom.pos[k] = centre[k] - plane[k] * (radius + gap);
+    contact.geom.pos[k] = centre[k] - plane[k] * radius;
     contact.geom.normal[k] = plane[k];
   }
   contact.geom.depth = std::max(0.0, -gap);
