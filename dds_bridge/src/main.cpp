@@ -14,6 +14,7 @@
 #include "ubersim/dds_bridge/dds_entity.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/radio/radio_profile.hpp"
 #include "ubersim/shutdown.hpp"
 
@@ -91,11 +92,8 @@ int parse_and_run(int argc, char** argv) {
   ubersim::setup_logging("dds_bridge", options.common.verbosity());
   try {
     return run(options);
-  } catch (const ubersim::ConfigError& error) {
-    spdlog::error("{}", error.what());
-    return 2;
   } catch (const ubersim::dds::DdsError& error) {
-    spdlog::error("{}", error.what());
+    spdlog::error("{}", error.what());  // in the log, with the rest of the bridge's lines
     return 1;
   }
 }
@@ -103,13 +101,5 @@ int parse_and_run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return parse_and_run(argc, argv);
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "ubersim_dds_bridge: %s\n", error.what());
-    return 1;
-  } catch (...) {
-    std::fprintf(stderr, "ubersim_dds_bridge: unknown error\n");
-    return 1;
-  }
+  return ubersim::run_main("ubersim_dds_bridge", [&] { return parse_and_run(argc, argv); });
 }

@@ -8,6 +8,7 @@
 #include "ubersim/config.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/physics/physics_server.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/shutdown.hpp"
 
 namespace {
@@ -38,40 +39,23 @@ int run(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
 
-  try {
-    ubersim::setup_logging("physics", common.verbosity());
-    ubersim::physics::WorldSetup setup =
-        ubersim::physics::load_world_setup(common.config_root(), scenario, physics_config);
-    setup.seed = seed;
-    ubersim::physics::ServerOptions options;
-    options.scenario = scenario;
-    options.speed = lockstep ? -1.0 : speed;
-    options.paused = paused;
-    options.duration = duration;
-    ubersim::MessageBus bus(ubersim::with_receive_buffer(common.lcm_url));
-    ubersim::ShutdownSignal shutdown;
-    ubersim::physics::PhysicsServer server(std::move(setup), bus, common.channels(), options);
-    return server.run(&shutdown);
-  } catch (const ubersim::ConfigError& e) {
-    spdlog::error("configuration: {}", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  } catch (...) {
-    return 1;
-  }
+  ubersim::setup_logging("physics", common.verbosity());
+  ubersim::physics::WorldSetup setup =
+      ubersim::physics::load_world_setup(common.config_root(), scenario, physics_config);
+  setup.seed = seed;
+  ubersim::physics::ServerOptions options;
+  options.scenario = scenario;
+  options.speed = lockstep ? -1.0 : speed;
+  options.paused = paused;
+  options.duration = duration;
+  ubersim::MessageBus bus(ubersim::with_receive_buffer(common.lcm_url));
+  ubersim::ShutdownSignal shutdown;
+  ubersim::physics::PhysicsServer server(std::move(setup), bus, common.channels(), options);
+  return server.run(&shutdown);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "ubersim_physics: %s\n", error.what());
-  } catch (...) {
-    std::fprintf(stderr, "ubersim_physics: unknown error\n");
-  }
-  return 1;
+  return ubersim::run_main("ubersim_physics", [&] { return run(argc, argv); });
 }

@@ -13,6 +13,7 @@
 #include "ubersim/config.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/radio/radio_emulator.hpp"
 #include "ubersim/radio/radio_profile.hpp"
 #include "ubersim/shutdown.hpp"
@@ -90,24 +91,11 @@ int parse_and_run(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   ubersim::setup_logging("radio", options.common.verbosity());
-  try {
-    return run(options);
-  } catch (const ubersim::ConfigError& error) {
-    spdlog::error("{}", error.what());
-    return 2;
-  }
+  return run(options);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return parse_and_run(argc, argv);
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "ubersim_radio: %s\n", error.what());
-    return 1;
-  } catch (...) {
-    std::fprintf(stderr, "ubersim_radio: unknown error\n");
-    return 1;
-  }
+  return ubersim::run_main("ubersim_radio", [&] { return parse_and_run(argc, argv); });
 }

@@ -10,6 +10,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/config_paths.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/robot_config.hpp"
 
 namespace {
@@ -95,24 +96,11 @@ int parse_and_run(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   ubersim::setup_logging("ssl_bridge", options.common.verbosity());
-  try {
-    return run(options);
-  } catch (const ubersim::ConfigError& error) {
-    spdlog::error("{}", error.what());
-    return 2;
-  }
+  return run(options);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return parse_and_run(argc, argv);
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "ubersim_ssl_bridge: %s\n", error.what());
-    return 1;
-  } catch (...) {
-    std::fprintf(stderr, "ubersim_ssl_bridge: unknown error\n");
-    return 1;
-  }
+  return ubersim::run_main("ubersim_ssl_bridge", [&] { return parse_and_run(argc, argv); });
 }

@@ -4,8 +4,6 @@
 // on SIGINT.
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -19,55 +17,18 @@
 #include <ubersim/sim_state_t.hpp>
 #include <vector>
 
+#include "child_process.hpp"
 #include "ubersim/channels.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/message_bus.hpp"
-
-extern char** environ;
 
 namespace {
 
 using namespace std::chrono_literals;
 using ubersim::Channel;
+using ubersim::test::ChildProcess;
 
 const std::string kPhysics = UBERSIM_PHYSICS_EXE;
-
-// A child process, killed if the test ends early.
-class Process {
- public:
-  explicit Process(std::vector<std::string> args) {
-    args.insert(args.begin(), kPhysics);
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawn(&pid_, kPhysics.c_str(), nullptr, nullptr, argv.data(), environ) != 0)
-      pid_ = -1;
-  }
-  ~Process() {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-  }
-  bool started() const { return pid_ > 0; }
-  void signal(int number) { ::kill(pid_, number); }
-  // Exit code, or -1 if it did not exit in time.
-  int wait_exit(std::chrono::milliseconds timeout) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-      int status = 0;
-      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      }
-      std::this_thread::sleep_for(10ms);
-    }
-    return -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-};
 
 class PhysicsProcess : public ::testing::Test {
  protected:
@@ -142,8 +103,8 @@ class PhysicsProcess : public ::testing::Test {
 };
 
 TEST_F(PhysicsProcess, AnswersControlStepsInLockstepAndExitsCleanly) {
-  Process physics({"--lockstep", "--scenario", "division_b_6v6", "-q"});
-  ASSERT_TRUE(physics.started());
+  ChildProcess physics({kPhysics, "--lockstep", "--scenario", "division_b_6v6", "-q"}, "");
+  ASSERT_TRUE(physics.running());
   ASSERT_TRUE(wait_for_server());
   ASSERT_TRUE(pump_until([&] { return !geometries_.empty(); }));
   EXPECT_EQ(geometries_.back().name, "division_b");
@@ -271,16 +232,16 @@ TEST_F(PhysicsProcess, AnswersControlStepsInLockstepAndExitsCleanly) {
   bad_place.num_robots = 1;
   EXPECT_FALSE(call(bad_place).ok);
 
-  physics.signal(SIGINT);
-  EXPECT_EQ(physics.wait_exit(5000ms), 0);
+  EXPECT_EQ(physics.stop(5, SIGINT), 0);
 }
 
 TEST_F(PhysicsProcess, PacesToTheWallClockAndStopsAfterItsDuration) {
   // 4 x real time for 2 s of sim time: about half a second of wall time.
   const auto start = std::chrono::steady_clock::now();
-  Process physics({"--speed", "4", "--duration", "2", "--scenario", "field2002_5v5", "-q"});
-  ASSERT_TRUE(physics.started());
-  const int code = physics.wait_exit(20000ms);
+  ChildProcess physics(
+      {kPhysics, "--speed", "4", "--duration", "2", "--scenario", "field2002_5v5", "-q"}, "");
+  ASSERT_TRUE(physics.running());
+  const int code = physics.wait(20);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(code, 0);

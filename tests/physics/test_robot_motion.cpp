@@ -133,8 +133,8 @@ TEST_P(RobotMotion, DifferentialDriveAcceleratesStraightFromRest) {
 TEST_P(RobotMotion, DifferentialDriveKeepsItsHeadingAtFullSpeed) {
   const auto type = load_robot_config(kConfigDir, "diff_drive_cmdragons02");
   World world(empty_world(GetParam()));
-  Robot& robot = world.add_robot(Team::Yellow, 1, "diff_drive_cmdragons02",
-                                 PlanarState{-2.0, 0, 0, 0, 0, 0});
+  Robot& robot =
+      world.add_robot(Team::Yellow, 1, "diff_drive_cmdragons02", PlanarState{-2.0, 0, 0, 0, 0, 0});
   world.command(Team::Yellow, 1, velocity_command(1, type.max_speed, 0, 0));
   run_for(world, 2.0);
   const PlanarState s = robot.planar_state();

@@ -22,7 +22,7 @@
 #include <thread>
 #include <ubersim/sim_state_t.hpp>
 
-#include "child_process.hpp"
+#include "ubersim/child_process.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/logging.hpp"
@@ -32,7 +32,7 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using ubersim::report::ChildProcess;
+using ubersim::ChildProcess;
 
 // CPU time of a process in seconds: user (utime) and kernel (stime), fields 14
 // and 15 of /proc/<pid>/stat.

@@ -30,8 +30,8 @@
 #include <ubersim/vision_frame_t.hpp>
 #include <vector>
 
-#include "child_process.hpp"
 #include "ubersim/channels.hpp"
+#include "ubersim/child_process.hpp"
 #include "ubersim/message_bus.hpp"
 
 namespace ubersim::report {

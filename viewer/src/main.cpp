@@ -19,6 +19,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/shutdown.hpp"
 #include "ubersim/viewer/json_encoding.hpp"
 #include "ubersim/viewer/viewer_model.hpp"
@@ -180,13 +181,5 @@ int parse_and_run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return parse_and_run(argc, argv);
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "ubersim_viewer: %s\n", error.what());
-    return 1;
-  } catch (...) {
-    std::fprintf(stderr, "ubersim_viewer: unknown error\n");
-    return 1;
-  }
+  return ubersim::run_main("ubersim_viewer", [&] { return parse_and_run(argc, argv); });
 }

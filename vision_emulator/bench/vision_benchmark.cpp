@@ -12,9 +12,7 @@
 //
 // Run it on a port of its own, e.g.
 //   tests/run_isolated.sh bench build/bin/ubersim_vision_benchmark
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -27,19 +25,19 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <thread>
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/team_t.hpp>
 #include <vector>
 
+#include "ubersim/child_process.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/field_config.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/vision/vision_emulator.hpp"
-
-extern char** environ;
 
 namespace {
 
@@ -141,31 +139,6 @@ double measure_decode_us() {
 
 // --- real-time mode -----------------------------------------------------------
 
-class Child {
- public:
-  explicit Child(const std::vector<std::string>& argv) {
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-    std::vector<char*> args;
-    args.reserve(argv.size() + 1);
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    if (posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ) != 0) pid_ = -1;
-    posix_spawn_file_actions_destroy(&actions);
-  }
-  ~Child() {
-    if (pid_ <= 0) return;
-    ::kill(pid_, SIGTERM);
-    int status = 0;
-    ::waitpid(pid_, &status, 0);
-  }
-  bool started() const { return pid_ > 0; }
-
- private:
-  pid_t pid_ = -1;
-};
-
 std::string vision_program() {
   const auto own = std::filesystem::read_symlink("/proc/self/exe").parent_path() / "ubersim_vision";
   return std::filesystem::exists(own) ? own.string() : std::string(UBERSIM_VISION_PROGRAM);
@@ -221,9 +194,14 @@ void measure_realtime(const std::string& profile_name,
       }),
       10000);
 
-  Child child({vision_program(), "--profile", profile_name, "--config-dir", config_dir, "-l", url});
-  if (!child.started()) {
-    std::printf("  cannot start %s\n", vision_program().c_str());
+  std::unique_ptr<ubersim::ChildProcess> child;
+  try {
+    child = std::make_unique<ubersim::ChildProcess>(
+        std::vector<std::string>{vision_program(), "--profile", profile_name, "--config-dir",
+                                 config_dir, "-l", url},
+        "");
+  } catch (const std::exception& error) {
+    std::printf("  cannot start %s: %s\n", vision_program().c_str(), error.what());
     return;
   }
   const auto give_up = WallClock::now() + std::chrono::seconds(15);
@@ -253,6 +231,7 @@ void measure_realtime(const std::string& profile_name,
   driver.join();
   const auto drain = WallClock::now() + std::chrono::milliseconds(300);
   while (WallClock::now() < drain) listener.wait_and_handle(20);
+  child->stop(2);
 
   const auto d = percentiles(delays), e = percentiles(excess);
   double configured = 0;

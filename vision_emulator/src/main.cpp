@@ -9,6 +9,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/logging.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/shutdown.hpp"
 #include "ubersim/vision/vision_process.hpp"
 
@@ -32,27 +33,15 @@ int run(int argc, char** argv) {
   if (app.count("--seed") > 0) options.seed = seed;
 
   ubersim::setup_logging("vision", common.verbosity());
-  try {
-    options.lcm_url = common.lcm_url;
-    options.channels = common.channels();
-    options.config_dir = common.config_root();
-    ubersim::ShutdownSignal shutdown;
-    return ubersim::vision::run_vision_process(options, shutdown);
-  } catch (const ubersim::ConfigError& error) {
-    spdlog::error("{}", error.what());
-    return 2;
-  }
+  options.lcm_url = common.lcm_url;
+  options.channels = common.channels();
+  options.config_dir = common.config_root();
+  ubersim::ShutdownSignal shutdown;
+  return ubersim::vision::run_vision_process(options, shutdown);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "ubersim_vision: %s\n", error.what());
-  } catch (...) {
-    std::fprintf(stderr, "ubersim_vision: unknown error\n");
-  }
-  return 1;
+  return ubersim::run_main("ubersim_vision", [&] { return run(argc, argv); });
 }

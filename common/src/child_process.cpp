@@ -1,4 +1,4 @@
-#include "child_process.hpp"
+#include "ubersim/child_process.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -15,24 +15,25 @@
 
 extern char** environ;
 
-namespace ubersim::report {
+namespace ubersim {
 
-ChildProcess::ChildProcess(const std::vector<std::string>& argv, std::string log_path)
-    : name_(std::filesystem::path(argv.at(0)).filename().string()), log_path_(std::move(log_path)) {
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::string& log_path)
+    : name_(std::filesystem::path(argv.at(0)).filename().string()), log_path_(log_path) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  const std::string target = log_path_.empty() ? "/dev/null" : log_path_;
+  const std::string target = log_path.empty() ? "/dev/null" : log_path;
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, target.c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  // Default signal handling and no blocked signals in the child, whatever the
-  // caller ignores, so that SIGTERM ends it as it would from a shell.
+  // Start with default signal handling whatever the test runner ignores, so
+  // SIGINT reaches the child as Ctrl-C would.
   posix_spawnattr_t attributes;
   posix_spawnattr_init(&attributes);
   sigset_t defaults;
   sigemptyset(&defaults);
   sigaddset(&defaults, SIGINT);
   sigaddset(&defaults, SIGTERM);
+  sigaddset(&defaults, SIGQUIT);
   posix_spawnattr_setsigdefault(&attributes, &defaults);
   sigset_t none;
   sigemptyset(&none);
@@ -66,19 +67,23 @@ bool ChildProcess::running() {
   return true;
 }
 
-int ChildProcess::stop(double timeout_s) {
-  if (!running()) return status_;
-  ::kill(pid_, SIGTERM);
+int ChildProcess::wait(double timeout_s) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   while (std::chrono::steady_clock::now() < deadline) {
     if (!running()) return status_;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   if (!running()) return status_;
   ::kill(pid_, SIGKILL);
   ::waitpid(pid_, nullptr, 0);
   reaped_ = true;
   return -1;
+}
+
+int ChildProcess::stop(double timeout_s, int signal_number) {
+  if (!running()) return status_;
+  ::kill(pid_, signal_number);
+  return wait(timeout_s);
 }
 
 std::string ChildProcess::log() const {
@@ -88,4 +93,13 @@ std::string ChildProcess::log() const {
   return text.str();
 }
 
-}  // namespace ubersim::report
+bool process_alive(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  if (!stat) return false;
+  std::string text;
+  std::getline(stat, text);
+  const auto close = text.rfind(')');
+  return close != std::string::npos && close + 2 < text.size() && text[close + 2] != 'Z';
+}
+
+}  // namespace ubersim
