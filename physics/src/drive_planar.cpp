@@ -6,7 +6,15 @@
 // (or tyre) friction. It is a small projected Gauss-Seidel over 2 rows per
 // wheel and 3 degrees of freedom; the forces go to ODE as forces at the wheels'
 // contact points, so everything else (collisions, kicks) stays ODE physics.
+//
+// Most steps need no iteration: when the set-points describe one rigid motion
+// of the chassis (they do whenever they come from the inverse kinematics) and
+// no wheel needs more than its bound to reach it, the solve's answer is that
+// motion, reached this step. That case is checked and solved directly (a few
+// fixed-size products, no dependency chain); the iteration handles the rest
+// (saturated wheels, wheel-speed commands that fight each other).
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "ubersim/physics/drive.hpp"
@@ -20,6 +28,9 @@ constexpr double kConverged = 1e-6;
 // Out-of-plane tilt (unitless), height (m) and speeds (m/s, rad/s) summed:
 // below this a planar robot is left alone.
 constexpr double kPlanarDrift = 1e-9;
+// Wheel surface speeds (m/s) that miss a rigid motion of the chassis by less
+// than this describe one: a micrometre per second.
+constexpr double kRigidMotion = 1e-6;
 
 class PlanarDrive final : public Drive {
  public:
@@ -59,6 +70,7 @@ class PlanarDrive final : public Drive {
       set_row(rows_[2 * i], {g.x, g.y}, d);
       set_row(rows_[2 * i + 1], {g.x, g.y}, perp(d));
     }
+    prepare_direct_solve();
     place(PlanarState{});
   }
 
@@ -81,6 +93,32 @@ class PlanarDrive final : public Drive {
       rows_[2 * i + 1].target = 0;
       rows_[2 * i + 1].bound = lateral_limit_ * dt;
     }
+    if (!solve_directly(v)) solve_iteratively(v, dt);
+    double force[3] = {0, 0, 0};  // robot frame: x, y, yaw torque
+    for (Row& row : rows_) {
+      row.warm = row.impulse / dt;
+      for (int k = 0; k < 3; ++k) force[k] += row.j[k] * row.warm;
+    }
+    dBodyAddForce(chassis_.get(), c * force[0] - s * force[1], s * force[0] + c * force[1], 0);
+    dBodyAddTorque(chassis_.get(), 0, 0, force[2]);
+
+    // Encoders: a wheel turns at its set-point unless its motor is out of
+    // torque, in which case it rolls with the floor.
+    for (std::size_t i = 0; i < wheels_.size(); ++i) {
+      const Row& row = rows_[2 * i];
+      const bool saturated = std::abs(row.impulse) >= row.bound * (1 - 1e-9);
+      if (saturated && torque_limited_) {
+        const double jv = row.j[0] * v[0] + row.j[1] * v[1] + row.j[2] * v[2];
+        measured_[i] = jv / type_.wheel_radius;
+      } else {
+        measured_[i] = wheel_speeds[i];
+      }
+    }
+  }
+
+  // The projected Gauss-Seidel: updates the rows' impulses and v (robot
+  // frame velocity after them).
+  void solve_iteratively(double v[3], double dt) {
     // Warm start: last step's forces are nearly this step's, so a few
     // iterations from there converge where many from zero would be needed.
     for (Row& row : rows_) {
@@ -105,26 +143,94 @@ class PlanarDrive final : public Drive {
       // Converged (a robot at rest or cruising, thanks to the warm start).
       if (largest_change < kConverged) break;
     }
-    double force[3] = {0, 0, 0};  // robot frame: x, y, yaw torque
-    for (Row& row : rows_) {
-      row.warm = row.impulse / dt;
-      for (int k = 0; k < 3; ++k) force[k] += row.j[k] * row.warm;
-    }
-    dBodyAddForce(chassis_.get(), c * force[0] - s * force[1], s * force[0] + c * force[1], 0);
-    dBodyAddTorque(chassis_.get(), 0, 0, force[2]);
+  }
 
-    // Encoders: a wheel turns at its set-point unless its motor is out of
-    // torque, in which case it rolls with the floor.
-    for (std::size_t i = 0; i < wheels_.size(); ++i) {
-      const Row& row = rows_[2 * i];
-      const bool saturated = std::abs(row.impulse) >= row.bound * (1 - 1e-9);
-      if (saturated && torque_limited_) {
-        const double jv = row.j[0] * v[0] + row.j[1] * v[1] + row.j[2] * v[2];
-        measured_[i] = jv / type_.wheel_radius;
-      } else {
-        measured_[i] = wheel_speeds[i];
+  // The rigid motion the set-points ask for, if they ask for one, reached in
+  // one step when no driving row needs more than its bound. Rows outside the
+  // fit (an omni wheel's rollers) slide at that motion, so they push at their
+  // bound against the slide, as the iteration would converge to. Returns
+  // false (and changes nothing) otherwise.
+  bool solve_directly(double v[3]) {
+    if (!direct_solve_possible_) return false;
+    double wanted[3] = {0, 0, 0};  // least-squares chassis velocity for the targets
+    for (std::size_t r : fit_rows_) {
+      for (int k = 0; k < 3; ++k) wanted[k] += fit_[r][k] * rows_[r].target;
+    }
+    for (std::size_t r : fit_rows_) {
+      const Row& row = rows_[r];
+      const double jv = row.j[0] * wanted[0] + row.j[1] * wanted[1] + row.j[2] * wanted[2];
+      if (std::abs(jv - row.target) > kRigidMotion) return false;  // wheels fight each other
+    }
+    double impulse[3] = {(wanted[0] - v[0]) / inverse_mass_, (wanted[1] - v[1]) / inverse_mass_,
+                         (wanted[2] - v[2]) / inverse_inertia_};
+    for (std::size_t r : sliding_rows_) {
+      const Row& row = rows_[r];
+      const double slide =
+          row.j[0] * wanted[0] + row.j[1] * wanted[1] + row.j[2] * wanted[2] - row.target;
+      shares_[r] = std::abs(slide) > kRigidMotion ? (slide > 0 ? -row.bound : row.bound) : 0.0;
+      for (int k = 0; k < 3; ++k) impulse[k] -= row.j[k] * shares_[r];
+    }
+    for (std::size_t r : fit_rows_) {
+      const auto& share = share_[r];
+      shares_[r] = share[0] * impulse[0] + share[1] * impulse[1] + share[2] * impulse[2];
+      if (std::abs(shares_[r]) > rows_[r].bound) return false;  // a wheel saturates: iterate
+    }
+    for (std::size_t r = 0; r < rows_.size(); ++r) rows_[r].impulse = shares_[r];
+    for (int k = 0; k < 3; ++k) v[k] = wanted[k];
+    return true;
+  }
+
+  // The fit uses the rolling rows when they alone fix the chassis' motion
+  // (three or more omni wheels), else every row (a differential drive's
+  // tyres fix the sideways motion). With J the fit rows' Jacobian (n x 3):
+  // targets t describe a rigid motion when J w = t for w = (J^T J)^-1 J^T t.
+  // A chassis impulse P is shared out as lambda = B J (J^T B J)^-1 P,
+  // B = diag(bound^2): the shares that add up to P with the smallest sum of
+  // (lambda / bound)^2, i.e. the furthest from saturating any row.
+  void prepare_direct_solve() {
+    fit_rows_.clear();
+    sliding_rows_.clear();
+    for (std::size_t r = 0; r < rows_.size(); r += 2) fit_rows_.push_back(r);
+    if (rank_of(fit_rows_, false) < 3) {
+      for (std::size_t r = 1; r < rows_.size(); r += 2) fit_rows_.push_back(r);
+    } else {
+      for (std::size_t r = 1; r < rows_.size(); r += 2) sliding_rows_.push_back(r);
+    }
+    // Rank below 3: no single motion fits, or no way to push it; iterate.
+    direct_solve_possible_ = rank_of(fit_rows_, false) == 3 && rank_of(fit_rows_, true) == 3;
+    fit_.assign(rows_.size(), {0, 0, 0});
+    share_.assign(rows_.size(), {0, 0, 0});
+    shares_.assign(rows_.size(), 0);
+    if (!direct_solve_possible_) return;
+    const Eigen::MatrixXd J = jacobian(fit_rows_, false);
+    const Eigen::MatrixXd BJ = jacobian(fit_rows_, true);
+    const Eigen::MatrixXd fit = (J.transpose() * J).inverse() * J.transpose();  // 3 x n
+    const Eigen::MatrixXd share = BJ * (J.transpose() * BJ).inverse();          // n x 3
+    for (std::size_t i = 0; i < fit_rows_.size(); ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
+      for (int k = 0; k < 3; ++k) {
+        fit_[fit_rows_[i]][static_cast<std::size_t>(k)] = fit(k, row);
+        share_[fit_rows_[i]][static_cast<std::size_t>(k)] = share(row, k);
       }
     }
+  }
+
+  // The given rows' Jacobian, each row weighted by its bound squared if asked.
+  Eigen::MatrixXd jacobian(const std::vector<std::size_t>& rows, bool weighted) const {
+    Eigen::MatrixXd J(static_cast<Eigen::Index>(rows.size()), 3);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const std::size_t r = rows[i];
+      const double bound = r % 2 == 0 ? traction_limit_ : lateral_limit_;  // per unit time
+      const double w = weighted ? bound * bound : 1.0;
+      J.row(static_cast<Eigen::Index>(i)) << w * rows_[r].j[0], w * rows_[r].j[1],
+          w * rows_[r].j[2];
+    }
+    return J;
+  }
+
+  Eigen::Index rank_of(const std::vector<std::size_t>& rows, bool weighted) const {
+    const Eigen::MatrixXd J = jacobian(rows, false);
+    return (J.transpose() * jacobian(rows, weighted)).fullPivLu().rank();
   }
 
   void after_step() override {
@@ -200,6 +306,14 @@ class PlanarDrive final : public Drive {
   JointHandle plane_;
   std::vector<WheelGeometry> wheels_;
   std::vector<Row> rows_;
+  // Direct solve (prepare_direct_solve): per row, its column of the fit and
+  // its share of a chassis impulse; shares_ is scratch for one step.
+  bool direct_solve_possible_ = false;
+  std::vector<std::size_t> fit_rows_;      // rows whose targets fix the motion
+  std::vector<std::size_t> sliding_rows_;  // the others: omni rollers
+  std::vector<std::array<double, 3>> fit_;
+  std::vector<std::array<double, 3>> share_;
+  std::vector<double> shares_;
   std::vector<double> measured_;
   double traction_limit_ = 0;  // N
   bool torque_limited_ = false;
