@@ -4,7 +4,6 @@
 // exactly below the axle); the contact handler gives each wheel contact its
 // rolling direction, with full friction along it and the roller friction
 // across it.
-#include <cmath>
 
 #include "ubersim/physics/drive.hpp"
 
@@ -96,19 +95,12 @@ class JointedDrive final : public Drive {
   }
 
   void place(const PlanarState& s) override {
+    place_chassis(chassis_.get(), s, com_height_);
+    // Wheels upright with the chassis, rolling at the speed that matches the
+    // placed velocity.
     dMatrix3 R;
     yaw_rotation(s.heading, R);
-    dBodySetPosition(chassis_.get(), s.x, s.y, com_height_);
-    dBodySetRotation(chassis_.get(), R);
-    dBodySetLinearVel(chassis_.get(), s.vx, s.vy, 0);
-    dBodySetAngularVel(chassis_.get(), 0, 0, s.omega);
-    dBodySetForce(chassis_.get(), 0, 0, 0);
-    dBodySetTorque(chassis_.get(), 0, 0, 0);
-    // Wheels roll at the speed that matches the placed velocity.
-    const double c = std::cos(s.heading);
-    const double sn = std::sin(s.heading);
-    const Eigen::Vector3d local_velocity(c * s.vx + sn * s.vy, -sn * s.vx + c * s.vy, s.omega);
-    const Eigen::VectorXd spin = kinematics_.wheel_speeds(local_velocity);
+    const Eigen::VectorXd spin = rolling_wheel_speeds(kinematics_, s);
     for (std::size_t i = 0; i < wheels_.size(); ++i) {
       Wheel& w = wheels_[i];
       dVector3 p;

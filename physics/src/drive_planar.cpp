@@ -108,8 +108,7 @@ class PlanarDrive final : public Drive {
       const Row& row = rows_[2 * i];
       const bool saturated = std::abs(row.impulse) >= row.bound * (1 - 1e-9);
       if (saturated && torque_limited_) {
-        const double jv = row.j[0] * v[0] + row.j[1] * v[1] + row.j[2] * v[2];
-        measured_[i] = jv / type_.wheel_radius;
+        measured_[i] = row.along(v) / type_.wheel_radius;
       } else {
         measured_[i] = wheel_speeds[i];
       }
@@ -130,7 +129,7 @@ class PlanarDrive final : public Drive {
     for (int it = 0; it < iterations_; ++it) {
       double largest_change = 0;
       for (Row& row : rows_) {
-        const double jv = row.j[0] * v[0] + row.j[1] * v[1] + row.j[2] * v[2];
+        const double jv = row.along(v);
         const double wanted = row.impulse + (row.target - jv) * row.mass;
         const double clamped = std::clamp(wanted, -row.bound, row.bound);
         const double delta = clamped - row.impulse;
@@ -158,15 +157,13 @@ class PlanarDrive final : public Drive {
     }
     for (std::size_t r : fit_rows_) {
       const Row& row = rows_[r];
-      const double jv = row.j[0] * wanted[0] + row.j[1] * wanted[1] + row.j[2] * wanted[2];
-      if (std::abs(jv - row.target) > kRigidMotion) return false;  // wheels fight each other
+      if (std::abs(row.along(wanted) - row.target) > kRigidMotion) return false;  // wheels fight
     }
     double impulse[3] = {(wanted[0] - v[0]) / inverse_mass_, (wanted[1] - v[1]) / inverse_mass_,
                          (wanted[2] - v[2]) / inverse_inertia_};
     for (std::size_t r : sliding_rows_) {
       const Row& row = rows_[r];
-      const double slide =
-          row.j[0] * wanted[0] + row.j[1] * wanted[1] + row.j[2] * wanted[2] - row.target;
+      const double slide = row.along(wanted) - row.target;
       shares_[r] = std::abs(slide) > kRigidMotion ? (slide > 0 ? -row.bound : row.bound) : 0.0;
       for (int k = 0; k < 3; ++k) impulse[k] -= row.j[k] * shares_[r];
     }
@@ -258,18 +255,8 @@ class PlanarDrive final : public Drive {
   void measured_wheel_speeds(std::vector<double>& out) const override { out = measured_; }
 
   void place(const PlanarState& s) override {
-    dMatrix3 R;
-    yaw_rotation(s.heading, R);
-    dBodySetPosition(chassis_.get(), s.x, s.y, 0);
-    dBodySetRotation(chassis_.get(), R);
-    dBodySetLinearVel(chassis_.get(), s.vx, s.vy, 0);
-    dBodySetAngularVel(chassis_.get(), 0, 0, s.omega);
-    dBodySetForce(chassis_.get(), 0, 0, 0);
-    dBodySetTorque(chassis_.get(), 0, 0, 0);
-    const double c = std::cos(s.heading);
-    const double sn = std::sin(s.heading);
-    const Eigen::Vector3d local(c * s.vx + sn * s.vy, -sn * s.vx + c * s.vy, s.omega);
-    const Eigen::VectorXd spin = kinematics_.wheel_speeds(local);
+    place_chassis(chassis_.get(), s, 0);
+    const Eigen::VectorXd spin = rolling_wheel_speeds(kinematics_, s);
     for (std::size_t i = 0; i < measured_.size(); ++i) {
       measured_[i] = spin(static_cast<Eigen::Index>(i));
     }
@@ -280,6 +267,9 @@ class PlanarDrive final : public Drive {
 
  private:
   struct Row {
+    // Contact velocity along the row (m/s) for a robot-frame velocity v.
+    double along(const double v[3]) const { return j[0] * v[0] + j[1] * v[1] + j[2] * v[2]; }
+
     double j[3] = {0, 0,
                    0};   // Jacobian, robot frame: (x, y, yaw) -> contact velocity along the row
     double target = 0;   // m/s
@@ -334,6 +324,24 @@ double chassis_origin_height(const RobotTypeConfig& type) {
 
 void yaw_rotation(double heading, dMatrix3 R) {
   yaw_rotation(std::cos(heading), std::sin(heading), R);
+}
+
+void place_chassis(dBodyID chassis, const PlanarState& s, double height) {
+  dMatrix3 R;
+  yaw_rotation(s.heading, R);
+  dBodySetPosition(chassis, s.x, s.y, height);
+  dBodySetRotation(chassis, R);
+  dBodySetLinearVel(chassis, s.vx, s.vy, 0);
+  dBodySetAngularVel(chassis, 0, 0, s.omega);
+  dBodySetForce(chassis, 0, 0, 0);
+  dBodySetTorque(chassis, 0, 0, 0);
+}
+
+Eigen::VectorXd rolling_wheel_speeds(const WheelKinematics& kinematics, const PlanarState& s) {
+  const double c = std::cos(s.heading);
+  const double sn = std::sin(s.heading);
+  return kinematics.wheel_speeds(
+      Eigen::Vector3d(c * s.vx + sn * s.vy, -sn * s.vx + c * s.vy, s.omega));
 }
 
 void yaw_rotation(double c, double s, dMatrix3 R) {

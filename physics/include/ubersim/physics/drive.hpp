@@ -66,4 +66,11 @@ std::unique_ptr<Drive> make_planar_drive(const DriveContext& context);
 void yaw_rotation(double heading, dMatrix3 R);
 void yaw_rotation(double cos_heading, double sin_heading, dMatrix3 R);
 
+// Shared by both models' place(): the chassis body upright at the pose of
+// `state`, its origin `height` above the floor, moving with its planar
+// velocity, no force or torque left over.
+void place_chassis(dBodyID chassis, const PlanarState& state, double height);
+// The wheel speeds (rad/s) that roll with the field-frame velocity of `state`.
+Eigen::VectorXd rolling_wheel_speeds(const WheelKinematics& kinematics, const PlanarState& state);
+
 }  // namespace ubersim::physics
