@@ -23,6 +23,7 @@
 #include "ubersim/config_paths.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/physics/physics_server.hpp"
+#include "ubersim/process_main.hpp"
 
 namespace {
 
@@ -258,12 +259,5 @@ int run(int argc, char** argv) {
 }
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "ubersim_physics_bench: %s\n", error.what());
-  } catch (...) {
-    std::fprintf(stderr, "ubersim_physics_bench: unknown error\n");
-  }
-  return 1;
+  return ubersim::run_main("ubersim_physics_bench", [&] { return run(argc, argv); });
 }

@@ -36,6 +36,7 @@
 #include "ubersim/dds_bridge/convert_sim_state.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/shutdown.hpp"
 
 namespace {
@@ -374,7 +375,7 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return ubersim::run_main("ubersim_dds_bridge_benchmark", [&] {
     Options options;
     CLI::App app{"DDS bridge benchmark: added latency and sustained rate"};
     app.add_option("--domain", options.domain, "DDS domain id")->capture_default_str();
@@ -385,11 +386,5 @@ int main(int argc, char** argv) {
     app.add_option("--offered", options.offered, "Hz, rates tried for the sustained rate");
     CLI11_PARSE(app, argc, argv);
     return run(options);
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "ubersim_dds_bridge_benchmark: %s\n", error.what());
-    return 1;
-  } catch (...) {
-    std::fprintf(stderr, "ubersim_dds_bridge_benchmark: unknown error\n");
-    return 1;
-  }
+  });
 }

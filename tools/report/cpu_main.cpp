@@ -27,6 +27,7 @@
 #include "ubersim/config_paths.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/scenario_config.hpp"
 
 namespace {
@@ -243,10 +244,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "ubersim_report_cpu: %s\n", e.what());
-    return 1;
-  }
+  return ubersim::run_main("ubersim_report_cpu", [&] { return run(argc, argv); });
 }

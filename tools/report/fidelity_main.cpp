@@ -17,6 +17,7 @@
 #include "ubersim/config.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/logging.hpp"
+#include "ubersim/process_main.hpp"
 
 namespace {
 
@@ -114,10 +115,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "ubersim_report_fidelity: %s\n", e.what());
-    return 1;
-  }
+  return ubersim::run_main("ubersim_report_fidelity", [&] { return run(argc, argv); });
 }
