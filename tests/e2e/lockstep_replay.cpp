@@ -44,16 +44,6 @@ std::vector<RecordedPacket> read_packets(const std::string& log_path, double unt
   return packets;
 }
 
-bool wait_for_log(const ubersim::test::ChildProcess& process, const std::string& text,
-                  double timeout_s) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (process.log().find(text) != std::string::npos) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
-
 }  // namespace
 
 ReplayResult replay_in_lockstep(const std::string& log_path, double until_sim_time,
@@ -68,7 +58,7 @@ ReplayResult replay_in_lockstep(const std::string& log_path, double until_sim_ti
                       source_dir() + "/tests/data/radio_lossless.cfg", "--seed", seed},
                      dir.path(run_name + "_radio.log"));
   // Both log these lines once subscribed (vision: just before; allow for it).
-  if (!wait_for_log(radio, "sim time from", 10) || !wait_for_log(vision, "subscribing", 10)) {
+  if (!radio.wait_for_output("sim time from", 10) || !vision.wait_for_output("subscribing", 10)) {
     throw std::runtime_error("emulators did not start: " + radio.log() + vision.log());
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
@@ -117,7 +107,8 @@ ReplayResult replay_in_lockstep(const std::string& log_path, double until_sim_ti
     wait([&] { return acked; }, 0.2);
   }
   if (!acked) throw std::runtime_error("physics did not answer: " + physics.log());
-  if (!wait_for_log(vision, "field '", 10)) throw std::runtime_error("no geometry: " + vision.log());
+  if (!vision.wait_for_output("field '", 10))
+    throw std::runtime_error("no geometry: " + vision.log());
 
   std::int64_t step = 0;
   auto step_to = [&](double sim_time) {

@@ -41,15 +41,6 @@ void scenario_command(int i, double& forward, double& left, double& angular) {
   angular = 0.5 * std::sin(0.5 * i);
 }
 
-bool wait_for_log(const ChildProcess& process, const std::string& text, double timeout_s) {
-  const auto deadline = Clock::now() + std::chrono::duration<double>(timeout_s);
-  while (Clock::now() < deadline) {
-    if (process.log().find(text) != std::string::npos) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
-
 // Pose of the robot after each physics step (a paused or lockstep physics
 // also republishes its state now and then: keyed by step, repeats collapse).
 using Trajectory = std::map<int64_t, Pose>;
@@ -66,9 +57,9 @@ Trajectory run_scenario(bool through_bridge, const std::string& name) {
     std::vector<std::string> argv{UBERSIM_SSL_BRIDGE_EXE};
     for (const std::string& option : ports.bridge_options()) argv.push_back(option);
     bridge = std::make_unique<ChildProcess>(argv, logs + name + "_bridge.log");
-    if (!wait_for_log(*bridge, "vision to", 10)) throw std::runtime_error(bridge->log());
+    if (!bridge->wait_for_output("vision to", 10)) throw std::runtime_error(bridge->log());
   }
-  if (!wait_for_log(radio, "sim time from", 10)) throw std::runtime_error(radio.log());
+  if (!radio.wait_for_output("sim time from", 10)) throw std::runtime_error(radio.log());
   ChildProcess physics(
       {UBERSIM_PHYSICS_EXE, "--lockstep", "--seed", "5", "--scenario", "division_b_6v6"},
       logs + name + "_physics.log");

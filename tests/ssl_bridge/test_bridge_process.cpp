@@ -24,15 +24,6 @@ namespace {
 
 using ubersim::test::ChildProcess;
 
-bool wait_for_log(const ChildProcess& process, const std::string& text, double timeout_s) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (process.log().find(text) != std::string::npos) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
-
 ubersim::vision_frame_t sample_frame(int64_t number) {
   ubersim::vision_frame_t f{};
   f.camera_id = 2;
@@ -81,7 +72,7 @@ class SslBridgeProcess : public ::testing::Test {
     std::vector<std::string> argv{UBERSIM_SSL_BRIDGE_EXE, "--ack-timeout", "0.3"};
     for (const std::string& option : ports_.bridge_options()) argv.push_back(option);
     bridge_ = std::make_unique<ChildProcess>(argv, ::testing::TempDir() + "ssl_bridge_process.log");
-    ASSERT_TRUE(wait_for_log(*bridge_, "vision to", 10)) << bridge_->log();
+    ASSERT_TRUE(bridge_->wait_for_output("vision to", 10)) << bridge_->log();
     bus_.subscribe<ubersim::radio_packet_t>(
         "RADIO_BLUE", [this](const ubersim::radio_packet_t& p) { radio_blue_.push_back(p); });
   }

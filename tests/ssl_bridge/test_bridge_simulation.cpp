@@ -18,15 +18,6 @@ namespace {
 using ubersim::test::ChildProcess;
 using Clock = std::chrono::steady_clock;
 
-bool wait_for_log(const ChildProcess& process, const std::string& text, double timeout_s) {
-  const auto deadline = Clock::now() + std::chrono::duration<double>(timeout_s);
-  while (Clock::now() < deadline) {
-    if (process.log().find(text) != std::string::npos) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
-
 const SSL_DetectionRobot* find_blue(const SSL_WrapperPacket& packet, uint32_t id) {
   if (!packet.has_detection()) return nullptr;
   for (const auto& robot : packet.detection().robots_blue()) {
@@ -66,9 +57,9 @@ class SslBridgeSimulation : public ::testing::Test {
     std::vector<std::string> argv{UBERSIM_SSL_BRIDGE_EXE};
     for (const std::string& option : ports_.bridge_options()) argv.push_back(option);
     bridge_ = std::make_unique<ChildProcess>(argv, logs + "ssl_sim_bridge.log");
-    ASSERT_TRUE(wait_for_log(*radio_, "sim time from", 10)) << radio_->log();
-    ASSERT_TRUE(wait_for_log(*vision_, "subscribing", 10)) << vision_->log();
-    ASSERT_TRUE(wait_for_log(*bridge_, "vision to", 10)) << bridge_->log();
+    ASSERT_TRUE(radio_->wait_for_output("sim time from", 10)) << radio_->log();
+    ASSERT_TRUE(vision_->wait_for_output("subscribing", 10)) << vision_->log();
+    ASSERT_TRUE(bridge_->wait_for_output("vision to", 10)) << bridge_->log();
     physics_ = std::make_unique<ChildProcess>(
         std::vector<std::string>{UBERSIM_PHYSICS_EXE, "--scenario", "division_b_6v6"},
         logs + "ssl_sim_physics.log");

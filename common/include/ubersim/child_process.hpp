@@ -28,6 +28,9 @@ class ChildProcess {
   // Waits up to timeout_s for it to end by itself; returns as stop() does.
   int wait(double timeout_s);
   std::string log() const;  // what it wrote so far
+  // Waits up to timeout_s for `text` to appear in its output (a process
+  // saying it is ready); false if it did not.
+  bool wait_for_output(const std::string& text, double timeout_s) const;
 
  private:
   pid_t pid_ = -1;
