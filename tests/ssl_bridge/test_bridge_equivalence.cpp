@@ -7,7 +7,6 @@
 #include <cmath>
 #include <map>
 #include <set>
-#include <thread>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/robot_command_t.hpp>
 #include <ubersim/sim_commands_t.hpp>
