@@ -1,5 +1,5 @@
 // ubersim_dds_bridge: ubersim's LCM channels on a Cyclone DDS domain, in the
-// directions config/dds_bridge/<name>.cfg gives (see /work/notes/dds_bridge.md).
+// directions config/dds_bridge/<name>.cfg gives (see docs/dds_bridge.md).
 #include <poll.h>
 
 #include <CLI/CLI.hpp>

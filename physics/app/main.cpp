@@ -1,5 +1,5 @@
 // ubersim_physics: the physics server (see physics_server.hpp and
-// /work/notes/physics.md). Exits 0 on SIGINT/SIGTERM or after --duration.
+// docs/physics.md). Exits 0 on SIGINT/SIGTERM or after --duration.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>

@@ -1,7 +1,7 @@
 // ubersim_radio: the radio emulator process. Listens where each team's real
 // radio server would (RADIO_YELLOW / RADIO_BLUE) and forwards what an
 // emulated radio link lets through to physics on SIM_COMMANDS; returns the
-// robots' feedback on RADIO_FEEDBACK_<TEAM>. See /work/notes/radio.md.
+// robots' feedback on RADIO_FEEDBACK_<TEAM>. See docs/radio.md.
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <cstdio>

@@ -2,7 +2,7 @@
 // software written for grSim or the ER-Force simulator runs unchanged:
 // SSL-Vision wrapper packets out (from VISION / VISION_GEOMETRY), the SSL
 // simulation protocol in (simulation control -> SIM_CONTROL, robot control ->
-// RADIO_<TEAM>, feedback from RADIO_FEEDBACK_<TEAM>). See /work/notes/ssl_bridge.md.
+// RADIO_<TEAM>, feedback from RADIO_FEEDBACK_<TEAM>). See docs/ssl_bridge.md.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 

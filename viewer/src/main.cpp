@@ -2,7 +2,7 @@
 // field geometry and both teams' radio commands, and serves a web page that
 // draws them, pushing it one snapshot per display frame over a WebSocket. The
 // page's controls (pause, speed, reset, drag to place) go out on SIM_CONTROL.
-// See /work/notes/viewer.md.
+// See docs/viewer.md.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>

@@ -1,6 +1,6 @@
 #pragma once
 // Follows simulation time as physics reports it on SIM_STATE. The emulators
-// act in sim time (DESIGN.md, Time), so they all need the same answers: what
+// act in sim time (docs/design.md, Time), so they all need the same answers: what
 // time is it, did that message go backwards (out of order: skip it), or did the
 // world reset (time jumped back to near zero at step 0..few: start over).
 #include <cmath>

@@ -1,7 +1,7 @@
 #pragma once
 // The vision emulator without its process around it: feed it every SIM_STATE
 // and SIM_GEOMETRY, publish what it hands back. All timing is in sim time
-// (DESIGN.md, Time), so the output depends only on the profile, the seed and
+// (docs/design.md, Time), so the output depends only on the profile, the seed and
 // the stream of states, never on how fast physics runs or on the wall clock.
 //
 // Per state: check it (a bad one is counted and skipped), follow sim time
