@@ -6,6 +6,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "ubersim/physics/heading.hpp"
+
 namespace ubersim::physics {
 namespace {
 
@@ -34,16 +36,9 @@ void to_world(const dReal* pos, const dReal* R, double x, double y, double z, do
 // projection of its x axis.
 void outline_in_plane(const ChassisOutline& o, const dReal* pos, const dReal* R,
                       std::vector<Vec2>& vertices, std::vector<Vec2>& normals) {
-  double c = R[0];
-  double s = R[4];
-  const double norm = std::hypot(c, s);
-  if (norm > 1e-9) {
-    c /= norm;
-    s /= norm;
-  } else {
-    c = 1;
-    s = 0;
-  }
+  const Vec2 heading = heading_direction(R);
+  const double c = heading.x;
+  const double s = heading.y;
   const Vec2 origin{pos[0], pos[1]};
   vertices.resize(o.vertices.size());
   normals.resize(o.normals.size());

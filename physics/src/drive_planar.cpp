@@ -18,6 +18,7 @@
 #include <cmath>
 
 #include "ubersim/physics/drive.hpp"
+#include "ubersim/physics/heading.hpp"
 
 namespace ubersim::physics {
 namespace {
@@ -83,9 +84,9 @@ class PlanarDrive final : public Drive {
     const dReal* lv = dBodyGetLinearVel(chassis_.get());
     const dReal* av = dBodyGetAngularVel(chassis_.get());
     const dReal* R = dBodyGetRotation(chassis_.get());
-    const double norm = std::sqrt(R[0] * R[0] + R[4] * R[4]);
-    const double c = R[0] / norm;
-    const double s = R[4] / norm;
+    const Vec2 heading = heading_direction(R);
+    const double c = heading.x;
+    const double s = heading.y;
     double v[3] = {c * lv[0] + s * lv[1], -s * lv[0] + c * lv[1], av[2]};
     for (std::size_t i = 0; i < wheels_.size(); ++i) {
       rows_[2 * i].target = wheel_speeds[i] * type_.wheel_radius;
@@ -243,9 +244,9 @@ class PlanarDrive final : public Drive {
         kPlanarDrift) {
       return;
     }
-    const double norm = std::sqrt(R[0] * R[0] + R[4] * R[4]);
+    const Vec2 heading = heading_direction(R);
     dMatrix3 upright;
-    yaw_rotation(R[0] / norm, R[4] / norm, upright);
+    yaw_rotation(heading.x, heading.y, upright);
     dBodySetRotation(chassis_.get(), upright);
     dBodySetPosition(chassis_.get(), p[0], p[1], 0);
     dBodySetLinearVel(chassis_.get(), lv[0], lv[1], 0);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ubersim/physics/heading.hpp"
+
 namespace ubersim::physics {
 namespace {
 
@@ -77,7 +79,7 @@ PlanarState Robot::planar_state() const {
   PlanarState s;
   s.x = p[0];
   s.y = p[1];
-  s.heading = std::atan2(R[4], R[0]);
+  s.heading = heading_angle(R);
   s.vx = v[0];
   s.vy = v[1];
   s.omega = w[2];
@@ -91,10 +93,9 @@ void Robot::position(double& x, double& y) const {
 }
 
 void Robot::heading_vector(double& c, double& s) const {
-  const dReal* R = dBodyGetRotation(drive_->chassis());
-  const double norm = std::sqrt(R[0] * R[0] + R[4] * R[4]);
-  c = norm > 1e-12 ? R[0] / norm : 1.0;
-  s = norm > 1e-12 ? R[4] / norm : 0.0;
+  const Vec2 direction = heading_direction(dBodyGetRotation(drive_->chassis()));
+  c = direction.x;
+  s = direction.y;
 }
 
 void Robot::remember_good_state() {
@@ -212,10 +213,9 @@ bool Robot::try_kick(Ball& ball, double now, double dt) {
   if (!chip && command.kick_speed <= 0) return false;
   if (!kicker_charged(now) || !ball_at_kicker(ball)) return false;
   const dBodyID body = drive_->chassis();
-  const dReal* R = dBodyGetRotation(body);
-  const double norm = std::hypot(R[0], R[4]);
-  const double fx = R[0] / norm;
-  const double fy = R[4] / norm;
+  const Vec2 forward = heading_direction(dBodyGetRotation(body));
+  const double fx = forward.x;
+  const double fy = forward.y;
   const dReal* b = ball.position();
   dVector3 base;
   dBodyGetPointVel(body, b[0], b[1], b[2], base);
@@ -257,10 +257,9 @@ void Robot::add_dribbler_contact(const Ball& ball, double now, dWorldID world,
   if (distance > touch + t.kicker_reach || distance < 1e-9 || local[0] < roller_x_) return;
 
   const dBodyID body = drive_->chassis();
-  const dReal* R = dBodyGetRotation(body);
-  const double norm = std::hypot(R[0], R[4]);
-  const double fx = R[0] / norm;
-  const double fy = R[4] / norm;
+  const Vec2 forward = heading_direction(dBodyGetRotation(body));
+  const double fx = forward.x;
+  const double fy = forward.y;
   // Robot frame -> field frame (upright): x forward, y left, z up.
   auto to_field = [&](const double v[3], double out[3]) {
     out[0] = fx * v[0] - fy * v[1];
@@ -316,9 +315,7 @@ void Robot::fill_state(robot_state_t& out, const Ball& ball, double now) const {
   out.robot_type = t.name;
   out.x = p[0];
   out.y = p[1];
-  // atan2 is already in [-pi, pi]; the published convention is (-pi, pi].
-  out.orientation = std::atan2(R[4], R[0]);
-  if (out.orientation <= -M_PI) out.orientation += 2 * M_PI;
+  out.orientation = heading_angle(R);
   out.vx = v[0];
   out.vy = v[1];
   out.omega = w[2];
