@@ -35,9 +35,9 @@ bool translate_move(const RobotCommand& in, const std::optional<WheelMapping>& w
     case RobotMoveCommand::kGlobalVelocity: {
       const MoveGlobalVelocity& v = move.global_velocity();
       out.mode = robot_command_t::MODE_GLOBAL_VELOCITY;
-      out.vx = v.vel_x();
-      out.vy = v.vel_y();
-      out.omega = v.vel_angular();
+      out.vx = v.x();
+      out.vy = v.y();
+      out.omega = v.angular();
       break;
     }
     case RobotMoveCommand::kWheelVelocity: {

@@ -106,6 +106,7 @@ void fill_calibration(const camera_calibration_t& in, SSL_GeometryCameraCalibrat
 
 SSL_WrapperPacket detection_packet(const vision_frame_t& frame) {
   SSL_WrapperPacket packet;
+  packet.set_source(kPacketSource);
   SSL_DetectionFrame* out = packet.mutable_detection();
   // SSL frame numbers are uint32; ours are int64 and wrap the same way.
   out->set_frame_number(static_cast<uint32_t>(frame.frame_number));
@@ -128,6 +129,7 @@ SSL_WrapperPacket detection_packet(const vision_frame_t& frame) {
 
 SSL_WrapperPacket geometry_packet(const vision_geometry_t& geometry, const GeometryExtras& extras) {
   SSL_WrapperPacket packet;
+  packet.set_source(kPacketSource);
   SSL_GeometryData* data = packet.mutable_geometry();
   const field_geometry_t& f = geometry.field;
   SSL_GeometryFieldSize* field = data->mutable_field();
@@ -136,6 +138,9 @@ SSL_WrapperPacket geometry_packet(const vision_geometry_t& geometry, const Geome
   field->set_goal_width(m_to_whole_mm(f.goal_width));
   field->set_goal_depth(m_to_whole_mm(f.goal_depth));
   field->set_boundary_width(m_to_whole_mm(f.boundary_width));
+  // Our walls stand at one margin all round, behind the goal lines too.
+  field->set_boundary_width_goal_line(m_to_whole_mm(f.boundary_width));
+  field->set_goal_substitution_area_width(m_to_whole_mm(extras.goal_substitution_area_width));
   add_markings(f, *field);
   field->set_penalty_area_depth(m_to_whole_mm(f.penalty_area_depth));
   field->set_penalty_area_width(m_to_whole_mm(f.penalty_area_width));

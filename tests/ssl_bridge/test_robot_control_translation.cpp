@@ -41,9 +41,9 @@ TEST(SslRobotControl, KickAngleMakesAChipInRadians) {
   RobotCommand* c = control.add_robot_commands();
   c->set_id(1);
   MoveGlobalVelocity* v = c->mutable_move_command()->mutable_global_velocity();
-  v->set_vel_x(-1.0f);
-  v->set_vel_y(0.5f);
-  v->set_vel_angular(0.0f);
+  v->set_x(-1.0f);
+  v->set_y(0.5f);
+  v->set_angular(0.0f);
   c->set_kick_speed(3.0f);
   c->set_kick_angle(45.0f);
   const auto out = translate_robot_control(control, Team::Yellow, std::nullopt);

@@ -22,6 +22,7 @@ TEST(SslVisionTranslation, FrameNumberWrapsLikeUint32AndEmptyFrameIsValid) {
   EXPECT_EQ(packet.detection().camera_id(), 3u);
   EXPECT_DOUBLE_EQ(packet.detection().t_capture(), 12.5);
   EXPECT_DOUBLE_EQ(packet.detection().t_sent(), 12.6);
+  EXPECT_EQ(packet.source(), SSL_SOURCE_OTHER);
   EXPECT_TRUE(packet.IsInitialized());
 }
 
@@ -100,6 +101,9 @@ TEST(SslVisionTranslation, GeometryFieldInWholeMillimetresWithMarkings) {
   EXPECT_EQ(field.goal_width(), 1000);
   EXPECT_EQ(field.goal_depth(), 180);
   EXPECT_EQ(field.boundary_width(), 300);
+  EXPECT_EQ(field.boundary_width_goal_line(), 300);
+  EXPECT_EQ(field.goal_substitution_area_width(), 300);
+  EXPECT_EQ(packet.source(), SSL_SOURCE_OTHER);
   EXPECT_EQ(field.penalty_area_depth(), 1000);
   EXPECT_EQ(field.penalty_area_width(), 2000);
   EXPECT_EQ(field.center_circle_radius(), 500);

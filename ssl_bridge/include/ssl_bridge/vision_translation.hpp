@@ -18,7 +18,14 @@ struct BallModel {
 struct GeometryExtras {
   std::optional<BallModel> ball_model;
   double max_robot_radius = 0;  // m, 0 = not reported
+  // m; SSL-Vision's default for both divisions (our field configs have no such key)
+  double goal_substitution_area_width = 0.3;
 };
+
+// The SSL_Source every packet carries: ubersim is neither SSL-Vision nor grSim
+// nor the ER-Force simulator, and tools that act on those values expect those
+// programs' behaviour, so OTHER is the honest value.
+inline constexpr SSL_Source kPacketSource = SSL_SOURCE_OTHER;
 
 SSL_WrapperPacket detection_packet(const vision_frame_t& frame);
 SSL_WrapperPacket geometry_packet(const vision_geometry_t& geometry, const GeometryExtras& extras);
