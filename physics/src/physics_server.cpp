@@ -35,6 +35,8 @@ const char* action_name(int action) {
       return "SET_SEED";
     case sim_control_t::REQUEST_GEOMETRY:
       return "REQUEST_GEOMETRY";
+    case sim_control_t::DEFINE_ROBOT_TYPE:
+      return "DEFINE_ROBOT_TYPE";
     case sim_control_t::PING:
       return "PING";
     default:
@@ -261,6 +263,14 @@ void PhysicsServer::on_control(const sim_control_t& request) {
       return;
     case sim_control_t::PING:
       acknowledge(request, true, "pong");
+      return;
+    case sim_control_t::DEFINE_ROBOT_TYPE:
+      try {
+        world_.define_robot_type(request.robot_type_name, request.robot_type_config);
+        acknowledge(request, true, "robot type " + request.robot_type_name + " defined");
+      } catch (const std::exception& error) {
+        acknowledge(request, false, error.what());
+      }
       return;
     default:
       acknowledge(request, false, "unknown action " + std::to_string(request.action));

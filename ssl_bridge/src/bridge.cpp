@@ -3,6 +3,7 @@
 #include <google/protobuf/unknown_field_set.h>
 #include <poll.h>
 
+#include <algorithm>
 #include <array>
 #include <ubersim/sim_control_ack_t.hpp>
 
@@ -38,6 +39,10 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
       control_socket_(UdpSocket::bound(options_.listen_address, options_.control_port)),
       blue_socket_(UdpSocket::bound(options_.listen_address, options_.blue_port)),
       yellow_socket_(UdpSocket::bound(options_.listen_address, options_.yellow_port)) {
+  if (options_.base_robot_type) {
+    options_.sim_control.base_robot_type = &*options_.base_robot_type;
+    type_radius_[options_.base_robot_type->config.name] = options_.base_robot_type->config.radius;
+  }
   bus_.subscribe<vision_frame_t>(channels_(Channel::Vision),
                                  [this](const vision_frame_t& f) { on_vision(f); });
   bus_.subscribe<vision_geometry_t>(channels_(Channel::VisionGeometry),
@@ -67,8 +72,21 @@ void SslBridge::on_vision(const vision_frame_t& frame) {
   send_vision(detection_packet(frame));
 }
 
+double SslBridge::max_robot_radius() const {
+  double largest = 0;
+  if (state_) {
+    for (const robot_state_t& robot : state_->robots) {
+      const auto found = type_radius_.find(robot.robot_type);
+      if (found != type_radius_.end()) largest = std::max(largest, found->second);
+    }
+  }
+  return largest > 0 ? largest : options_.geometry.max_robot_radius;
+}
+
 void SslBridge::on_geometry(const vision_geometry_t& geometry) {
-  send_vision(geometry_packet(geometry, options_.geometry));
+  GeometryExtras extras = options_.geometry;
+  if (extras.max_robot_radius > 0) extras.max_robot_radius = max_robot_radius();
+  send_vision(geometry_packet(geometry, extras));
 }
 
 void SslBridge::on_ack(const sim_control_ack_t& ack) {
@@ -123,6 +141,11 @@ void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
     SimControlTranslation translation =
         translate_simulator_command(command, state_ ? &*state_ : nullptr, options_.sim_control);
     errors.insert(errors.end(), translation.errors.begin(), translation.errors.end());
+    for (const DefinedRobotType& type : translation.defined_types) {
+      options_.sim_control.spec_types.record(type);
+      type_radius_[type.name] = type.radius;
+      spdlog::info("robot specs: robot type {} (radius {} m)", type.name, type.radius);
+    }
     if (translation.vision_port) {
       vision_destination_.sin_port = htons(static_cast<uint16_t>(*translation.vision_port));
       spdlog::info("vision now sent to port {}", *translation.vision_port);

@@ -35,6 +35,10 @@ int run(Options& options) {
   using namespace ubersim;
   const std::string config_dir = options.common.config_root();
   const RobotTypeConfig robot = load_robot_config(config_dir, options.robot_type);
+  // Robot specs start from the same file (its keys, BASE chain resolved).
+  options.bridge.base_robot_type = ssl::base_robot_type(
+      ConfigFile::load(resolve_config(config_dir, "robots", options.robot_type)), robot,
+      ConfigFile::load(resolve_config(config_dir, "balls", options.ball)).real("RADIUS"));
   options.bridge.sim_control.new_robot_type = options.robot_type;
   options.bridge.sim_control.robot_radius = robot.radius;
   options.bridge.wheels = ssl::wheel_mapping(robot);

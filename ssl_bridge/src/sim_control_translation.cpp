@@ -26,6 +26,17 @@ std::string robot_name(const RobotId& id) {
   return std::string(id.team() == YELLOW ? "yellow " : "blue ") + std::to_string(id.id());
 }
 
+std::string type_for_new_robot(const SpecTypes& types, int8_t team, int32_t id,
+                               const std::string& fallback) {
+  if (const auto own = types.by_robot.find({team, id}); own != types.by_robot.end()) {
+    return own->second;
+  }
+  if (const auto shared = types.by_team.find(team); shared != types.by_team.end()) {
+    return shared->second;
+  }
+  return fallback;
+}
+
 // Adds the placement for one TeleportRobot, or an error. Returns the
 // placement's (team, id) when one was added.
 bool translate_robot(const TeleportRobot& in, const sim_state_t* state,
@@ -64,7 +75,8 @@ bool translate_robot(const TeleportRobot& in, const sim_state_t* state,
       add_error(errors, kErrorInvalid, "adding " + name + " needs x and y");
       return false;
     }
-    placement.robot_type = settings.new_robot_type;
+    placement.robot_type = type_for_new_robot(settings.spec_types, placement.team,
+                                              placement.robot_id, settings.new_robot_type);
   }
   placement.x = in.has_x() ? in.x() : current->x;
   placement.y = in.has_y() ? in.y() : current->y;
@@ -163,11 +175,6 @@ void translate_config(const SimulatorConfig& config, SimControlTranslation& out)
               "config.geometry is not supported: choose the field with the scenario "
               "(ubersim_physics --scenario)");
   }
-  if (config.robot_specs_size() > 0) {
-    add_error(out.errors, kErrorUnsupported,
-              "config.robot_specs is not supported: robot types are config files "
-              "(config/robots/*.cfg), chosen per robot by the scenario or the referee");
-  }
   if (config.has_realism_config()) {
     add_error(out.errors, kErrorUnsupported,
               "config.realism_config is not supported: noise, latency and loss come from the "
@@ -182,12 +189,73 @@ void translate_config(const SimulatorConfig& config, SimControlTranslation& out)
   }
 }
 
+// Each spec becomes a robot type (DEFINE_ROBOT_TYPE), then the robots on the
+// field it names are rebuilt from it where they stand (PLACE with the type).
+void translate_specs(const SimulatorConfig& config, const sim_state_t* state,
+                     SimControlSettings& settings, SimControlTranslation& out) {
+  if (settings.base_robot_type == nullptr) {
+    add_error(out.errors, kErrorUnsupported,
+              "config.robot_specs: this bridge has no base robot type to apply them to");
+    return;
+  }
+  RobotSpecsTranslation specs =
+      translate_robot_specs(config.robot_specs(), *settings.base_robot_type);
+  out.errors.insert(out.errors.end(), specs.errors.begin(), specs.errors.end());
+  for (DefinedRobotType& type : specs.types) {
+    sim_control_t define = request(sim_control_t::DEFINE_ROBOT_TYPE);
+    define.robot_type_name = type.name;
+    define.robot_type_config = type.config_text;
+    out.requests.push_back(define);
+    sim_control_t place = request(sim_control_t::PLACE);
+    if (state != nullptr) {
+      for (const robot_state_t& robot : state->robots) {
+        if (robot.team != type.team || (type.robot_id && *type.robot_id != robot.robot_id)) {
+          continue;
+        }
+        robot_placement_t p{};
+        p.team = robot.team;
+        p.robot_id = robot.robot_id;
+        p.robot_type = type.name;
+        p.present = true;
+        p.x = robot.x;
+        p.y = robot.y;
+        p.orientation = robot.orientation;
+        p.vx = robot.vx;
+        p.vy = robot.vy;
+        p.omega = robot.omega;
+        place.robots.push_back(p);
+      }
+    }
+    place.num_robots = static_cast<int32_t>(place.robots.size());
+    if (place.num_robots > 0) out.requests.push_back(place);
+    settings.spec_types.record(type);
+    out.defined_types.push_back(std::move(type));
+  }
+}
+
 }  // namespace
+
+void SpecTypes::record(const DefinedRobotType& type) {
+  if (type.robot_id) {
+    by_robot[{type.team, *type.robot_id}] = type.name;
+  } else {
+    by_team[type.team] = type.name;
+    // A team-wide spec replaces the robots' own ones from before.
+    for (auto it = by_robot.begin(); it != by_robot.end();) {
+      it = it->first.first == type.team ? by_robot.erase(it) : std::next(it);
+    }
+  }
+}
 
 SimControlTranslation translate_simulator_command(const SimulatorCommand& command,
                                                   const sim_state_t* state,
-                                                  const SimControlSettings& settings) {
+                                                  const SimControlSettings& given_settings) {
   SimControlTranslation out;
+  // Specs first, so robots the same command adds are built from them.
+  SimControlSettings settings = given_settings;
+  if (command.has_config() && command.config().robot_specs_size() > 0) {
+    translate_specs(command.config(), state, settings, out);
+  }
   if (command.has_control()) {
     const SimulatorControl& control = command.control();
     sim_control_t place = request(sim_control_t::PLACE);

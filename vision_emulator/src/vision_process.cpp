@@ -10,6 +10,7 @@
 #include "ubersim/field_config.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/robot_type_definition.hpp"
 #include "ubersim/shutdown.hpp"
 #include "ubersim/vision/vision_emulator.hpp"
 
@@ -99,6 +100,28 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
           publish_geometry();
         } else if (emulator.stats().geometry_invalid != before) {
           bad_content.warn("geometry", "ignored an invalid SIM_GEOMETRY");
+        }
+      }));
+
+  // Robot types defined at run time (e.g. SSL robot specs): the same text
+  // physics builds the robots from gives their size here.
+  bus.subscribe<sim_control_t>(
+      options.channels(Channel::SimControl),
+      std::function<void(const sim_control_t&)>([&](const sim_control_t& request) {
+        if (request.action != sim_control_t::DEFINE_ROBOT_TYPE) return;
+        try {
+          const RobotTypeConfig type =
+              parse_robot_type_definition(request.robot_type_name, request.robot_type_config);
+          if (!emulator.define_robot_size(
+                  type.name, RobotSize{type.radius, type.height, type.front_distance})) {
+            bad_content.warn("robot_types", "too many robot types defined; ignored " + type.name);
+            return;
+          }
+          spdlog::info("robot type {} defined: radius {} m, height {} m", type.name, type.radius,
+                       type.height);
+        } catch (const std::exception& error) {
+          bad_content.warn("robot_type",
+                           std::string("ignored a robot type definition: ") + error.what());
         }
       }));
 

@@ -34,6 +34,8 @@ struct BridgeOptions {
   SimControlSettings sim_control;
   std::optional<WheelMapping> wheels;
   GeometryExtras geometry;
+  // What robot specs start from (the --robot-type file); unset: specs are refused.
+  std::optional<BaseRobotType> base_robot_type;
 };
 
 class SslBridge {
@@ -57,6 +59,8 @@ class SslBridge {
   void handle_control_datagram(const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void handle_robot_datagram(Team team, const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void send_vision(const SSL_WrapperPacket& packet);
+  // Largest radius of the robots on the field (their types' radii), else the configured one.
+  double max_robot_radius() const;
   void answer(PendingResponse& pending);
   void expire_pending();
 
@@ -70,6 +74,7 @@ class SslBridge {
   UdpSocket yellow_socket_;
   std::optional<sim_state_t> state_;
   std::map<Team, radio_feedback_t> feedback_;
+  std::map<std::string, double> type_radius_;  // m, robot type name -> radius
   std::map<int64_t, std::shared_ptr<PendingResponse>> pending_by_request_;
   int64_t next_request_id_ = 1;
   int64_t radio_sequence_ = 0;

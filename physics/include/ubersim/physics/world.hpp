@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <ubersim/field_geometry_t.hpp>
@@ -94,6 +95,11 @@ class World {
   // PLACE (and SETUP, which first removes every robot).
   PlaceOutcome place(const sim_control_t& request, bool remove_all_first);
   Robot& add_robot(Team team, int id, const std::string& type, const PlanarState& state);
+  // A robot type defined at run time (SIM_CONTROL DEFINE_ROBOT_TYPE): found by
+  // its name before the config files from then on, also after a reset. A robot
+  // takes it when placed with that name. Throws ConfigError (file = the type's
+  // name) for a bad text or when too many types are defined.
+  void define_robot_type(const std::string& name, const std::string& config_text);
   bool remove_robot(Team team, int id);
   Robot* robot(Team team, int id);
   // Ball at a position (z = 0: resting on the floor) with a velocity, no spin.
@@ -122,6 +128,8 @@ class World {
   void move_ball_out_of_robots(std::string& notes);
 
   WorldSetup setup_;
+  // Types defined at run time, consulted by setup_.robot_types before the files.
+  std::shared_ptr<std::map<std::string, std::shared_ptr<const RobotTypeConfig>>> defined_types_;
   double dt_;
   BallSurface ball_surface_;
   // ODE objects in creation order: destroyed in reverse, the world last.

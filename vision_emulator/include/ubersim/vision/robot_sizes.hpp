@@ -27,6 +27,15 @@ class RobotSizes {
 
   // The size of a type; an unknown type gets the SSL maximum size (logged once).
   const RobotSize& get(const std::string& type);
+  // A type defined at run time (SIM_CONTROL DEFINE_ROBOT_TYPE): replaces what
+  // was known under that name. False (nothing kept) once kMaxTypes names are
+  // known: the definitions come from the network.
+  bool define(const std::string& type, const RobotSize& size) {
+    if (cache_.count(type) == 0 && cache_.size() >= kMaxTypes) return false;
+    cache_[type] = size;
+    return true;
+  }
+  static constexpr std::size_t kMaxTypes = 256;
 
  private:
   Loader loader_;

@@ -63,6 +63,11 @@ class VisionEmulator {
   // the field is empty (name "") until one is known.
   vision_geometry_t geometry_message() const;
 
+  // A robot type defined at run time: its robots are seen with this size.
+  bool define_robot_size(const std::string& type, const RobotSize& size) {
+    return robot_sizes_.define(type, size);
+  }
+
   const VisionProfile& profile() const { return profile_; }
   const VisionStats& stats() const { return stats_; }
   double sim_time() const { return clock_.now(); }

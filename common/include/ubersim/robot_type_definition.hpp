@@ -1,0 +1,19 @@
+#pragma once
+// A robot type defined at run time (SIM_CONTROL DEFINE_ROBOT_TYPE): a name and
+// the text of a robot config file, read by the same reader as config/robots/,
+// so every key is checked. Physics builds robots from it; the vision emulator
+// takes the size. The text comes from the network, so it is bounded and may
+// not name a BASE file (the reader would open a file the sender chose).
+#include <string>
+
+#include "ubersim/robot_config.hpp"
+
+namespace ubersim {
+
+inline constexpr std::size_t kMaxRobotTypeNameLength = 64;
+inline constexpr std::size_t kMaxRobotTypeText = 16 * 1024;  // bytes; a robot file is ~3 KB
+
+// Throws ConfigError (file = the type's name) for a bad name or text.
+RobotTypeConfig parse_robot_type_definition(const std::string& name, const std::string& text);
+
+}  // namespace ubersim

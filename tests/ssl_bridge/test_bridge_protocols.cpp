@@ -1,0 +1,219 @@
+// The SSL protocols as a team's software uses them, against the real
+// simulation (physics in real time, vision and radio emulators, bridge, all
+// processes over real LCM): the client knows only the official definitions
+// (generated protobuf classes and raw UDP sockets). Robot specs change the
+// robots' size (seen in geometry and detections) and kick limit (seen on the
+// ball). ISOLATED: own network namespace.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <thread>
+
+#include "child_process.hpp"
+#include "ssl_client.hpp"
+
+namespace {
+
+using ubersim::test::ChildProcess;
+using Clock = std::chrono::steady_clock;
+
+const SSL_DetectionRobot* find_blue(const SSL_WrapperPacket& packet, uint32_t id) {
+  if (!packet.has_detection()) return nullptr;
+  for (const auto& robot : packet.detection().robots_blue()) {
+    if (robot.robot_id() == id) return &robot;
+  }
+  return nullptr;
+}
+
+std::string describe(const SimulatorResponse& response) {
+  std::string text;
+  for (const auto& e : response.errors()) text += e.code() + ": " + e.message() + "\n";
+  return text;
+}
+
+TeleportRobot* teleport_blue(SimulatorCommand& command, uint32_t id, float x, float y) {
+  TeleportRobot* robot = command.mutable_control()->add_teleport_robot();
+  robot->mutable_id()->set_id(id);
+  robot->mutable_id()->set_team(BLUE);
+  robot->set_x(x);
+  robot->set_y(y);
+  robot->set_orientation(0);
+  robot->set_v_x(0);
+  robot->set_v_y(0);
+  robot->set_v_angular(0);
+  return robot;
+}
+
+class SslProtocols : public ::testing::Test {
+ protected:
+  void start(const std::string& vision_profile, std::vector<std::string> bridge_extra = {}) {
+    const std::string logs = ::testing::TempDir();
+    const std::string src = UBERSIM_SOURCE_DIR;
+    vision_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{UBERSIM_VISION_EXE, "--profile", vision_profile, "--seed", "3"},
+        logs + "ssl_protocols_vision.log");
+    radio_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{UBERSIM_RADIO_EXE, "--profile",
+                                 src + "/tests/data/radio_lossless.cfg", "--seed", "3"},
+        logs + "ssl_protocols_radio.log");
+    std::vector<std::string> argv{UBERSIM_SSL_BRIDGE_EXE};
+    for (const std::string& option : ports_.bridge_options()) argv.push_back(option);
+    for (const std::string& option : bridge_extra) argv.push_back(option);
+    bridge_ = std::make_unique<ChildProcess>(argv, logs + "ssl_protocols_bridge.log");
+    ASSERT_TRUE(radio_->wait_for_output("sim time from", 10)) << radio_->log();
+    ASSERT_TRUE(vision_->wait_for_output("subscribing", 10)) << vision_->log();
+    ASSERT_TRUE(bridge_->wait_for_output("vision to", 10)) << bridge_->log();
+    physics_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{UBERSIM_PHYSICS_EXE, "--scenario", "division_b_6v6"},
+        logs + "ssl_protocols_physics.log");
+    ASSERT_TRUE(vision_rx_.receive_until(
+        [](const SSL_WrapperPacket& p) { return find_blue(p, 2) != nullptr; }, 20))
+        << physics_->log() << vision_->log() << bridge_->log();
+  }
+
+  void TearDown() override {
+    if (bridge_) {
+      EXPECT_EQ(bridge_->stop(10), 0) << bridge_->log();
+    }
+  }
+
+  void expect_done(const SimulatorCommand& command) {
+    const auto response = ssl_test::command(control_, command);
+    ASSERT_TRUE(response.has_value()) << bridge_->log();
+    EXPECT_EQ(response->errors_size(), 0) << describe(*response) << physics_->log();
+  }
+
+  // Forgets the packets queued so far: what is read next was sent from now on.
+  void drain() {
+    while (vision_rx_.receive(0.0)) {
+    }
+  }
+
+  // Mean detected position of blue `id` over `frames` frames.
+  std::pair<double, double> mean_position(uint32_t id, int frames) {
+    double sx = 0, sy = 0;
+    int n = 0;
+    vision_rx_.receive_until(
+        [&](const SSL_WrapperPacket& p) {
+          if (const SSL_DetectionRobot* r = find_blue(p, id)) {
+            sx += r->x();
+            sy += r->y();
+            ++n;
+          }
+          return n >= frames;
+        },
+        5);
+    EXPECT_EQ(n, frames);
+    return {n ? sx / n : 0, n ? sy / n : 0};
+  }
+
+  // Pushed against the +y wall, the robot's centre stops one radius short of it.
+  double y_against_wall(uint32_t id) {
+    SimulatorCommand to_wall;
+    teleport_blue(to_wall, id, 0.5f, 50.0f);  // physics keeps it inside the walls
+    expect_done(to_wall);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // vision latency, settling
+    drain();
+    return mean_position(id, 6).second;
+  }
+
+  // Kicks from a standstill with the ball at the front; the ball's speed (mm/s)
+  // over the first frames after it started moving.
+  double kicked_ball_speed(float commanded, double center_to_dribbler) {
+    SimulatorCommand place;
+    teleport_blue(place, 2, 0.0f, -1.0f);
+    place.mutable_control()->mutable_teleport_ball()->set_x(
+        static_cast<float>(center_to_dribbler + 0.0215 + 0.002));
+    place.mutable_control()->mutable_teleport_ball()->set_y(-1.0f);
+    place.mutable_control()->mutable_teleport_ball()->set_z(0.0f);
+    place.mutable_control()->mutable_teleport_ball()->set_vx(0.0f);
+    place.mutable_control()->mutable_teleport_ball()->set_vy(0.0f);
+    expect_done(place);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    drain();
+    RobotControl kick;
+    RobotCommand* c = kick.add_robot_commands();
+    c->set_id(2);
+    c->set_kick_speed(commanded);
+    c->set_kick_angle(0);
+    std::vector<std::pair<double, double>> track;  // (t_capture, x mm)
+    const auto end = Clock::now() + std::chrono::seconds(4);
+    while (Clock::now() < end && track.size() < 4) {
+      ssl_test::control(blue_, kick, 0.05);
+      vision_rx_.receive_until(
+          [&](const SSL_WrapperPacket& p) {
+            if (!p.has_detection() || p.detection().balls_size() == 0) return false;
+            const auto& b = p.detection().balls(0);
+            const double x0 = (center_to_dribbler + 0.0215 + 0.002) * 1000;
+            if (b.x() > x0 + 20 || !track.empty())
+              track.emplace_back(p.detection().t_capture(), b.x());
+            return true;
+          },
+          0.1);
+    }
+    if (track.size() < 2) return 0;
+    return (track.back().second - track.front().second) /
+           (track.back().first - track.front().first);
+  }
+
+  const ssl_test::TestPorts ports_ = ssl_test::TestPorts::from_environment();
+  ssl_test::VisionReceiver vision_rx_{"224.5.23.2", ports_.vision};
+  ssl_test::UdpClient control_{ports_.control};
+  ssl_test::UdpClient blue_{ports_.blue};
+  std::unique_ptr<ChildProcess> vision_, radio_, bridge_, physics_;
+};
+
+}  // namespace
+
+TEST_F(SslProtocols, RobotSpecsChangeRadiusInGeometryAndDetectionsAndTheKickLimit) {
+  ASSERT_NO_FATAL_FAILURE(start("ideal"));
+  float geometry_radius = 0;
+  ASSERT_TRUE(vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        if (p.has_geometry()) geometry_radius = p.geometry().field().max_robot_radius();
+        return p.has_geometry();
+      },
+      5));
+  EXPECT_FLOAT_EQ(geometry_radius, 90.0f);
+  const double wall_y_before = y_against_wall(2);
+  const double fast = kicked_ball_speed(5.0f, 0.075);
+
+  // Both teams' robots become 70 mm robots; blue 2 also kicks at most 2 m/s.
+  SimulatorCommand specs;
+  for (Team team : {BLUE, YELLOW}) {
+    RobotSpecs* s = specs.mutable_config()->add_robot_specs();
+    s->mutable_id()->set_team(team);
+    s->set_radius(0.07f);
+    s->set_center_to_dribbler(0.06f);
+  }
+  RobotSpecs* s = specs.mutable_config()->add_robot_specs();
+  s->mutable_id()->set_team(BLUE);
+  s->mutable_id()->set_id(2);
+  s->set_radius(0.07f);
+  s->set_center_to_dribbler(0.06f);
+  s->set_max_linear_kick_speed(2.0f);
+  expect_done(specs);
+
+  geometry_radius = 0;
+  EXPECT_TRUE(vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        if (p.has_geometry()) geometry_radius = p.geometry().field().max_robot_radius();
+        return p.has_geometry() && geometry_radius < 89.0f;
+      },
+      5));
+  EXPECT_FLOAT_EQ(geometry_radius, 70.0f);
+  const double wall_y_after = y_against_wall(2);
+  // 20 mm less radius: the centre comes 20 mm closer to the wall (ideal vision).
+  EXPECT_NEAR(wall_y_after - wall_y_before, 20.0, 3.0)
+      << "before " << wall_y_before << " after " << wall_y_after;
+  const double limited = kicked_ball_speed(5.0f, 0.06);
+  std::printf(
+      "radius 90 -> 70 mm: centre %.1f mm closer to the wall; 5 m/s kick: ball at %.0f mm/s "
+      "before, %.0f mm/s with max_linear_kick_speed 2\n",
+      wall_y_after - wall_y_before, fast, limited);
+  EXPECT_GT(fast, 4000.0) << physics_->log();
+  EXPECT_LT(limited, 2100.0);
+  EXPECT_GT(limited, 1500.0);
+}

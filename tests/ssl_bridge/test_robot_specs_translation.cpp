@@ -1,0 +1,182 @@
+// RobotSpecs -> robot types defined at run time, in-process: the produced
+// config text is read back by the same reader physics uses.
+#include <gtest/gtest.h>
+#include <ssl_simulation_custom_erforce_robot_spec.pb.h>
+
+#include <cmath>
+#include <ubersim/team_t.hpp>
+
+#include "ssl_bridge/sim_control_translation.hpp"
+#include "ubersim/config_paths.hpp"
+#include "ubersim/robot_type_definition.hpp"
+
+using namespace ubersim;
+using namespace ubersim::ssl;
+
+namespace {
+
+BaseRobotType omni4() {
+  const std::string dir = UBERSIM_SOURCE_CONFIG_DIR;
+  const RobotTypeConfig config = load_robot_config(dir, "omni4_ssl");
+  return base_robot_type(ConfigFile::load(resolve_config(dir, "robots", "omni4_ssl")), config,
+                         0.0215);
+}
+
+bool mentions(const Errors& errors, const std::string& code, const std::string& text) {
+  for (const auto& e : errors) {
+    if (e.code() == code && e.message().find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST(SslRobotSpecs, EveryHonouredFieldReachesTheRobotType) {
+  const BaseRobotType base = omni4();
+  google::protobuf::RepeatedPtrField<RobotSpecs> all;
+  RobotSpecs& specs = *all.Add();
+  specs.mutable_id()->set_id(4);
+  specs.mutable_id()->set_team(BLUE);
+  specs.set_radius(0.08f);
+  specs.set_height(0.14f);
+  specs.set_mass(2.0f);
+  specs.set_max_linear_kick_speed(4.0f);
+  specs.set_max_chip_kick_speed(3.0f);
+  specs.set_center_to_dribbler(0.07f);
+  specs.mutable_limits()->set_acc_speedup_absolute_max(2.5f);
+  specs.mutable_limits()->set_acc_brake_absolute_max(2.5f);  // equal: honoured
+  specs.mutable_limits()->set_acc_speedup_angular_max(30.f);
+  specs.mutable_limits()->set_vel_absolute_max(2.0f);
+  specs.mutable_limits()->set_vel_angular_max(8.0f);
+  RobotWheelAngles* w = specs.mutable_wheel_angles();
+  w->set_front_right(static_cast<float>(60 * M_PI / 180));
+  w->set_back_right(static_cast<float>(135 * M_PI / 180));
+  w->set_back_left(static_cast<float>(225 * M_PI / 180));
+  w->set_front_left(static_cast<float>(300 * M_PI / 180));
+  RobotSpecErForce erforce;
+  erforce.set_dribbler_width(0.06f);
+  specs.add_custom()->PackFrom(erforce);
+
+  const RobotSpecsTranslation out = translate_robot_specs(all, base);
+  for (const auto& e : out.errors) ADD_FAILURE() << e.code() << ": " << e.message();
+  ASSERT_EQ(out.types.size(), 1u);
+  const DefinedRobotType& type = out.types[0];
+  EXPECT_EQ(type.name, "ssl_specs_blue_4");
+  EXPECT_EQ(type.team, +team_t::BLUE);
+  ASSERT_TRUE(type.robot_id);
+  EXPECT_EQ(*type.robot_id, 4);
+  const RobotTypeConfig read = parse_robot_type_definition(type.name, type.config_text);
+  EXPECT_NEAR(read.radius, 0.08, 1e-6);
+  EXPECT_NEAR(type.radius, 0.08, 1e-6);
+  EXPECT_NEAR(read.height, 0.14, 1e-6);
+  EXPECT_NEAR(read.mass, 2.0, 1e-6);
+  EXPECT_NEAR(read.kick_max_speed, 4.0, 1e-6);
+  EXPECT_NEAR(read.chip_max_speed, 3.0, 1e-6);
+  EXPECT_NEAR(read.front_distance, 0.07, 1e-6);
+  EXPECT_NEAR(read.max_acceleration, 2.5, 1e-6);
+  EXPECT_NEAR(read.max_angular_acceleration, 30, 1e-5);
+  EXPECT_NEAR(read.max_speed, 2.0, 1e-6);
+  EXPECT_NEAR(read.max_angular_speed, 8.0, 1e-6);
+  EXPECT_NEAR(read.dribbler_width, 0.06, 1e-6);
+  EXPECT_NEAR(read.kicker_width, 0.06, 1e-6);
+  // Clockwise 300 deg (front left) is counter-clockwise 60 deg, and so on.
+  ASSERT_EQ(read.wheels.size(), 4u);
+  const double expected_deg[] = {60, 135, 225, 300};
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(read.wheels[i].angle * 180 / M_PI, expected_deg[i], 1e-4) << i;
+    EXPECT_NEAR(read.wheels[i].distance, base.config.wheels[0].distance * 0.08 / 0.09, 1e-6);
+  }
+  // Inertia follows mass and radius squared.
+  EXPECT_NEAR(
+      read.moment_of_inertia,
+      base.config.moment_of_inertia * (2.0 / base.config.mass) * (0.08 / 0.09) * (0.08 / 0.09),
+      1e-9);
+}
+
+TEST(SslRobotSpecs, FieldsThatCannotBeHonouredAreNamedInErrors) {
+  const BaseRobotType base = omni4();
+  google::protobuf::RepeatedPtrField<RobotSpecs> all;
+  RobotSpecs& specs = *all.Add();
+  specs.mutable_id()->set_team(YELLOW);  // no id: the whole team
+  specs.set_mass(-1.0f);
+  specs.mutable_limits()->set_acc_brake_absolute_max(9.0f);  // differs from speed-up
+  google::protobuf::Any other;
+  other.set_type_url("type.googleapis.com/SomeoneElsesSpec");
+  *specs.add_custom() = other;
+  google::protobuf::Any broken;
+  broken.set_type_url("type.googleapis.com/RobotSpecErForce");
+  broken.set_value("\xff\xff\xff");
+  *specs.add_custom() = broken;
+  RobotSpecs& no_team = *all.Add();
+  no_team.mutable_id()->set_id(1);
+
+  const RobotSpecsTranslation out = translate_robot_specs(all, base);
+  EXPECT_TRUE(mentions(out.errors, kErrorInvalid, "robot_specs[0].mass"));
+  EXPECT_TRUE(
+      mentions(out.errors, kErrorUnsupported, "robot_specs[0].limits.acc_brake_absolute_max"));
+  EXPECT_TRUE(mentions(out.errors, kErrorUnsupported, "robot_specs[0].custom[0]"));
+  EXPECT_TRUE(mentions(out.errors, kErrorMalformed, "robot_specs[0].custom[1]"));
+  EXPECT_TRUE(mentions(out.errors, kErrorInvalid, "robot_specs[1].id.team"));
+  ASSERT_EQ(out.types.size(), 1u);  // the yellow team's still applies, without the bad fields
+  EXPECT_EQ(out.types[0].name, "ssl_specs_yellow");
+  EXPECT_FALSE(out.types[0].robot_id);
+  const RobotTypeConfig read =
+      parse_robot_type_definition(out.types[0].name, out.types[0].config_text);
+  EXPECT_NEAR(read.mass, base.config.mass, 1e-9);
+  EXPECT_NEAR(read.radius, 0.09, 1e-6);  // the protocol's default radius
+}
+
+TEST(SslRobotSpecs, SpecsDefineATypeThenRebuildTheRobotsWhereTheyStand) {
+  const BaseRobotType base = omni4();
+  sim_state_t state{};
+  robot_state_t robot{};
+  robot.team = team_t::BLUE;
+  robot.robot_id = 2;
+  robot.x = 1.5;
+  robot.y = -0.5;
+  robot.orientation = 0.25;
+  state.robots.push_back(robot);
+  robot.team = team_t::YELLOW;
+  state.robots.push_back(robot);
+  state.num_robots = 2;
+  SimControlSettings settings;
+  settings.base_robot_type = &base;
+  SimulatorCommand command;
+  RobotSpecs* specs = command.mutable_config()->add_robot_specs();
+  specs->mutable_id()->set_team(BLUE);
+  specs->set_radius(0.085f);
+  // The same command adds blue 7: it is built from the new type too.
+  TeleportRobot* add = command.mutable_control()->add_teleport_robot();
+  add->mutable_id()->set_id(7);
+  add->mutable_id()->set_team(BLUE);
+  add->set_x(0);
+  add->set_y(0);
+  add->set_present(true);
+
+  const auto out = translate_simulator_command(command, &state, settings);
+  EXPECT_TRUE(out.errors.empty());
+  ASSERT_EQ(out.requests.size(), 3u);
+  EXPECT_EQ(out.requests[0].action, +sim_control_t::DEFINE_ROBOT_TYPE);
+  EXPECT_EQ(out.requests[0].robot_type_name, "ssl_specs_blue");
+  EXPECT_EQ(out.requests[1].action, +sim_control_t::PLACE);
+  ASSERT_EQ(out.requests[1].num_robots, 1);  // only the blue robot
+  EXPECT_EQ(out.requests[1].robots[0].robot_type, "ssl_specs_blue");
+  EXPECT_DOUBLE_EQ(out.requests[1].robots[0].x, 1.5);
+  EXPECT_DOUBLE_EQ(out.requests[1].robots[0].orientation, 0.25);
+  EXPECT_EQ(out.requests[2].robots[0].robot_type, "ssl_specs_blue");
+  ASSERT_EQ(out.defined_types.size(), 1u);
+
+  // Without a base type, specs are an error and nothing is requested.
+  SimControlSettings none;
+  command.clear_control();
+  const auto refused = translate_simulator_command(command, &state, none);
+  EXPECT_TRUE(refused.requests.empty());
+  EXPECT_TRUE(mentions(refused.errors, kErrorUnsupported, "config.robot_specs"));
+}
+
+TEST(SslRobotSpecs, DefinitionTextIsBoundedAndMayNotNameAFile) {
+  EXPECT_THROW(parse_robot_type_definition("x", "BASE = /etc/passwd\n"), ConfigError);
+  EXPECT_THROW(parse_robot_type_definition("../x", "MASS = 1\n"), ConfigError);
+  EXPECT_THROW(parse_robot_type_definition("x", std::string(20000, '#')), ConfigError);
+  EXPECT_THROW(parse_robot_type_definition("x", "MASS = 1\n"), ConfigError);  // keys missing
+}
