@@ -51,7 +51,7 @@ const char* base_channel_name(Channel channel) {
 ChannelNames::ChannelNames(std::string prefix, std::map<std::string, std::string> overrides)
     : prefix_(std::move(prefix)), overrides_(std::move(overrides)) {
   for (const auto& [base, name] : overrides_) {
-    bool known = false;
+    bool known = base == kEmulatorRealismChannel;
     for (Channel channel : kAllChannels) known = known || base == base_channel_name(channel);
     if (!known) throw std::invalid_argument("no channel named '" + base + "' to override");
     if (name.empty()) throw std::invalid_argument("empty channel name for '" + base + "'");
@@ -70,6 +70,13 @@ std::string ChannelNames::radio(Team team) const {
 
 std::string ChannelNames::radio_feedback(Team team) const {
   return (*this)(team == Team::Yellow ? Channel::RadioFeedbackYellow : Channel::RadioFeedbackBlue);
+}
+
+std::string ChannelNames::emulator_realism() const {
+  if (auto found = overrides_.find(kEmulatorRealismChannel); found != overrides_.end()) {
+    return found->second;
+  }
+  return prefix_ + kEmulatorRealismChannel;
 }
 
 std::pair<std::string, std::string> ChannelNames::parse_override(const std::string& text) {

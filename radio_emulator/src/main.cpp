@@ -59,6 +59,20 @@ int run(const Options& options) {
     });
   }
 
+  bus.subscribe<emulator_realism_t>(
+      channels.emulator_realism(), [&](const emulator_realism_t& realism) {
+        const std::string problem = emulator.apply_realism(realism);
+        if (!problem.empty()) {
+          emulator.warnings().warn(
+              "realism", "ignored a realism change from '" + realism.sender + "': " + problem);
+          return;
+        }
+        const auto& p = emulator.profile(Team::Blue);
+        spdlog::info(
+            "realism from '{}': command latency {} s, robot loss {}, feedback robot loss {}",
+            realism.sender, p.command.latency, p.command.robot_loss, p.feedback.robot_loss);
+      });
+
   for (Team team : kTeams) {
     const auto& p = profiles[static_cast<int>(team)];
     spdlog::info(

@@ -146,6 +146,12 @@ void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
       type_radius_[type.name] = type.radius;
       spdlog::info("robot specs: robot type {} (radius {} m)", type.name, type.radius);
     }
+    if (translation.realism) {
+      translation.realism->request_id = next_request_id_++;
+      translation.realism->sender = kSender;
+      bus_.publish(channels_.emulator_realism(), *translation.realism);
+      ++counters_["realism changes"];
+    }
     if (translation.vision_port) {
       vision_destination_.sin_port = htons(static_cast<uint16_t>(*translation.vision_port));
       spdlog::info("vision now sent to port {}", *translation.vision_port);

@@ -176,9 +176,9 @@ void translate_config(const SimulatorConfig& config, SimControlTranslation& out)
               "(ubersim_physics --scenario)");
   }
   if (config.has_realism_config()) {
-    add_error(out.errors, kErrorUnsupported,
-              "config.realism_config is not supported: noise, latency and loss come from the "
-              "vision and radio emulator profiles");
+    RealismTranslation realism = translate_realism(config.realism_config());
+    out.errors.insert(out.errors.end(), realism.errors.begin(), realism.errors.end());
+    out.realism = realism.realism;
   }
   if (config.has_vision_port()) {
     if (config.vision_port() == 0 || config.vision_port() > 65535) {

@@ -316,10 +316,10 @@ TEST_F(SslBridgeProcess, GarbageIsAnsweredWithAnErrorAndTheBridgeKeepsRunning) {
 
 TEST_F(SslBridgeProcess, UnsupportedAndUnansweredControlIsNeverSilent) {
   ssl_test::UdpClient control_port(ports_.control);
+  // A realism config of a type ubersim does not know: answered at once.
   SimulatorCommand specs;
-  RobotSpecs* spec = specs.mutable_config()->add_robot_specs();
-  spec->mutable_id()->set_id(0);
-  spec->mutable_id()->set_team(BLUE);
+  google::protobuf::Any* other = specs.mutable_config()->mutable_realism_config()->add_custom();
+  other->set_type_url("type.googleapis.com/SomeOtherSimulatorsRealism");
   auto response = ssl_test::command(control_port, specs);
   ASSERT_TRUE(response.has_value());
   ASSERT_EQ(response->errors_size(), 1);

@@ -6,12 +6,15 @@
 // ball). ISOLATED: own network namespace.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <thread>
 
 #include "child_process.hpp"
+#include "erforce_presets.hpp"
 #include "ssl_client.hpp"
 
 namespace {
@@ -158,6 +161,57 @@ class SslProtocols : public ::testing::Test {
            (track.back().first - track.front().first);
   }
 
+  // Standard deviation (mm, pooled over x and y) of every robot's detections
+  // around a straight line in time (the robots stand, but creep by a fraction
+  // of a mm per second on their wheels), over `seconds` of frames.
+  double detection_sigma(double seconds, double* orientation_sigma = nullptr) {
+    // (t_capture, x, y, orientation) per robot
+    std::map<std::pair<int, uint32_t>, std::vector<std::array<double, 4>>> samples;
+    vision_rx_.receive_until(
+        [&](const SSL_WrapperPacket& p) {
+          if (!p.has_detection()) return false;
+          const double t = p.detection().t_capture();
+          for (const auto& r : p.detection().robots_blue()) {
+            samples[{1, r.robot_id()}].push_back({t, r.x(), r.y(), r.orientation()});
+          }
+          for (const auto& r : p.detection().robots_yellow()) {
+            samples[{0, r.robot_id()}].push_back({t, r.x(), r.y(), r.orientation()});
+          }
+          return false;
+        },
+        seconds);
+    double sum_sq = 0, sum_sq_phi = 0;
+    std::size_t n = 0, n_phi = 0;
+    for (auto& [robot, list] : samples) {
+      if (list.size() < 4) continue;
+      const double first_phi = list.front()[3];
+      for (auto& s : list) s[3] = std::remainder(s[3] - first_phi, 2 * M_PI);  // no jump at pi
+      // Least-squares line per coordinate; residuals have n - 2 degrees of freedom.
+      const double count = static_cast<double>(list.size());
+      double mt = 0;
+      for (const auto& s : list) mt += s[0] / count;
+      double stt = 0;
+      for (const auto& s : list) stt += (s[0] - mt) * (s[0] - mt);
+      for (int k = 1; k <= 3; ++k) {
+        double mk = 0, stk = 0;
+        for (const auto& s : list) mk += s[k] / count;
+        for (const auto& s : list) stk += (s[0] - mt) * (s[k] - mk);
+        const double slope = stt > 0 ? stk / stt : 0;
+        double ss = 0;
+        for (const auto& s : list) {
+          const double r = s[k] - mk - slope * (s[0] - mt);
+          ss += r * r;
+        }
+        (k == 3 ? sum_sq_phi : sum_sq) += ss;
+        (k == 3 ? n_phi : n) += list.size() - 2;
+      }
+    }
+    if (orientation_sigma != nullptr) {
+      *orientation_sigma = n_phi ? std::sqrt(sum_sq_phi / static_cast<double>(n_phi)) : -1;
+    }
+    return n ? std::sqrt(sum_sq / static_cast<double>(n)) : -1;
+  }
+
   const ssl_test::TestPorts ports_ = ssl_test::TestPorts::from_environment();
   ssl_test::VisionReceiver vision_rx_{"224.5.23.2", ports_.vision};
   ssl_test::UdpClient control_{ports_.control};
@@ -216,4 +270,38 @@ TEST_F(SslProtocols, RobotSpecsChangeRadiusInGeometryAndDetectionsAndTheKickLimi
   EXPECT_GT(fast, 4000.0) << physics_->log();
   EXPECT_LT(limited, 2100.0);
   EXPECT_GT(limited, 1500.0);
+}
+
+TEST_F(SslProtocols, RealismPresetsSetTheDetectionNoiseOnTheVisionPort) {
+  ASSERT_NO_FATAL_FAILURE(start("ideal"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  drain();
+  double baseline_phi = 0;
+  const double baseline = detection_sigma(1.0, &baseline_phi);
+  std::printf("ideal vision: robot position sigma %.4f mm, orientation %.5f rad\n", baseline,
+              baseline_phi);
+  for (const std::string preset : {"RC2021", "None", "Friendly"}) {
+    SimulatorCommand command;
+    command.mutable_config()->mutable_realism_config()->add_custom()->PackFrom(
+        ssl_test::erforce_preset(preset));
+    expect_done(command);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // frames captured before
+    drain();
+    double phi_sigma = 0;
+    const double sigma = detection_sigma(2.5, &phi_sigma);
+    const RealismConfigErForce configured = ssl_test::erforce_preset(preset);
+    const double expected = configured.stddev_robot_p() * 1000.0;  // mm
+    std::printf(
+        "%s: robot position sigma %.4f mm (configured %.4f), orientation %.5f rad "
+        "(configured %.5f)\n",
+        preset.c_str(), sigma, expected, phi_sigma, configured.stddev_robot_phi());
+    if (expected == 0) {  // what is left is the robots' own jitter on their wheels
+      EXPECT_LT(sigma, 0.05) << preset;
+      EXPECT_LT(phi_sigma, 5e-4) << preset;
+    } else {
+      EXPECT_NEAR(sigma, expected, 0.1 * expected) << preset;
+      EXPECT_NEAR(phi_sigma, configured.stddev_robot_phi(), 0.1 * configured.stddev_robot_phi())
+          << preset;
+    }
+  }
 }

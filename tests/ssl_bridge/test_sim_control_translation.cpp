@@ -208,7 +208,7 @@ TEST(SslSimControl, SimulationSpeed) {
   EXPECT_TRUE(has_code(out.errors, kErrorInvalid));
 }
 
-TEST(SslSimControl, ConfigIsAnsweredWithErrorsExceptTheVisionPort) {
+TEST(SslSimControl, GeometryAndSpecsWithoutABaseTypeAreErrorsVisionPortAndEmptyRealismAreNot) {
   SimulatorCommand command;
   SimulatorConfig* config = command.mutable_config();
   config->mutable_geometry()->mutable_field()->set_field_length(1);
@@ -218,7 +218,8 @@ TEST(SslSimControl, ConfigIsAnsweredWithErrorsExceptTheVisionPort) {
   config->set_vision_port(10006);
   const auto out = translate_simulator_command(command, nullptr, {});
   EXPECT_TRUE(out.requests.empty());
-  EXPECT_EQ(out.errors.size(), 3u);
+  EXPECT_EQ(out.errors.size(), 2u);
+  EXPECT_FALSE(out.realism.has_value());  // no custom config: nothing to change
   ASSERT_TRUE(out.vision_port.has_value());
   EXPECT_EQ(*out.vision_port, 10006);
 }

@@ -38,6 +38,12 @@ CameraDetector::CameraDetector(const CameraProfile& camera, const VisionProfile&
       false_ball_probability_(std::min(1.0, profile.false_ball_rate * camera.period())),
       random_(seed, 2 * static_cast<std::uint64_t>(camera.id)) {}
 
+void CameraDetector::set_model(const VisionProfile& profile, const CameraProfile& camera) {
+  profile_ = profile;
+  processing_time_ = camera.processing_time;
+  false_ball_probability_ = std::min(1.0, profile.false_ball_rate * camera.period());
+}
+
 bool CameraDetector::sees(const Eigen::Vector3d& point) const {
   const auto pixel = truth_.project(point);
   return pixel && truth_.in_image(*pixel);

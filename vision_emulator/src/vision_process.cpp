@@ -125,6 +125,25 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
         }
       }));
 
+  // Realism changed at run time (e.g. an SSL realism preset through the bridge).
+  bus.subscribe<emulator_realism_t>(
+      options.channels.emulator_realism(),
+      std::function<void(const emulator_realism_t&)>([&](const emulator_realism_t& realism) {
+        const std::string problem = emulator.apply_realism(realism);
+        if (!problem.empty()) {
+          bad_content.warn("realism",
+                           "ignored a realism change from '" + realism.sender + "': " + problem);
+          return;
+        }
+        const VisionProfile& p = emulator.profile();
+        spdlog::info(
+            "realism from '{}': robot sigma {} m / {} rad, ball sigma {} m, detection {} / {}, "
+            "false balls {}/s, latency {} s",
+            realism.sender, p.robot_sigma_x, p.robot_sigma_orientation, p.ball_sigma_x,
+            p.robot_detection_probability, p.ball_detection_probability, p.false_ball_rate,
+            realism.vision_latency);
+      }));
+
   // Ask physics for the field now rather than waiting for its next periodic message.
   sim_control_t request{};
   request.request_id = 1;

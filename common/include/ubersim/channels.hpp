@@ -38,6 +38,8 @@ inline constexpr std::array<Channel, 11> kAllChannels{Channel::Vision,
                                                       Channel::SimControlAck,
                                                       Channel::SimGeometry};
 
+inline constexpr const char* kEmulatorRealismChannel = "EMULATOR_REALISM";
+
 // The name a channel has with no prefix and no override, e.g. "RADIO_YELLOW".
 const char* base_channel_name(Channel channel);
 
@@ -50,6 +52,10 @@ class ChannelNames {
   std::string operator()(Channel channel) const;
   std::string radio(Team team) const;
   std::string radio_feedback(Team team) const;
+  // EMULATOR_REALISM (emulator_realism_t, SSL bridge and tools -> vision and
+  // radio emulators). Outside the Channel list, which the DDS bridge maps one
+  // for one onto topics: this one has no DDS topic.
+  std::string emulator_realism() const;
 
   // Parses "BASE_NAME=CHANNEL" as given on a command line.
   static std::pair<std::string, std::string> parse_override(const std::string& text);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ssl_bridge/errors.hpp"
+#include "ssl_bridge/realism_translation.hpp"
 #include "ssl_bridge/robot_specs_translation.hpp"
 
 namespace ubersim::ssl {
@@ -40,6 +41,7 @@ struct SimControlTranslation {
   Errors errors;
   std::optional<int> vision_port;               // SimulatorConfig.vision_port, when valid
   std::vector<DefinedRobotType> defined_types;  // robot specs turned into robot types
+  std::optional<emulator_realism_t> realism;    // for the emulators (EMULATOR_REALISM)
 };
 
 // `state` is the latest SIM_STATE, or null when none arrived yet.

@@ -47,6 +47,8 @@ class CommandLink {
   std::optional<sim_commands_t> poll(double now);
   // The world was reset: forget the waiting packet and the link's timing.
   void reset();
+  // New delay and loss from the next transmission on (a run-time realism change).
+  void set_profile(const RadioProfile& profile) { profile_ = profile; }
 
   bool has_waiting_packet() const { return waiting_.has_value(); }
   const CommandLinkStats& stats() const { return stats_; }

@@ -38,6 +38,8 @@ class FeedbackLink {
   // whose delivery time has come, oldest first, with t_sent set.
   std::vector<radio_feedback_t> on_sim_state(const sim_state_t& state);
   void reset();
+  // New delay and loss from the next sample on (a run-time realism change).
+  void set_profile(const RadioProfile& profile) { profile_ = profile; }
 
   const FeedbackLinkStats& stats() const { return stats_; }
 

@@ -11,6 +11,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <ubersim/emulator_realism_t.hpp>
 #include <ubersim/radio_feedback_t.hpp>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/sim_commands_t.hpp>
@@ -48,6 +49,12 @@ class RadioEmulator {
   void on_sim_state(const sim_state_t& state);
   // A packet that came on `channel_team`'s radio channel.
   void on_radio_packet(Team channel_team, const radio_packet_t& packet);
+
+  // A run-time realism change (EMULATOR_REALISM) for both teams: the radio
+  // values >= 0 replace the profiles'. Returns what was wrong (nothing
+  // applied), or "".
+  std::string apply_realism(const emulator_realism_t& realism);
+  const RadioProfile& profile(Team team) const { return link(team).profile; }
 
   TeamReport report(Team team) const;
   std::string summary(Team team) const;  // one line for the log

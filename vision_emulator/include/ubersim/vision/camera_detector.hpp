@@ -50,6 +50,9 @@ class CameraDetector {
   CameraDetector(const CameraProfile& camera, const VisionProfile& profile, std::uint64_t seed);
 
   vision_frame_t capture(const WorldSnapshot& world, std::int64_t frame_number);
+  // New detection model (noise, detection probabilities, false balls) and
+  // processing time from the next capture on; the random streams go on.
+  void set_model(const VisionProfile& profile, const CameraProfile& camera);
 
   int id() const { return id_; }
   const PinholeCamera& truth() const { return truth_; }

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <ubersim/emulator_realism_t.hpp>
 #include <ubersim/field_geometry_t.hpp>
 #include <ubersim/sim_state_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
@@ -67,6 +68,11 @@ class VisionEmulator {
   bool define_robot_size(const std::string& type, const RobotSize& size) {
     return robot_sizes_.define(type, size);
   }
+
+  // A run-time realism change (EMULATOR_REALISM): the values >= 0 replace
+  // the profile's from the next capture on (frames already captured keep
+  // their timing). Returns what was wrong (nothing applied), or "".
+  std::string apply_realism(const emulator_realism_t& realism);
 
   const VisionProfile& profile() const { return profile_; }
   const VisionStats& stats() const { return stats_; }

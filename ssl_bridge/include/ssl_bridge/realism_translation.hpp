@@ -1,0 +1,25 @@
+#pragma once
+// SimulatorConfig.realism_config -> one emulator_realism_t for the vision and
+// radio emulators (EMULATOR_REALISM), which apply it between frames. ER-Force's
+// RealismConfigErForce is mapped onto our emulator parameters; what our model
+// has no place for is named in one error and otherwise ignored.
+#include <ssl_simulation_config.pb.h>
+
+#include <optional>
+#include <ubersim/emulator_realism_t.hpp>
+
+#include "ssl_bridge/errors.hpp"
+
+namespace ubersim::ssl {
+
+struct RealismTranslation {
+  std::optional<emulator_realism_t> realism;  // request_id and sender left to the caller
+  Errors errors;
+};
+
+// An emulator_realism_t that changes nothing (every value -1).
+emulator_realism_t unchanged_realism();
+
+RealismTranslation translate_realism(const RealismConfig& config);
+
+}  // namespace ubersim::ssl

@@ -1,0 +1,141 @@
+#include "ssl_bridge/realism_translation.hpp"
+
+#include <ssl_simulation_custom_erforce_realism.pb.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace ubersim::ssl {
+namespace {
+
+constexpr double kNanosecond = 1e-9;  // s
+
+// ER-Force's field -> our parameter, or a note of what is not modelled.
+void map_erforce(const RealismConfigErForce& in, const std::string& field, emulator_realism_t& out,
+                 Errors& errors) {
+  std::vector<std::string> ignored;
+  std::vector<std::string> invalid;
+  const auto non_negative = [&](bool has, double value, const char* name) {
+    if (!has) return false;
+    if (std::isfinite(value) && value >= 0) return true;
+    invalid.push_back(name);
+    return false;
+  };
+  const auto probability = [&](bool has, double value, const char* name) {
+    if (!non_negative(has, value, name)) return false;
+    if (value <= 1) return true;
+    invalid.push_back(name);
+    return false;
+  };
+  if (non_negative(in.has_stddev_ball_p(), in.stddev_ball_p(), "stddev_ball_p")) {
+    out.ball_sigma_position = in.stddev_ball_p();
+  }
+  if (non_negative(in.has_stddev_robot_p(), in.stddev_robot_p(), "stddev_robot_p")) {
+    out.robot_sigma_position = in.stddev_robot_p();
+  }
+  if (non_negative(in.has_stddev_robot_phi(), in.stddev_robot_phi(), "stddev_robot_phi")) {
+    out.robot_sigma_orientation = in.stddev_robot_phi();
+  }
+  if (in.stddev_ball_area() > 0) ignored.push_back("stddev_ball_area (no ball area reported)");
+  // ER-Force: the ball is reported while at least this fraction of it is
+  // visible; with invisible balls off, always (ours: while any of it is).
+  const bool threshold_ok =
+      probability(in.has_ball_visibility_threshold(), in.ball_visibility_threshold(),
+                  "ball_visibility_threshold");
+  if (in.has_enable_invisible_ball() && !in.enable_invisible_ball()) {
+    out.ball_min_visible_fraction = 0;
+  } else if (threshold_ok) {
+    out.ball_min_visible_fraction = in.ball_visibility_threshold();
+  }
+  if (in.has_camera_overlap()) ignored.push_back("camera_overlap (the cameras are the profile's)");
+  if (non_negative(in.has_dribbler_ball_detections(), in.dribbler_ball_detections(),
+                   "dribbler_ball_detections")) {
+    out.false_ball_rate = in.dribbler_ball_detections();
+  }
+  if (in.camera_position_error() != 0) {
+    ignored.push_back("camera_position_error (calibration errors are the profile's)");
+  }
+  if (probability(in.has_robot_command_loss(), in.robot_command_loss(), "robot_command_loss")) {
+    out.command_robot_loss = in.robot_command_loss();
+  }
+  if (probability(in.has_robot_response_loss(), in.robot_response_loss(), "robot_response_loss")) {
+    out.feedback_robot_loss = in.robot_response_loss();
+  }
+  if (probability(in.has_missing_ball_detections(), in.missing_ball_detections(),
+                  "missing_ball_detections")) {
+    out.ball_detection_probability = 1.0 - in.missing_ball_detections();
+  }
+  if (probability(in.has_missing_robot_detections(), in.missing_robot_detections(),
+                  "missing_robot_detections")) {
+    out.robot_detection_probability = 1.0 - in.missing_robot_detections();
+  }
+  if (non_negative(in.has_vision_delay(), static_cast<double>(in.vision_delay()), "vision_delay")) {
+    out.vision_latency = static_cast<double>(in.vision_delay()) * kNanosecond;
+  }
+  if (non_negative(in.has_vision_processing_time(),
+                   static_cast<double>(in.vision_processing_time()), "vision_processing_time")) {
+    out.vision_processing_time = static_cast<double>(in.vision_processing_time()) * kNanosecond;
+  }
+  if (in.has_simulate_dribbling() && !in.simulate_dribbling()) {
+    ignored.push_back("simulate_dribbling = false (ubersim always simulates the dribbler)");
+  }
+  if (in.object_position_offset() != 0) {
+    ignored.push_back("object_position_offset (no systematic offset is modelled)");
+  }
+  if (in.has_command_delay()) {
+    out.command_latency = static_cast<double>(in.command_delay()) * kNanosecond;
+  }
+  if (!invalid.empty()) {
+    std::string names;
+    for (const std::string& n : invalid) names += (names.empty() ? "" : ", ") + n;
+    add_error(
+        errors, kErrorInvalid,
+        field + ": negative, non-finite or (for a probability) above 1, not applied: " + names);
+  }
+  if (!ignored.empty()) {
+    std::string names;
+    for (const std::string& n : ignored) names += (names.empty() ? "" : "; ") + n;
+    add_error(errors, kErrorUnsupported, field + ": not modelled, ignored: " + names);
+  }
+}
+
+}  // namespace
+
+emulator_realism_t unchanged_realism() {
+  emulator_realism_t r{};
+  r.robot_sigma_position = r.robot_sigma_orientation = r.ball_sigma_position = -1;
+  r.robot_detection_probability = r.ball_detection_probability = -1;
+  r.false_ball_rate = r.ball_min_visible_fraction = -1;
+  r.vision_latency = r.vision_processing_time = -1;
+  r.command_latency = r.command_robot_loss = r.feedback_robot_loss = -1;
+  return r;
+}
+
+RealismTranslation translate_realism(const RealismConfig& config) {
+  RealismTranslation out;
+  emulator_realism_t realism = unchanged_realism();
+  bool any = false;
+  for (int i = 0; i < config.custom_size(); ++i) {
+    const google::protobuf::Any& any_config = config.custom(i);
+    const std::string field = "realism_config.custom[" + std::to_string(i) + "]";
+    const std::string& url = any_config.type_url();
+    const std::string type = url.substr(url.find_last_of('/') + 1);
+    if (type != "RealismConfigErForce" && type != "sslsim.RealismConfigErForce") {
+      add_error(out.errors, kErrorUnsupported,
+                field + ": type '" + type + "' is not known to ubersim (RealismConfigErForce is)");
+      continue;
+    }
+    RealismConfigErForce erforce;
+    if (!erforce.ParseFromString(any_config.value())) {
+      add_error(out.errors, kErrorMalformed, field + ": does not decode as RealismConfigErForce");
+      continue;
+    }
+    map_erforce(erforce, field, realism, out.errors);
+    any = true;
+  }
+  if (any) out.realism = realism;
+  return out;
+}
+
+}  // namespace ubersim::ssl

@@ -1,0 +1,55 @@
+// Run-time realism changes (EMULATOR_REALISM), e.g. an SSL simulation
+// protocol realism preset: noise, detection probabilities, false balls, ball
+// occlusion and timing change between captures, without a restart. The
+// cameras (layout, calibration) stay those of the profile.
+#include <cmath>
+#include <initializer_list>
+
+#include "ubersim/vision/vision_emulator.hpp"
+
+namespace ubersim::vision {
+namespace {
+
+// < 0 means "unchanged"; NaN or infinity is a bad message.
+bool given(double value) {
+  return value >= 0;
+}
+
+}  // namespace
+
+std::string VisionEmulator::apply_realism(const emulator_realism_t& r) {
+  for (double v : {r.robot_sigma_position, r.robot_sigma_orientation, r.ball_sigma_position,
+                   r.robot_detection_probability, r.ball_detection_probability, r.false_ball_rate,
+                   r.ball_min_visible_fraction, r.vision_latency, r.vision_processing_time}) {
+    if (!std::isfinite(v)) return "a value is not finite";
+  }
+  for (double p :
+       {r.robot_detection_probability, r.ball_detection_probability, r.ball_min_visible_fraction}) {
+    if (p > 1) return "a probability or fraction above 1";
+  }
+  if (r.vision_latency > 10 || r.vision_processing_time > 10) return "a time above 10 s";
+  VisionProfile& p = profile_;
+  if (given(r.robot_sigma_position)) p.robot_sigma_x = p.robot_sigma_y = r.robot_sigma_position;
+  if (given(r.robot_sigma_orientation)) p.robot_sigma_orientation = r.robot_sigma_orientation;
+  if (given(r.ball_sigma_position)) p.ball_sigma_x = p.ball_sigma_y = r.ball_sigma_position;
+  if (given(r.robot_detection_probability)) {
+    p.robot_detection_probability = r.robot_detection_probability;
+  }
+  if (given(r.ball_detection_probability)) {
+    p.ball_detection_probability = r.ball_detection_probability;
+  }
+  if (given(r.false_ball_rate)) p.false_ball_rate = r.false_ball_rate;
+  if (given(r.ball_min_visible_fraction)) {
+    p.ball_min_visible_fraction = r.ball_min_visible_fraction;
+  }
+  for (Camera& camera : cameras_) {
+    if (given(r.vision_latency)) camera.timing.latency = r.vision_latency;
+    if (given(r.vision_processing_time)) camera.timing.processing_time = r.vision_processing_time;
+    // A frame cannot be sent before its processing is done.
+    camera.timing.processing_time = std::min(camera.timing.processing_time, camera.timing.latency);
+    camera.detector.set_model(p, camera.timing);
+  }
+  return "";
+}
+
+}  // namespace ubersim::vision
