@@ -16,7 +16,8 @@ bool valid_name(const std::string& name) {
   return true;
 }
 
-// Finds "BASE =" before the text is parsed, because parsing would follow it.
+}  // namespace
+
 bool names_a_base_file(const std::string& text) {
   std::istringstream lines(text);
   std::string line;
@@ -28,8 +29,6 @@ bool names_a_base_file(const std::string& text) {
   }
   return false;
 }
-
-}  // namespace
 
 RobotTypeConfig parse_robot_type_definition(const std::string& name, const std::string& text) {
   if (!valid_name(name)) {

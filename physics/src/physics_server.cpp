@@ -37,6 +37,8 @@ const char* action_name(int action) {
       return "REQUEST_GEOMETRY";
     case sim_control_t::DEFINE_ROBOT_TYPE:
       return "DEFINE_ROBOT_TYPE";
+    case sim_control_t::SET_FIELD:
+      return "SET_FIELD";
     case sim_control_t::PING:
       return "PING";
     default:
@@ -268,6 +270,16 @@ void PhysicsServer::on_control(const sim_control_t& request) {
       try {
         world_.define_robot_type(request.robot_type_name, request.robot_type_config);
         acknowledge(request, true, "robot type " + request.robot_type_name + " defined");
+      } catch (const std::exception& error) {
+        acknowledge(request, false, error.what());
+      }
+      return;
+    case sim_control_t::SET_FIELD:
+      try {
+        const std::string done = world_.change_field(request.field_config);
+        publish_state();
+        publish_geometry();
+        acknowledge(request, true, done);
       } catch (const std::exception& error) {
         acknowledge(request, false, error.what());
       }

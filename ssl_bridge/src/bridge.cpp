@@ -84,6 +84,7 @@ double SslBridge::max_robot_radius() const {
 }
 
 void SslBridge::on_geometry(const vision_geometry_t& geometry) {
+  current_field_ = geometry.field;
   GeometryExtras extras = options_.geometry;
   if (extras.max_robot_radius > 0) extras.max_robot_radius = max_robot_radius();
   send_vision(geometry_packet(geometry, extras));
@@ -138,6 +139,7 @@ void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
   Errors errors;
   SimulatorCommand command;
   if (decode(bytes, command, errors)) {
+    options_.sim_control.current_field = current_field_ ? &*current_field_ : nullptr;
     SimControlTranslation translation =
         translate_simulator_command(command, state_ ? &*state_ : nullptr, options_.sim_control);
     errors.insert(errors.end(), translation.errors.begin(), translation.errors.end());

@@ -169,11 +169,16 @@ void translate_speed(float speed, const sim_state_t* state, SimControlTranslatio
   if (state == nullptr || state->paused) out.requests.push_back(request(sim_control_t::RESUME));
 }
 
-void translate_config(const SimulatorConfig& config, SimControlTranslation& out) {
+void translate_config(const SimulatorConfig& config, const SimControlSettings& settings,
+                      SimControlTranslation& out) {
   if (config.has_geometry()) {
-    add_error(out.errors, kErrorUnsupported,
-              "config.geometry is not supported: choose the field with the scenario "
-              "(ubersim_physics --scenario)");
+    GeometryChange change = translate_geometry(config.geometry(), settings.current_field);
+    out.errors.insert(out.errors.end(), change.errors.begin(), change.errors.end());
+    if (change.field_config) {
+      sim_control_t set_field = request(sim_control_t::SET_FIELD);
+      set_field.field_config = *change.field_config;
+      out.requests.push_back(set_field);
+    }
   }
   if (config.has_realism_config()) {
     RealismTranslation realism = translate_realism(config.realism_config());
@@ -269,7 +274,7 @@ SimControlTranslation translate_simulator_command(const SimulatorCommand& comman
     if (place.has_ball || place.num_robots > 0) out.requests.push_back(place);
     if (control.has_simulation_speed()) translate_speed(control.simulation_speed(), state, out);
   }
-  if (command.has_config()) translate_config(command.config(), out);
+  if (command.has_config()) translate_config(command.config(), settings, out);
   return out;
 }
 

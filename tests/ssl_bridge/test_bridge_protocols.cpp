@@ -284,7 +284,11 @@ TEST_F(SslProtocols, RealismPresetsSetTheDetectionNoiseOnTheVisionPort) {
     SimulatorCommand command;
     command.mutable_config()->mutable_realism_config()->add_custom()->PackFrom(
         ssl_test::erforce_preset(preset));
-    expect_done(command);
+    const auto response = ssl_test::command(control_, command);
+    ASSERT_TRUE(response.has_value());
+    for (const auto& e : response->errors()) {  // only the fields our model lacks, named
+      EXPECT_EQ(e.code(), "UBERSIM_UNSUPPORTED") << e.message();
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(300));  // frames captured before
     drain();
     double phi_sigma = 0;
@@ -304,4 +308,44 @@ TEST_F(SslProtocols, RealismPresetsSetTheDetectionNoiseOnTheVisionPort) {
           << preset;
     }
   }
+}
+
+TEST_F(SslProtocols, GeometryChangesTheFieldAndVisionPortMovesTheOutput) {
+  ASSERT_NO_FATAL_FAILURE(start("ideal"));
+  SSL_GeometryData seen;
+  ASSERT_TRUE(vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        if (p.has_geometry()) seen = p.geometry();
+        return p.has_geometry();
+      },
+      5));
+  EXPECT_EQ(seen.field().field_length(), 9000);
+  // The geometry a client got, with a longer and wider field.
+  SimulatorCommand change;
+  SSL_GeometryData* geometry = change.mutable_config()->mutable_geometry();
+  *geometry->mutable_field() = seen.field();
+  geometry->mutable_field()->set_field_length(10400);
+  geometry->mutable_field()->set_field_width(7400);
+  expect_done(change);
+  EXPECT_TRUE(vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        return p.has_geometry() && p.geometry().field().field_length() == 10400 &&
+               p.geometry().field().field_width() == 7400;
+      },
+      5))
+      << physics_->log();
+  // A robot pushed to the wall now stops at the new one: 0.7 m further out.
+  const double y = y_against_wall(2);
+  EXPECT_NEAR(y, (3700 + 300 - 90), 5.0);
+
+  // vision_port: from now on the packets go to the new port.
+  const int moved_port = ports_.vision + 10;
+  ssl_test::VisionReceiver moved_rx("224.5.23.2", moved_port);
+  SimulatorCommand port;
+  port.mutable_config()->set_vision_port(static_cast<uint32_t>(moved_port));
+  expect_done(port);
+  EXPECT_TRUE(
+      moved_rx.receive_until([](const SSL_WrapperPacket& p) { return p.has_detection(); }, 3));
+  drain();
+  EXPECT_FALSE(vision_rx_.receive(0.5).has_value()) << "still sending to the old port";
 }

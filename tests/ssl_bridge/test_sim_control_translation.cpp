@@ -208,7 +208,7 @@ TEST(SslSimControl, SimulationSpeed) {
   EXPECT_TRUE(has_code(out.errors, kErrorInvalid));
 }
 
-TEST(SslSimControl, GeometryAndSpecsWithoutABaseTypeAreErrorsVisionPortAndEmptyRealismAreNot) {
+TEST(SslSimControl, GeometryBecomesSetFieldSpecsWithoutABaseTypeAreAnError) {
   SimulatorCommand command;
   SimulatorConfig* config = command.mutable_config();
   config->mutable_geometry()->mutable_field()->set_field_length(1);
@@ -216,9 +216,18 @@ TEST(SslSimControl, GeometryAndSpecsWithoutABaseTypeAreErrorsVisionPortAndEmptyR
   specs->mutable_id()->set_id(0);
   config->mutable_realism_config();
   config->set_vision_port(10006);
+  config->mutable_geometry()->mutable_field()->set_field_width(7400);
+  config->mutable_geometry()->mutable_field()->set_line_thickness(20);
+  config->mutable_geometry()->add_calib();  // cameras are the vision profile's: an error
   const auto out = translate_simulator_command(command, nullptr, {});
-  EXPECT_TRUE(out.requests.empty());
-  EXPECT_EQ(out.errors.size(), 2u);
+  ASSERT_EQ(out.requests.size(), 1u);
+  EXPECT_EQ(out.requests[0].action, +sim_control_t::SET_FIELD);
+  EXPECT_NE(out.requests[0].field_config.find("FIELD_LENGTH = 0.001\n"), std::string::npos);
+  EXPECT_NE(out.requests[0].field_config.find("FIELD_WIDTH = 7.4\n"), std::string::npos);
+  EXPECT_NE(out.requests[0].field_config.find("LINE_WIDTH = 0.02\n"), std::string::npos);
+  EXPECT_EQ(out.requests[0].field_config.find("PENALTY"), std::string::npos);  // unset: unchanged
+  EXPECT_EQ(out.errors.size(), 2u);  // calib; robot specs without a base type
+  EXPECT_TRUE(has_code(out.errors, kErrorUnsupported));
   EXPECT_FALSE(out.realism.has_value());  // no custom config: nothing to change
   ASSERT_TRUE(out.vision_port.has_value());
   EXPECT_EQ(*out.vision_port, 10006);

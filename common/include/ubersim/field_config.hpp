@@ -9,22 +9,22 @@ namespace ubersim {
 
 struct FieldConfig {
   std::string name;
-  double field_length = 0;          // m
-  double field_width = 0;           // m
-  double boundary_width = 0;        // m
-  double line_width = 0;            // m
-  double goal_width = 0;            // m
-  double goal_depth = 0;            // m
-  double goal_height = 0;           // m
-  double goal_wall_thickness = 0;   // m
-  double wall_height = 0;           // m
-  double wall_thickness = 0;        // m
-  double center_circle_radius = 0;  // m
-  double penalty_area_depth = 0;    // m
-  double penalty_area_width = 0;    // m
+  double field_length = 0;           // m
+  double field_width = 0;            // m
+  double boundary_width = 0;         // m
+  double line_width = 0;             // m
+  double goal_width = 0;             // m
+  double goal_depth = 0;             // m
+  double goal_height = 0;            // m
+  double goal_wall_thickness = 0;    // m
+  double wall_height = 0;            // m
+  double wall_thickness = 0;         // m
+  double center_circle_radius = 0;   // m
+  double penalty_area_depth = 0;     // m
+  double penalty_area_width = 0;     // m
   double penalty_mark_distance = 0;  // m, goal line of the attacked goal to the penalty mark
-  double wall_restitution = 0;      // unitless
-  double wall_friction = 0;         // unitless
+  double wall_restitution = 0;       // unitless
+  double wall_friction = 0;          // unitless
 
   // Inner faces of the boundary walls: |x| <= half_length_to_wall(), same for y.
   double half_length_to_wall() const { return field_length / 2 + boundary_width; }

@@ -13,6 +13,10 @@ namespace ubersim {
 inline constexpr std::size_t kMaxRobotTypeNameLength = 64;
 inline constexpr std::size_t kMaxRobotTypeText = 16 * 1024;  // bytes; a robot file is ~3 KB
 
+// True when the text has a "BASE = ..." line, which the config reader would
+// follow to a file: texts from the network are checked with it before parsing.
+bool names_a_base_file(const std::string& text);
+
 // Throws ConfigError (file = the type's name) for a bad name or text.
 RobotTypeConfig parse_robot_type_definition(const std::string& name, const std::string& text);
 

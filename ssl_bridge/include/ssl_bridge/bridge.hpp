@@ -74,7 +74,8 @@ class SslBridge {
   UdpSocket yellow_socket_;
   std::optional<sim_state_t> state_;
   std::map<Team, radio_feedback_t> feedback_;
-  std::map<std::string, double> type_radius_;  // m, robot type name -> radius
+  std::map<std::string, double> type_radius_;      // m, robot type name -> radius
+  std::optional<field_geometry_t> current_field_;  // from the latest VISION_GEOMETRY
   std::map<int64_t, std::shared_ptr<PendingResponse>> pending_by_request_;
   int64_t next_request_id_ = 1;
   int64_t radio_sequence_ = 0;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ssl_bridge/errors.hpp"
+#include "ssl_bridge/geometry_change_translation.hpp"
 #include "ssl_bridge/realism_translation.hpp"
 #include "ssl_bridge/robot_specs_translation.hpp"
 
@@ -31,6 +32,8 @@ struct SimControlSettings {
   SpecTypes spec_types;
   // What robot specs start from; null: robot specs are answered with an error.
   const BaseRobotType* base_robot_type = nullptr;
+  // The field ubersim reports now (latest VISION_GEOMETRY), null before one came.
+  const field_geometry_t* current_field = nullptr;
   double robot_radius = 0.09;   // m, for teleport_safely
   double ball_radius = 0.0215;  // m, for teleport_safely
 };

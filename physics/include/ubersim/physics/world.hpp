@@ -100,6 +100,11 @@ class World {
   // takes it when placed with that name. Throws ConfigError (file = the type's
   // name) for a bad text or when too many types are defined.
   void define_robot_type(const std::string& name, const std::string& config_text);
+  // A field changed at run time (SIM_CONTROL SET_FIELD): the keys of
+  // field_text replace those of the field in use, the static field is
+  // rebuilt, bodies outside the new walls are moved in. Also kept over RESET.
+  // Throws ConfigError; returns what was done.
+  std::string change_field(const std::string& field_text);
   bool remove_robot(Team team, int id);
   Robot* robot(Team team, int id);
   // Ball at a position (z = 0: resting on the floor) with a velocity, no spin.

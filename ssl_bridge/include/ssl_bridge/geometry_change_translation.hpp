@@ -1,0 +1,26 @@
+#pragma once
+// SimulatorConfig.geometry -> a SET_FIELD request: the field sizes (mm) become
+// "KEY = value" lines (m) of a field config, which physics applies to the field
+// in use. The lines and arcs follow from the sizes (ignored); what ubersim
+// takes from elsewhere (cameras: the vision profile; ball: the ball config)
+// is an error when it differs from what ubersim has.
+#include <messages_robocup_ssl_geometry.pb.h>
+
+#include <optional>
+#include <string>
+#include <ubersim/field_geometry_t.hpp>
+
+#include "ssl_bridge/errors.hpp"
+
+namespace ubersim::ssl {
+
+struct GeometryChange {
+  std::optional<std::string> field_config;  // for SIM_CONTROL SET_FIELD
+  Errors errors;
+};
+
+// `current`: the field ubersim reports now (null: none seen yet).
+GeometryChange translate_geometry(const SSL_GeometryData& geometry,
+                                  const field_geometry_t* current);
+
+}  // namespace ubersim::ssl
