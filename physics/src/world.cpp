@@ -95,6 +95,8 @@ void World::build() {
   step_ = 0;
   solver_random_state_ = static_cast<unsigned long>(setup_.seed);
   for (auto& line : pending_) line.clear();
+  ball_force_.reset();
+  robot_force_.clear();
 }
 
 void World::reset() {
@@ -124,6 +126,7 @@ bool World::remove_robot(Team team, int id) {
                             [&](const auto& r) { return r->team() == team && r->id() == id; });
   if (found == robots_.end()) return false;
   robots_.erase(found);
+  robot_force_.erase({static_cast<int>(team), id});
   return true;
 }
 
@@ -204,6 +207,7 @@ void World::apply_command(Team team, int id, const robot_command_t& raw, double 
 void World::step() {
   check_safety(false);
   apply_due_commands();
+  apply_force_moves();
   const double now = time();
   for (auto& r : robots_) r->before_step(now, dt_);
   std::vector<char>& kicked = kicked_buffer_;

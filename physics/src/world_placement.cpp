@@ -62,6 +62,15 @@ PlaceOutcome World::place(const sim_control_t& request, bool remove_all_first) {
       return outcome;
     }
     if (!p.present) continue;
+    if (p.mode != ball_placement_t::TELEPORT && robot(team, p.robot_id) == nullptr) {
+      outcome.message =
+          robot_name(team, p.robot_id) + " is not on the field: it cannot move by force";
+      return outcome;
+    }
+    if (p.mode < ball_placement_t::TELEPORT || p.mode > ball_placement_t::END_FORCE) {
+      outcome.message = robot_name(team, p.robot_id) + ": unknown placement mode";
+      return outcome;
+    }
     for (double v : {p.x, p.y, p.orientation, p.vx, p.vy, p.omega}) {
       if (!std::isfinite(v)) {
         outcome.message = robot_name(team, p.robot_id) + ": non-finite placement";
@@ -90,6 +99,11 @@ PlaceOutcome World::place(const sim_control_t& request, bool remove_all_first) {
         return outcome;
       }
     }
+    if (request.ball.mode < ball_placement_t::TELEPORT ||
+        request.ball.mode > ball_placement_t::END_FORCE) {
+      outcome.message = "unknown ball placement mode";
+      return outcome;
+    }
   }
 
   std::string notes;
@@ -106,6 +120,14 @@ PlaceOutcome World::place(const sim_control_t& request, bool remove_all_first) {
       if (remove_robot(team, p.robot_id)) ++removed;
       continue;
     }
+    const std::pair<int, int> key{static_cast<int>(team), p.robot_id};
+    if (p.mode == ball_placement_t::BY_FORCE) {
+      robot_force_[key] = ForceTarget{p.x, p.y, p.orientation};
+      notes += robot_name(team, p.robot_id) + " moves by force; ";
+      continue;
+    }
+    robot_force_.erase(key);
+    if (p.mode == ball_placement_t::END_FORCE) continue;
     Robot* existing = robot(team, p.robot_id);
     const auto type = types[i] ? types[i] : existing->type_ptr();
     // Inside the walls, and no faster than the robot can go.
@@ -133,7 +155,15 @@ PlaceOutcome World::place(const sim_control_t& request, bool remove_all_first) {
     }
     ++placed;
   }
-  if (request.has_ball) {
+  if (request.has_ball && request.ball.mode != ball_placement_t::TELEPORT) {
+    if (request.ball.mode == ball_placement_t::BY_FORCE) {
+      ball_force_ = ForceTarget{request.ball.position[0], request.ball.position[1], 0};
+      notes += "ball moves by force; ";
+    } else {
+      ball_force_.reset();
+    }
+  } else if (request.has_ball) {
+    ball_force_.reset();
     const double r = setup_.ball.radius;
     const double limit_x = setup_.field.half_length_to_wall() - r;
     const double limit_y = setup_.field.half_width_to_wall() - r;
@@ -144,6 +174,11 @@ PlaceOutcome World::place(const sim_control_t& request, bool remove_all_first) {
     }
     place_ball(x, y, request.ball.position[2], request.ball.linear_velocity[0],
                request.ball.linear_velocity[1], request.ball.linear_velocity[2]);
+    if (request.ball.rolling) {
+      // Rolling without slipping on the floor: v = w x (r z).
+      dBodySetAngularVel(ball_->body(), -request.ball.linear_velocity[1] / r,
+                         request.ball.linear_velocity[0] / r, 0);
+    }
   }
   // Wherever robots and ball ended up, the ball is never left inside a robot.
   move_ball_out_of_robots(notes);

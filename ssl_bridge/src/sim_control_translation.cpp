@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <set>
+#include <ubersim/ball_placement_t.hpp>
 #include <ubersim/team_t.hpp>
 
 namespace ubersim::ssl {
@@ -46,11 +47,6 @@ bool translate_robot(const TeleportRobot& in, const sim_state_t* state,
     return false;
   }
   const std::string name = robot_name(in.id());
-  if (in.by_force()) {
-    add_error(errors, kErrorUnsupported,
-              "teleport_robot.by_force is not supported (" + name + " not moved)");
-    return false;
-  }
   if (!all_finite({in.x(), in.y(), in.orientation(), in.v_x(), in.v_y(), in.v_angular()})) {
     add_error(errors, kErrorInvalid, "teleport_robot with a non-finite value (" + name + ")");
     return false;
@@ -65,6 +61,22 @@ bool translate_robot(const TeleportRobot& in, const sim_state_t* state,
     return true;
   }
   placement.present = true;
+  // Nothing but the id (and by_force = false): only end a move by force.
+  const bool only_id = !in.has_x() && !in.has_y() && !in.has_orientation() && !in.has_v_x() &&
+                       !in.has_v_y() && !in.has_v_angular() && !in.has_present();
+  if (in.by_force() || only_id) {
+    if (current == nullptr) {
+      add_error(errors, kErrorUnknownRobot,
+                name + " is not on the field; by_force moves only robots on the field");
+      return false;
+    }
+    placement.mode = in.by_force() ? ball_placement_t::BY_FORCE : ball_placement_t::END_FORCE;
+    placement.x = in.has_x() ? in.x() : current->x;
+    placement.y = in.has_y() ? in.y() : current->y;
+    placement.orientation = in.has_orientation() ? in.orientation() : current->orientation;
+    place.robots.push_back(placement);
+    return true;
+  }
   if (current == nullptr) {
     if (!in.has_present()) {
       add_error(errors, kErrorUnknownRobot,
@@ -117,28 +129,27 @@ void clear_ball_target(double bx, double by, const sim_state_t* state,
 
 void translate_ball(const TeleportBall& in, const sim_state_t* state,
                     const SimControlSettings& settings, sim_control_t& place, Errors& errors) {
-  if (in.by_force()) {
-    add_error(errors, kErrorUnsupported,
-              "teleport_ball.by_force is not supported (ball not moved)");
-    return;
-  }
   if (!all_finite({in.x(), in.y(), in.z(), in.vx(), in.vy(), in.vz()})) {
     add_error(errors, kErrorInvalid, "teleport_ball with a non-finite value");
     return;
   }
-  if ((!in.has_x() || !in.has_y()) && state == nullptr) {
+  if ((!in.has_x() || !in.has_y()) && state == nullptr &&
+      (in.by_force() || in.has_x() || in.has_y() || in.has_z() || in.has_vx() || in.has_vy() ||
+       in.has_vz())) {
     add_error(errors, kErrorInvalid,
               "teleport_ball without x and y before physics reported where the ball is");
     return;
   }
-  if (in.roll()) {
-    add_error(errors, kErrorUnsupported,
-              "teleport_ball.roll is not supported: the ball starts without spin (it slides, then "
-              "rolls); the teleport itself was done");
-  }
+  // No field at all (by_force = false): only end a move by force, no teleport.
+  const bool nothing = !in.has_x() && !in.has_y() && !in.has_z() && !in.has_vx() && !in.has_vy() &&
+                       !in.has_vz() && !in.by_force();
   place.has_ball = true;
-  place.ball.position[0] = in.has_x() ? in.x() : state->ball.position[0];
-  place.ball.position[1] = in.has_y() ? in.y() : state->ball.position[1];
+  place.ball.mode = in.by_force() ? ball_placement_t::BY_FORCE
+                    : nothing     ? ball_placement_t::END_FORCE
+                                  : ball_placement_t::TELEPORT;
+  place.ball.rolling = in.roll();
+  place.ball.position[0] = in.has_x() ? in.x() : (state ? state->ball.position[0] : 0.0);
+  place.ball.position[1] = in.has_y() ? in.y() : (state ? state->ball.position[1] : 0.0);
   place.ball.position[2] = in.z();
   place.ball.linear_velocity[0] = in.vx();
   place.ball.linear_velocity[1] = in.vy();

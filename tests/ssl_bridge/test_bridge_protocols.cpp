@@ -349,3 +349,166 @@ TEST_F(SslProtocols, GeometryChangesTheFieldAndVisionPortMovesTheOutput) {
   drain();
   EXPECT_FALSE(vision_rx_.receive(0.5).has_value()) << "still sending to the old port";
 }
+
+namespace {
+
+const SSL_DetectionBall* first_ball(const SSL_WrapperPacket& p) {
+  if (!p.has_detection() || p.detection().balls_size() == 0) return nullptr;
+  return &p.detection().balls(0);
+}
+
+}  // namespace
+
+TEST_F(SslProtocols, TeleportWithEveryOptionAndDriveWithGlobalVelocity) {
+  ASSERT_NO_FATAL_FAILURE(start("ideal"));
+  // Partial coordinates: only x changes.
+  SimulatorCommand partial;
+  TeleportRobot* only_x = partial.mutable_control()->add_teleport_robot();
+  only_x->mutable_id()->set_id(2);
+  only_x->mutable_id()->set_team(BLUE);
+  only_x->set_x(-2.0f);
+  const double y_before = mean_position(2, 3).second;
+  expect_done(partial);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  drain();
+  const auto [x_partial, y_partial] = mean_position(2, 3);
+  EXPECT_NEAR(x_partial, -2000, 5);
+  EXPECT_NEAR(y_partial, y_before, 5);
+
+  // teleport_safely: the ball lands on blue 2, which is pushed out of the way.
+  SimulatorCommand safely;
+  safely.mutable_control()->mutable_teleport_ball()->set_x(-2.0f);
+  safely.mutable_control()->mutable_teleport_ball()->set_y(static_cast<float>(y_partial / 1000));
+  safely.mutable_control()->mutable_teleport_ball()->set_teleport_safely(true);
+  expect_done(safely);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  drain();
+  const auto [x_safe, y_safe] = mean_position(2, 3);
+  EXPECT_GT(std::hypot(x_safe + 2000, y_safe - y_partial), 90 + 21.5) << "robot not moved away";
+
+  // roll: a rolling ball keeps its speed; a teleported one slides first and
+  // loses about 2/7 of it.
+  const auto ball_speed_after = [&](bool roll) {
+    SimulatorCommand shot;
+    TeleportBall* b = shot.mutable_control()->mutable_teleport_ball();
+    b->set_x(-1.0f);
+    b->set_y(-2.5f);
+    b->set_vx(2.0f);
+    b->set_vy(0.0f);
+    b->set_roll(roll);
+    expect_done(shot);
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    drain();
+    std::vector<std::pair<double, double>> track;
+    vision_rx_.receive_until(
+        [&](const SSL_WrapperPacket& p) {
+          if (const SSL_DetectionBall* ball = first_ball(p))
+            track.emplace_back(p.detection().t_capture(), ball->x());
+          return track.size() >= 4;
+        },
+        2);
+    if (track.size() < 2) return 0.0;
+    return (track.back().second - track.front().second) /
+           (track.back().first - track.front().first);
+  };
+  const double rolling = ball_speed_after(true);
+  const double sliding = ball_speed_after(false);
+  std::printf("ball 2 m/s: %.0f mm/s rolling, %.0f mm/s teleported without roll (0.25 s later)\n",
+              rolling, sliding);
+  EXPECT_GT(rolling, 1850.0);
+  EXPECT_LT(sliding, 1650.0);
+
+  // by_force: the ball is pushed to (1, 1) over time instead of jumping there.
+  SimulatorCommand push;
+  TeleportBall* pushed = push.mutable_control()->mutable_teleport_ball();
+  pushed->set_x(1.0f);
+  pushed->set_y(1.0f);
+  pushed->set_by_force(true);
+  SimulatorCommand still;
+  still.mutable_control()->mutable_teleport_ball()->set_x(0.0f);
+  still.mutable_control()->mutable_teleport_ball()->set_y(1.0f);
+  expect_done(still);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  expect_done(push);
+  drain();
+  double first_x = 0;
+  ASSERT_TRUE(vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        if (const SSL_DetectionBall* ball = first_ball(p)) first_x = ball->x();
+        return first_ball(p) != nullptr;
+      },
+      2));
+  EXPECT_LT(first_x, 900.0) << "the ball jumped: teleported, not pushed";
+  EXPECT_TRUE(vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        const SSL_DetectionBall* ball = first_ball(p);
+        return ball != nullptr && std::hypot(ball->x() - 1000, ball->y() - 1000) < 30;
+      },
+      4))
+      << "the ball did not arrive";
+  // A robot by force drives itself there.
+  SimulatorCommand drive_to;
+  TeleportRobot* r = drive_to.mutable_control()->add_teleport_robot();
+  r->mutable_id()->set_id(2);
+  r->mutable_id()->set_team(BLUE);
+  r->set_x(-1.0f);
+  r->set_y(-1.5f);
+  r->set_orientation(1.0f);
+  r->set_by_force(true);
+  expect_done(drive_to);
+  EXPECT_TRUE(vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        const SSL_DetectionRobot* robot = find_blue(p, 2);
+        return robot != nullptr && std::hypot(robot->x() + 1000, robot->y() + 1500) < 30 &&
+               std::fabs(robot->orientation() - 1.0f) < 0.05f;
+      },
+      5))
+      << "the robot did not drive there";
+  SimulatorCommand end;  // nothing but the id: ends the move, no teleport
+  TeleportRobot* e = end.mutable_control()->add_teleport_robot();
+  e->mutable_id()->set_id(2);
+  e->mutable_id()->set_team(BLUE);
+  end.mutable_control()->mutable_teleport_ball()->set_by_force(false);
+  expect_done(end);
+
+  // present: removed robots disappear, added ones appear.
+  SimulatorCommand remove;
+  TeleportRobot* gone = remove.mutable_control()->add_teleport_robot();
+  gone->mutable_id()->set_id(2);
+  gone->mutable_id()->set_team(BLUE);
+  gone->set_present(false);
+  expect_done(remove);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  drain();
+  int frames_without = 0;
+  vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        if (p.has_detection() && find_blue(p, 2) == nullptr) ++frames_without;
+        return frames_without >= 5;
+      },
+      2);
+  EXPECT_EQ(frames_without, 5);
+  SimulatorCommand add;
+  teleport_blue(add, 9, 0.5f, -2.0f)->set_present(true);
+  expect_done(add);
+  EXPECT_TRUE(vision_rx_.receive_until(
+      [](const SSL_WrapperPacket& p) { return find_blue(p, 9) != nullptr; }, 2));
+
+  // Global velocity: blue 9 drives along +y while facing +x.
+  RobotControl sideways;
+  RobotCommand* c = sideways.add_robot_commands();
+  c->set_id(9);
+  MoveGlobalVelocity* v = c->mutable_move_command()->mutable_global_velocity();
+  v->set_x(0);
+  v->set_y(1.0f);
+  v->set_angular(0);
+  const auto end_time = Clock::now() + std::chrono::milliseconds(1200);
+  while (Clock::now() < end_time) {
+    ssl_test::control(blue_, sideways, 0.05);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  drain();
+  const auto [x9, y9] = mean_position(9, 2);
+  EXPECT_GT(y9 + 2000, 400.0) << "did not drive along +y";
+  EXPECT_LT(std::fabs(x9 - 500), 150.0);
+}

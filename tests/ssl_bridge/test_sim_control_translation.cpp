@@ -70,32 +70,58 @@ TEST(SslSimControl, UnsetBallCoordinateKeepsTheCurrentOne) {
   EXPECT_TRUE(has_code(blind.errors, kErrorInvalid));
 }
 
-TEST(SslSimControl, ByForceAndNaNAreErrorsAndMoveNothing) {
+TEST(SslSimControl, ByForceMovesByForceAnEmptyTeleportEndsItNaNIsAnError) {
+  const sim_state_t state = state_with_robot(team_t::BLUE, 3, 1.0, 2.0, 0.5);
   SimulatorCommand command;
   TeleportBall* ball = command.mutable_control()->mutable_teleport_ball();
   ball->set_x(1);
-  ball->set_y(1);
   ball->set_by_force(true);
-  auto out = translate_simulator_command(command, nullptr, {});
-  EXPECT_TRUE(out.requests.empty());
-  EXPECT_TRUE(has_code(out.errors, kErrorUnsupported));
+  TeleportRobot* robot = command.mutable_control()->add_teleport_robot();
+  robot->mutable_id()->set_id(3);
+  robot->mutable_id()->set_team(BLUE);
+  robot->set_y(-1);
+  robot->set_by_force(true);
+  auto out = translate_simulator_command(command, &state, {});
+  EXPECT_TRUE(out.errors.empty());
+  ASSERT_EQ(out.requests.size(), 1u);
+  EXPECT_EQ(out.requests[0].ball.mode, +ball_placement_t::BY_FORCE);
+  EXPECT_DOUBLE_EQ(out.requests[0].ball.position[0], 1.0);
+  EXPECT_DOUBLE_EQ(out.requests[0].ball.position[1], -0.5);  // unset: where it is
+  ASSERT_EQ(out.requests[0].num_robots, 1);
+  EXPECT_EQ(out.requests[0].robots[0].mode, +ball_placement_t::BY_FORCE);
+  EXPECT_DOUBLE_EQ(out.requests[0].robots[0].x, 1.0);
+  EXPECT_DOUBLE_EQ(out.requests[0].robots[0].y, -1.0);
+  EXPECT_DOUBLE_EQ(out.requests[0].robots[0].orientation, 0.5);
+
+  SimulatorCommand end;
+  end.mutable_control()->mutable_teleport_ball()->set_by_force(false);
+  TeleportRobot* stop = end.mutable_control()->add_teleport_robot();
+  stop->mutable_id()->set_id(3);
+  stop->mutable_id()->set_team(BLUE);
+  out = translate_simulator_command(end, &state, {});
+  EXPECT_TRUE(out.errors.empty());
+  ASSERT_EQ(out.requests.size(), 1u);
+  EXPECT_EQ(out.requests[0].ball.mode, +ball_placement_t::END_FORCE);
+  EXPECT_EQ(out.requests[0].robots[0].mode, +ball_placement_t::END_FORCE);
 
   ball->set_by_force(false);
   ball->set_vx(std::nanf(""));
-  out = translate_simulator_command(command, nullptr, {});
-  EXPECT_TRUE(out.requests.empty());
+  out = translate_simulator_command(command, &state, {});
   EXPECT_TRUE(has_code(out.errors, kErrorInvalid));
 }
 
-TEST(SslSimControl, RollIsReportedButTheTeleportIsDone) {
+TEST(SslSimControl, RollAsksForARollingBall) {
   SimulatorCommand command;
   TeleportBall* ball = command.mutable_control()->mutable_teleport_ball();
   ball->set_x(1);
   ball->set_y(1);
+  ball->set_vx(2);
   ball->set_roll(true);
   const auto out = translate_simulator_command(command, nullptr, {});
-  EXPECT_EQ(out.requests.size(), 1u);
-  EXPECT_TRUE(has_code(out.errors, kErrorUnsupported));
+  ASSERT_EQ(out.requests.size(), 1u);
+  EXPECT_TRUE(out.errors.empty());
+  EXPECT_TRUE(out.requests[0].ball.rolling);
+  EXPECT_EQ(out.requests[0].ball.mode, +ball_placement_t::TELEPORT);
 }
 
 TEST(SslSimControl, TeleportSafelyPushesARobotOffTheTarget) {

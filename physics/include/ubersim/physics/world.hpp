@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <ubersim/field_geometry_t.hpp>
 #include <ubersim/sim_commands_t.hpp>
@@ -131,6 +132,8 @@ class World {
   bool body_sane(dBodyID body) const;
   bool inside_walls(double x, double y, double margin) const;
   void move_ball_out_of_robots(std::string& notes);
+  // Moves by force (placement mode BY_FORCE), applied every step until ended.
+  void apply_force_moves();
 
   WorldSetup setup_;
   // Types defined at run time, consulted by setup_.robot_types before the files.
@@ -154,6 +157,11 @@ class World {
   ThrottledLog log_;
   std::vector<dBodyID> body_buffer_;
   std::vector<char> kicked_buffer_;
+  struct ForceTarget {
+    double x = 0, y = 0, orientation = 0;  // m, m, rad
+  };
+  std::optional<ForceTarget> ball_force_;
+  std::map<std::pair<int, int>, ForceTarget> robot_force_;  // (team, id)
 };
 
 }  // namespace ubersim::physics
