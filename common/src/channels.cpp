@@ -8,6 +8,10 @@ const char* team_name(Team team) {
   return team == Team::Yellow ? "yellow" : "blue";
 }
 
+std::string robot_name(Team team, int id) {
+  return std::string(team_name(team)) + " " + std::to_string(id);
+}
+
 bool parse_team(const std::string& text, Team& team) {
   if (text == "yellow" || text == "YELLOW" || text == "y" || text == "0") {
     team = Team::Yellow;

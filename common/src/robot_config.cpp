@@ -3,14 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ubersim/angles.hpp"
 #include "ubersim/config_paths.hpp"
 
 namespace ubersim {
-namespace {
-
-constexpr double kDegToRad = M_PI / 180.0;
-
-}  // namespace
 
 RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& name) {
   RobotTypeConfig r;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <regex>
 
+#include "ubersim/angles.hpp"
 #include "ubersim/config_paths.hpp"
 
 namespace ubersim {
@@ -48,7 +49,7 @@ ScenarioConfig load_scenario_config(const ConfigFile& config, const std::string&
     }
     robot.x = numbers[0];
     robot.y = numbers[1];
-    robot.orientation = numbers[2] * M_PI / 180.0;
+    robot.orientation = numbers[2] * kDegToRad;
     s.robots.push_back(robot);
   }
   std::sort(s.robots.begin(), s.robots.end(), [](const RobotPlacement& a, const RobotPlacement& b) {

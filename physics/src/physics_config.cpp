@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "ubersim/angles.hpp"
 #include "ubersim/config_paths.hpp"
 
 namespace ubersim::physics {
@@ -47,7 +48,7 @@ PhysicsConfig load_physics_config(const ConfigFile& config, const std::string& n
     config.fail("PLANAR_SOLVER_ITERATIONS", "expected an integer in [1, 1000]");
   }
 
-  p.tip_angle = config.real_in("TIP_ANGLE_DEG", 5.0, 90.0) * M_PI / 180.0;
+  p.tip_angle = config.real_in("TIP_ANGLE_DEG", 5.0, 90.0) * kDegToRad;
   p.max_linear_speed = config.real_in("MAX_LINEAR_SPEED", 1.0, 1e6);
   p.max_angular_speed = config.real_in("MAX_ANGULAR_SPEED", 1.0, 1e7);
 

@@ -9,13 +9,6 @@
 #include "ubersim/scenario_config.hpp"
 
 namespace ubersim::physics {
-namespace {
-
-std::string robot_name(Team team, int id) {
-  return std::string(team_name(team)) + " " + std::to_string(id);
-}
-
-}  // namespace
 
 RobotTypeSource robot_types_from(const std::string& config_dir) {
   struct Cache {

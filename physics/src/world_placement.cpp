@@ -12,10 +12,6 @@ namespace {
 
 constexpr int kMaxRobotId = 99;  // the scenario format's two-digit ids (YELLOW_0 .. BLUE_99)
 
-std::string robot_name(Team team, int id) {
-  return std::string(team_name(team)) + " " + std::to_string(id);
-}
-
 }  // namespace
 
 void World::move_ball_out_of_robots(std::string& notes) {

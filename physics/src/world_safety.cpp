@@ -7,10 +7,6 @@
 namespace ubersim::physics {
 namespace {
 
-std::string robot_name(Team team, int id) {
-  return std::string(team_name(team)) + " " + std::to_string(id);
-}
-
 bool finite_all(const dReal* v, int n) {
   for (int i = 0; i < n; ++i) {
     if (!std::isfinite(v[i])) return false;

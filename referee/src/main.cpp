@@ -10,6 +10,7 @@
 #include "scene_io.hpp"
 #include "sim_link.hpp"
 #include "situations.hpp"
+#include "ubersim/angles.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/logging.hpp"
@@ -22,7 +23,6 @@ using namespace ubersim;
 using namespace ubersim::referee;
 using std::chrono::milliseconds;
 
-constexpr double kDegToRad = M_PI / 180.0;
 constexpr double kFallbackRadius = 0.09;  // m, SSL maximum, for a type whose config is missing
 
 int8_t wire_team(Team team) {

@@ -3,13 +3,13 @@
 #include <cmath>
 #include <sstream>
 
+#include "ubersim/angles.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/vision/pinhole_camera.hpp"
 
 namespace ubersim::vision {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
 constexpr double kMaxFrameRate = 1000.0;  // Hz: anything faster is a unit mistake
 constexpr double kMaxSigma = 1.0;         // m
 constexpr double kMaxLatency = 10.0;      // s

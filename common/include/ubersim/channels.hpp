@@ -11,6 +11,7 @@ namespace ubersim {
 enum class Team : int { Yellow = 0, Blue = 1 };
 inline constexpr std::array<Team, 2> kTeams{Team::Yellow, Team::Blue};
 const char* team_name(Team team);                      // "yellow" / "blue"
+std::string robot_name(Team team, int id);             // "yellow 3", for messages
 bool parse_team(const std::string& text, Team& team);  // accepts yellow/blue/y/b/0/1
 
 enum class Channel {
