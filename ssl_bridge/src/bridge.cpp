@@ -47,8 +47,18 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
                                  [this](const vision_frame_t& f) { on_vision(f); });
   bus_.subscribe<vision_geometry_t>(channels_(Channel::VisionGeometry),
                                     [this](const vision_geometry_t& g) { on_geometry(g); });
+  if (options_.tracked) {
+    TrackedSettings settings;
+    settings.rate = options_.tracked_rate;
+    settings.ball_model = options_.geometry.ball_model;
+    settings.uuid = random_uuid();
+    tracked_.emplace(settings);
+    tracked_socket_.emplace(
+        UdpSocket::multicast_sender(options_.tracked_ttl, options_.vision_interface));
+    tracked_destination_ = make_address(options_.tracked_address, options_.tracked_port);
+  }
   bus_.subscribe<sim_state_t>(
-      channels_(Channel::SimState), [this](const sim_state_t& s) { state_ = s; }, 10);
+      channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 10);
   bus_.subscribe<sim_control_ack_t>(channels_(Channel::SimControlAck),
                                     [this](const sim_control_ack_t& a) { on_ack(a); });
   for (Team team : kTeams) {
@@ -70,6 +80,24 @@ void SslBridge::send_vision(const SSL_WrapperPacket& packet) {
 
 void SslBridge::on_vision(const vision_frame_t& frame) {
   send_vision(detection_packet(frame));
+  // Tracked frames wait as long as this frame did: capture -> now (sim time).
+  if (tracked_ && state_ && state_->sim_time >= frame.t_capture) {
+    tracked_->set_latency(std::min(1.0, state_->sim_time - frame.t_capture));
+  }
+}
+
+void SslBridge::on_state(const sim_state_t& state) {
+  state_ = state;
+  if (!tracked_) return;
+  for (const TrackerWrapperPacket& packet : tracked_->on_state(state)) {
+    std::string bytes;
+    packet.SerializeToString(&bytes);
+    if (tracked_socket_->send_to(bytes, tracked_destination_)) {
+      ++counters_["tracked packets sent"];
+    } else {
+      bad_input_.warn("tracked_send", "could not send a tracked packet");
+    }
+  }
 }
 
 double SslBridge::max_robot_radius() const {
@@ -210,6 +238,10 @@ void SslBridge::run(const ShutdownSignal& shutdown) {
       options_.vision_address, options_.vision_port, options_.vision_ttl, options_.vision_interface,
       options_.listen_address, options_.control_port, options_.listen_address, options_.blue_port,
       options_.listen_address, options_.yellow_port);
+  if (tracked_) {
+    spdlog::info("tracked frames to {}:{} (ttl {}, {} Hz)", options_.tracked_address,
+                 options_.tracked_port, options_.tracked_ttl, options_.tracked_rate);
+  }
   while (!shutdown.requested()) {
     std::array<pollfd, 5> fds{{{bus_.lcm().getFileno(), POLLIN, 0},
                                {control_socket_.fd(), POLLIN, 0},

@@ -92,6 +92,19 @@ int parse_and_run(int argc, char** argv) {
                  "seconds to wait for physics' acknowledgement before answering with an error")
       ->capture_default_str()
       ->check(CLI::Range(0.01, 60.0));
+  app.add_flag("--tracked", b.tracked,
+               "also send SSL tracked frames (TrackerWrapperPacket) built from ground truth");
+  app.add_option("--tracked-address", b.tracked_address, "tracked frames multicast group")
+      ->capture_default_str();
+  app.add_option("--tracked-port", b.tracked_port, "tracked frames port")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 65535));
+  app.add_option("--tracked-ttl", b.tracked_ttl, "tracked frames multicast TTL (0: this host only)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 255));
+  app.add_option("--tracked-rate", b.tracked_rate, "tracked frames per second of sim time")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 1000.0));
   app.add_option("--robot-type", options.robot_type,
                  "robot config for robots added with present = true, and for wheel_velocity")
       ->capture_default_str();

@@ -91,6 +91,10 @@ std::optional<SSL_WrapperPacket> VisionReceiver::receive(double timeout_s) {
   return std::nullopt;
 }
 
+std::optional<std::string> VisionReceiver::receive_bytes(double timeout_s) {
+  return receive_one(fd_, after(timeout_s));
+}
+
 bool VisionReceiver::receive_until(const std::function<bool(const SSL_WrapperPacket&)>& accept,
                                    double timeout_s) {
   const auto deadline = after(timeout_s);

@@ -38,6 +38,8 @@ class VisionReceiver {
   // Receives until accept() returns true for a packet; false on timeout.
   bool receive_until(const std::function<bool(const SSL_WrapperPacket&)>& accept, double timeout_s);
   int undecodable() const { return undecodable_; }
+  // The next datagram as it came (e.g. a TrackerWrapperPacket), or nullopt after timeout_s.
+  std::optional<std::string> receive_bytes(double timeout_s);
 
  private:
   int fd_ = -1;

@@ -5,6 +5,7 @@
 // robots' size (seen in geometry and detections) and kick limit (seen on the
 // ball). ISOLATED: own network namespace.
 #include <gtest/gtest.h>
+#include <ssl_vision_wrapper_tracked.pb.h>
 
 #include <array>
 #include <chrono>
@@ -511,4 +512,75 @@ TEST_F(SslProtocols, TeleportWithEveryOptionAndDriveWithGlobalVelocity) {
   const auto [x9, y9] = mean_position(9, 2);
   EXPECT_GT(y9 + 2000, 400.0) << "did not drive along +y";
   EXPECT_LT(std::fabs(x9 - 500), 150.0);
+}
+
+TEST_F(SslProtocols, TrackedFramesFromGroundTruthWithTheKickedBall) {
+  const int tracked_port = ports_.vision + 20;
+  ssl_test::VisionReceiver tracked_rx("224.5.23.2", tracked_port);
+  ASSERT_NO_FATAL_FAILURE(
+      start("ideal", {"--tracked", "--tracked-port", std::to_string(tracked_port)}));
+  const auto next_tracked = [&](double timeout) -> std::optional<TrackerWrapperPacket> {
+    const auto end = Clock::now() + std::chrono::duration<double>(timeout);
+    while (Clock::now() < end) {
+      if (auto bytes = tracked_rx.receive_bytes(0.1)) {
+        TrackerWrapperPacket packet;
+        if (packet.ParseFromString(*bytes)) return packet;
+      }
+    }
+    return std::nullopt;
+  };
+  auto first = next_tracked(5);
+  ASSERT_TRUE(first.has_value()) << bridge_->log();
+  const std::string uuid = first->uuid();
+  EXPECT_EQ(uuid.size(), 36u);
+  EXPECT_EQ(first->source_name(), "ubersim");
+  ASSERT_TRUE(first->has_tracked_frame());
+  const TrackedFrame& frame = first->tracked_frame();
+  EXPECT_EQ(frame.robots_size(), 12);
+  ASSERT_EQ(frame.balls_size(), 1);
+  ASSERT_EQ(frame.capabilities_size(), 2);
+  EXPECT_EQ(frame.capabilities(0), CAPABILITY_DETECT_FLYING_BALLS);
+  EXPECT_EQ(frame.capabilities(1), CAPABILITY_DETECT_KICKED_BALLS);
+  uint32_t last_number = frame.frame_number();
+  double last_time = frame.timestamp();
+  for (int i = 0; i < 20; ++i) {
+    auto packet = next_tracked(1);
+    ASSERT_TRUE(packet.has_value());
+    EXPECT_EQ(packet->uuid(), uuid);
+    EXPECT_EQ(packet->tracked_frame().frame_number(), last_number + 1);
+    EXPECT_GT(packet->tracked_frame().timestamp(), last_time);
+    last_number = packet->tracked_frame().frame_number();
+    last_time = packet->tracked_frame().timestamp();
+  }
+  // The tracked robot stands where vision sees it (ideal vision: to a mm).
+  const auto [x_seen, y_seen] = mean_position(2, 2);
+  auto now = next_tracked(1);
+  ASSERT_TRUE(now.has_value());
+  bool found = false;
+  for (const TrackedRobot& r : now->tracked_frame().robots()) {
+    if (r.robot_id().id() != 2 || r.robot_id().team() != BLUE) continue;
+    found = true;
+    EXPECT_NEAR(r.pos().x() * 1000, x_seen, 2.0);
+    EXPECT_NEAR(r.pos().y() * 1000, y_seen, 2.0);
+  }
+  EXPECT_TRUE(found);
+
+  // A kick: the frames carry the kicked ball, its kicker and where it stops.
+  EXPECT_GT(kicked_ball_speed(3.0f, 0.075), 2000.0);
+  bool kicked = false;
+  const auto end = Clock::now() + std::chrono::seconds(2);
+  while (!kicked && Clock::now() < end) {
+    auto packet = next_tracked(0.5);
+    if (!packet || !packet->tracked_frame().has_kicked_ball()) continue;
+    const KickedBall& k = packet->tracked_frame().kicked_ball();
+    kicked = true;
+    EXPECT_EQ(k.robot_id().id(), 2u);
+    EXPECT_EQ(k.robot_id().team(), BLUE);
+    EXPECT_NEAR(k.vel().x(), 3.0, 0.4);
+    EXPECT_NEAR(k.pos().y(), -1.0, 0.05);
+    ASSERT_TRUE(k.has_stop_pos());
+    EXPECT_GT(k.stop_pos().x(), k.pos().x() + 1.0);  // it rolls on ahead
+    EXPECT_GT(k.stop_timestamp(), k.start_timestamp());
+  }
+  EXPECT_TRUE(kicked);
 }

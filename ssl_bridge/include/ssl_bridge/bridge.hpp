@@ -12,6 +12,7 @@
 
 #include "ssl_bridge/robot_control_translation.hpp"
 #include "ssl_bridge/sim_control_translation.hpp"
+#include "ssl_bridge/tracked_frames.hpp"
 #include "ssl_bridge/udp_socket.hpp"
 #include "ssl_bridge/vision_translation.hpp"
 #include "ubersim/channels.hpp"
@@ -34,6 +35,12 @@ struct BridgeOptions {
   SimControlSettings sim_control;
   std::optional<WheelMapping> wheels;
   GeometryExtras geometry;
+  // Tracked frames (--tracked): TrackerWrapperPacket from ground truth.
+  bool tracked = false;
+  std::string tracked_address = "224.5.23.2";
+  int tracked_port = 10010;
+  int tracked_ttl = 0;
+  double tracked_rate = 60;  // Hz of sim time
   // What robot specs start from (the --robot-type file); unset: specs are refused.
   std::optional<BaseRobotType> base_robot_type;
 };
@@ -56,6 +63,7 @@ class SslBridge {
   void on_vision(const vision_frame_t& frame);
   void on_geometry(const vision_geometry_t& geometry);
   void on_ack(const sim_control_ack_t& ack);
+  void on_state(const sim_state_t& state);
   void handle_control_datagram(const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void handle_robot_datagram(Team team, const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void send_vision(const SSL_WrapperPacket& packet);
@@ -76,6 +84,9 @@ class SslBridge {
   std::map<Team, radio_feedback_t> feedback_;
   std::map<std::string, double> type_radius_;      // m, robot type name -> radius
   std::optional<field_geometry_t> current_field_;  // from the latest VISION_GEOMETRY
+  std::optional<TrackedFrames> tracked_;
+  std::optional<UdpSocket> tracked_socket_;
+  sockaddr_in tracked_destination_{};
   std::map<int64_t, std::shared_ptr<PendingResponse>> pending_by_request_;
   int64_t next_request_id_ = 1;
   int64_t radio_sequence_ = 0;

@@ -1,0 +1,53 @@
+#pragma once
+// Tracked frames (--tracked): SSL-Vision's tracker protocol (TrackerWrapperPacket,
+// 224.5.23.2:10010 by convention) built from ground truth (SIM_STATE), each
+// frame published once sim time has passed its timestamp by the vision
+// latency the bridge observes, so tracked data is as late as the detections.
+// A kick is seen as a jump of the ball's speed next to a robot; its stop is
+// predicted with the ball config's two-phase model.
+#include <ssl_vision_wrapper_tracked.pb.h>
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <ubersim/sim_state_t.hpp>
+
+#include "ssl_bridge/vision_translation.hpp"
+
+namespace ubersim::ssl {
+
+struct TrackedSettings {
+  double rate = 60;                     // Hz of sim time, frames per second
+  std::optional<BallModel> ball_model;  // for the kicked ball's stop prediction
+  std::string uuid;                     // constant while the bridge runs
+};
+
+class TrackedFrames {
+ public:
+  explicit TrackedFrames(TrackedSettings settings);
+
+  // A new SIM_STATE; returns the packets due now (oldest first).
+  std::vector<TrackerWrapperPacket> on_state(const sim_state_t& state);
+  // The latency vision frames show (s, sim time): tracked frames wait as long.
+  void set_latency(double latency) { latency_ = latency; }
+  double latency() const { return latency_; }
+
+ private:
+  TrackerWrapperPacket build(const sim_state_t& state);
+  void detect_kick(const sim_state_t& state);
+
+  TrackedSettings settings_;
+  double latency_ = 0;
+  double next_sample_ = 0;  // s, sim time of the next frame
+  uint32_t frame_number_ = 0;
+  std::deque<sim_state_t> waiting_;
+  std::optional<KickedBall> kick_;
+  double previous_ball_speed_ = 0;
+  double previous_time_ = -1;
+};
+
+// A random version-4 UUID (the source's id for this run).
+std::string random_uuid();
+
+}  // namespace ubersim::ssl
