@@ -7,9 +7,9 @@
 #include <map>
 #include <ubersim/team_t.hpp>
 
-#include "scene_io.hpp"
-#include "sim_link.hpp"
-#include "situations.hpp"
+#include "ubersim/referee/scene_io.hpp"
+#include "ubersim/referee/sim_link.hpp"
+#include "ubersim/referee/situations.hpp"
 #include "ubersim/angles.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"

@@ -1,4 +1,4 @@
-#include "placement.hpp"
+#include "ubersim/referee/placement.hpp"
 
 #include <algorithm>
 #include <cmath>

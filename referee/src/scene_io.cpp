@@ -1,4 +1,4 @@
-#include "scene_io.hpp"
+#include "ubersim/referee/scene_io.hpp"
 
 #include <cmath>
 #include <ubersim/team_t.hpp>

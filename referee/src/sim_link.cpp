@@ -1,4 +1,4 @@
-#include "sim_link.hpp"
+#include "ubersim/referee/sim_link.hpp"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "situations.hpp"
+#include "ubersim/referee/situations.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "ssl_bridge/bridge.hpp"
+#include "ubersim/ssl_bridge/bridge.hpp"
 
 #include <google/protobuf/unknown_field_set.h>
 #include <poll.h>

@@ -1,9 +1,9 @@
-#include "ssl_bridge/geometry_change_translation.hpp"
+#include "ubersim/ssl_bridge/geometry_change_translation.hpp"
 
 #include <cmath>
 #include <cstdio>
 
-#include "ssl_bridge/units.hpp"
+#include "ubersim/ssl_bridge/units.hpp"
 
 namespace ubersim::ssl {
 namespace {

@@ -6,7 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "ssl_bridge/bridge.hpp"
+#include "ubersim/ssl_bridge/bridge.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/config_paths.hpp"

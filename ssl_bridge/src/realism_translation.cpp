@@ -1,4 +1,4 @@
-#include "ssl_bridge/realism_translation.hpp"
+#include "ubersim/ssl_bridge/realism_translation.hpp"
 
 #include <ssl_simulation_custom_erforce_realism.pb.h>
 

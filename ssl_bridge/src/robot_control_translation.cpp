@@ -1,11 +1,11 @@
-#include "ssl_bridge/robot_control_translation.hpp"
+#include "ubersim/ssl_bridge/robot_control_translation.hpp"
 
 #include <cmath>
 #include <string>
 #include <ubersim/robot_command_t.hpp>
 #include <ubersim/team_t.hpp>
 
-#include "ssl_bridge/units.hpp"
+#include "ubersim/ssl_bridge/units.hpp"
 
 namespace ubersim::ssl {
 namespace {

@@ -1,4 +1,4 @@
-#include "ssl_bridge/robot_specs_translation.hpp"
+#include "ubersim/ssl_bridge/robot_specs_translation.hpp"
 
 #include <ssl_simulation_custom_erforce_robot_spec.pb.h>
 
@@ -7,7 +7,7 @@
 #include <map>
 #include <ubersim/team_t.hpp>
 
-#include "ssl_bridge/units.hpp"
+#include "ubersim/ssl_bridge/units.hpp"
 
 namespace ubersim::ssl {
 namespace {

@@ -1,4 +1,4 @@
-#include "ssl_bridge/sim_control_translation.hpp"
+#include "ubersim/ssl_bridge/sim_control_translation.hpp"
 
 #include <cmath>
 #include <set>

@@ -1,4 +1,4 @@
-#include "ssl_bridge/tracked_frames.hpp"
+#include "ubersim/ssl_bridge/tracked_frames.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "ssl_bridge/udp_socket.hpp"
+#include "ubersim/ssl_bridge/udp_socket.hpp"
 
 #include <arpa/inet.h>
 #include <fcntl.h>

@@ -1,4 +1,4 @@
-#include "ssl_bridge/units.hpp"
+#include "ubersim/ssl_bridge/units.hpp"
 
 #include <cmath>
 

@@ -1,10 +1,10 @@
-#include "ssl_bridge/vision_translation.hpp"
+#include "ubersim/ssl_bridge/vision_translation.hpp"
 
 #include <array>
 #include <cstdint>
 #include <string>
 
-#include "ssl_bridge/units.hpp"
+#include "ubersim/ssl_bridge/units.hpp"
 
 namespace ubersim::ssl {
 namespace {

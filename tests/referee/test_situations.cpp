@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "placement.hpp"
-#include "situations.hpp"
+#include "ubersim/referee/placement.hpp"
+#include "ubersim/referee/situations.hpp"
 #include "ubersim/field_config.hpp"
 
 using namespace ubersim;

@@ -6,7 +6,7 @@
 #include <cctype>
 
 #include "erforce_presets.hpp"
-#include "ssl_bridge/realism_translation.hpp"
+#include "ubersim/ssl_bridge/realism_translation.hpp"
 #include "ubersim/radio/radio_profile.hpp"
 #include "ubersim/vision/vision_profile.hpp"
 

@@ -5,8 +5,8 @@
 #include <ubersim/robot_command_t.hpp>
 #include <ubersim/team_t.hpp>
 
-#include "ssl_bridge/robot_control_translation.hpp"
-#include "ssl_bridge/units.hpp"
+#include "ubersim/ssl_bridge/robot_control_translation.hpp"
+#include "ubersim/ssl_bridge/units.hpp"
 
 using namespace ubersim;
 using namespace ubersim::ssl;

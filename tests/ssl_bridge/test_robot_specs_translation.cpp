@@ -6,7 +6,7 @@
 #include <cmath>
 #include <ubersim/team_t.hpp>
 
-#include "ssl_bridge/sim_control_translation.hpp"
+#include "ubersim/ssl_bridge/sim_control_translation.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/robot_type_definition.hpp"
 

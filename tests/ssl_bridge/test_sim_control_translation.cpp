@@ -4,7 +4,7 @@
 #include <cmath>
 #include <ubersim/team_t.hpp>
 
-#include "ssl_bridge/sim_control_translation.hpp"
+#include "ubersim/ssl_bridge/sim_control_translation.hpp"
 
 using namespace ubersim;
 using namespace ubersim::ssl;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <ubersim/team_t.hpp>
 
-#include "ssl_bridge/tracked_frames.hpp"
+#include "ubersim/ssl_bridge/tracked_frames.hpp"
 
 using namespace ubersim;
 using namespace ubersim::ssl;

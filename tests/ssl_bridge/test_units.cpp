@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "ssl_bridge/units.hpp"
+#include "ubersim/ssl_bridge/units.hpp"
 
 using namespace ubersim::ssl;
 

@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "ssl_bridge/vision_translation.hpp"
+#include "ubersim/ssl_bridge/vision_translation.hpp"
 
 using namespace ubersim;
 using namespace ubersim::ssl;

@@ -12,10 +12,10 @@
 #include <utility>
 #include <vector>
 
-#include "ssl_bridge/errors.hpp"
-#include "ssl_bridge/geometry_change_translation.hpp"
-#include "ssl_bridge/realism_translation.hpp"
-#include "ssl_bridge/robot_specs_translation.hpp"
+#include "ubersim/ssl_bridge/errors.hpp"
+#include "ubersim/ssl_bridge/geometry_change_translation.hpp"
+#include "ubersim/ssl_bridge/realism_translation.hpp"
+#include "ubersim/ssl_bridge/robot_specs_translation.hpp"
 
 namespace ubersim::ssl {
 

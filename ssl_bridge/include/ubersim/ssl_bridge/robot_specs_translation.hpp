@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "ssl_bridge/errors.hpp"
+#include "ubersim/ssl_bridge/errors.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/robot_config.hpp"
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <ubersim/field_geometry_t.hpp>
 
-#include "ssl_bridge/errors.hpp"
+#include "ubersim/ssl_bridge/errors.hpp"
 
 namespace ubersim::ssl {
 

@@ -10,7 +10,7 @@
 #include <ubersim/radio_feedback_t.hpp>
 #include <ubersim/radio_packet_t.hpp>
 
-#include "ssl_bridge/errors.hpp"
+#include "ubersim/ssl_bridge/errors.hpp"
 #include "ubersim/channels.hpp"
 #include "ubersim/robot_config.hpp"
 

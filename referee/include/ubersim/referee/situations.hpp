@@ -7,7 +7,7 @@
 #include <string>
 #include <ubersim/field_geometry_t.hpp>
 
-#include "placement.hpp"
+#include "ubersim/referee/placement.hpp"
 
 namespace ubersim::referee {
 

@@ -10,11 +10,11 @@
 #include <string>
 #include <ubersim/sim_control_ack_t.hpp>
 
-#include "ssl_bridge/robot_control_translation.hpp"
-#include "ssl_bridge/sim_control_translation.hpp"
-#include "ssl_bridge/tracked_frames.hpp"
-#include "ssl_bridge/udp_socket.hpp"
-#include "ssl_bridge/vision_translation.hpp"
+#include "ubersim/ssl_bridge/robot_control_translation.hpp"
+#include "ubersim/ssl_bridge/sim_control_translation.hpp"
+#include "ubersim/ssl_bridge/tracked_frames.hpp"
+#include "ubersim/ssl_bridge/udp_socket.hpp"
+#include "ubersim/ssl_bridge/vision_translation.hpp"
 #include "ubersim/channels.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"

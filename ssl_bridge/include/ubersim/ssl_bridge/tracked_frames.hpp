@@ -13,7 +13,7 @@
 #include <string>
 #include <ubersim/sim_state_t.hpp>
 
-#include "ssl_bridge/vision_translation.hpp"
+#include "ubersim/ssl_bridge/vision_translation.hpp"
 
 namespace ubersim::ssl {
 

@@ -6,7 +6,7 @@
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
 
-#include "placement.hpp"
+#include "ubersim/referee/placement.hpp"
 
 namespace ubersim::referee {
 

@@ -8,7 +8,7 @@
 #include <optional>
 #include <ubersim/emulator_realism_t.hpp>
 
-#include "ssl_bridge/errors.hpp"
+#include "ubersim/ssl_bridge/errors.hpp"
 
 namespace ubersim::ssl {
 
