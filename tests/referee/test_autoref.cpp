@@ -1,0 +1,446 @@
+// The automatic referee's rules, one situation per test: ground truth is built
+// by hand (robots, ball, its velocity), fed in sim-time order, and the
+// decision (command, events, score, placement) is checked.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <ubersim/team_t.hpp>
+
+#include "ubersim/config.hpp"
+#include "ubersim/field_config.hpp"
+#include "ubersim/referee/autoref.hpp"
+#include "ubersim/referee/autoref_rules.hpp"
+
+using namespace ubersim;
+using namespace ubersim::referee;
+
+namespace {
+
+constexpr double kDt = 0.01;  // s between the states fed in
+
+field_geometry_t division_b() {
+  return load_field_config(UBERSIM_SOURCE_CONFIG_DIR, "division_b").to_message(0.0215);
+}
+
+GameConfig shipped_config() {
+  return load_game_config(UBERSIM_SOURCE_CONFIG_DIR, "division_b");
+}
+
+// A referee and the world it watches: 2 x 6 robots in their own halves (yellow
+// defends negative x), the ball on the centre spot.
+class Game {
+ public:
+  explicit Game(GameConfig config = shipped_config()) : referee_(config, division_b()) {
+    state_.ball_present = true;
+    for (int team = 0; team < 2; ++team) {
+      for (int id = 0; id < 6; ++id) add_robot(team == 0 ? Team::Yellow : Team::Blue, id);
+    }
+  }
+
+  void add_robot(Team team, int id) {
+    robot_state_t r{};
+    r.team = team == Team::Blue ? team_t::BLUE : team_t::YELLOW;
+    r.robot_id = id;
+    r.robot_type = "omni4_ssl";
+    const double side = team == Team::Yellow ? -1 : 1;
+    r.x = side * (1.0 + 0.5 * id);
+    r.y = 1.5 - 0.6 * id;
+    state_.robots.push_back(r);
+    state_.num_robots = static_cast<int32_t>(state_.robots.size());
+  }
+
+  robot_state_t& robot(Team team, int id) {
+    for (auto& r : state_.robots) {
+      if (r.robot_id == id && (r.team == team_t::BLUE) == (team == Team::Blue)) return r;
+    }
+    throw std::runtime_error("no such robot");
+  }
+
+  void ball(double x, double y, double vx = 0, double vy = 0, double z = 0.0215) {
+    state_.ball.position[0] = x;
+    state_.ball.position[1] = y;
+    state_.ball.position[2] = z;
+    state_.ball.linear_velocity[0] = vx;
+    state_.ball.linear_velocity[1] = vy;
+    state_.ball.linear_velocity[2] = 0;
+  }
+
+  // Feeds one state; collects what was decided.
+  Decision tick() {
+    state_.sim_time = time_;
+    time_ += kDt;
+    auto d = referee_.update(state_);
+    for (const auto& e : d.events) events_.push_back(e);
+    if (d.placement) placements_.push_back(*d.placement);
+    return d;
+  }
+  // Feeds states for `seconds` (the world unchanged).
+  void run(double seconds) {
+    const int n = static_cast<int>(std::lround(seconds / kDt));
+    for (int i = 0; i < n; ++i) tick();
+  }
+  // A placement arrives as physics would carry it out: the ball moves to the spot.
+  void carry_out_placement() {
+    ASSERT_TRUE(referee_.state().designated_position.has_value());
+    ball(referee_.state().designated_position->first, referee_.state().designated_position->second);
+  }
+  // From the start of the game to the ball in play after the first kick-off.
+  void kick_off_and_play() {
+    run(referee_.config().stop_duration + kDt);
+    carry_out_placement();
+    run(referee_.config().prepare_duration + kDt);
+    ASSERT_EQ(state().command, Command::NormalStart);
+    ball(0.2, 0.0);  // the kick-off is taken
+    tick();
+    ASSERT_TRUE(state().ball_in_play);
+    events_.clear();
+    placements_.clear();
+  }
+
+  const RefereeState& state() const { return referee_.state(); }
+  const std::vector<GameEvent>& events() const { return events_; }
+  const std::vector<SituationRequest>& placements() const { return placements_; }
+  double time() const { return time_; }
+
+ private:
+  AutoReferee referee_;
+  sim_state_t state_{};
+  double time_ = 0;
+  std::vector<GameEvent> events_;
+  std::vector<SituationRequest> placements_;
+};
+
+}  // namespace
+
+TEST(AutoRefereeStart, StopThenKickOffPlacedThenNormalStartStartsTheFirstHalf) {
+  Game game;
+  game.tick();
+  EXPECT_EQ(game.state().stage, Stage::FirstHalfPre);
+  EXPECT_EQ(game.state().command, Command::Stop);
+  ASSERT_TRUE(game.state().next_command.has_value());
+  EXPECT_EQ(*game.state().next_command, Command::PrepareKickoffYellow);
+
+  game.run(1.9);  // still inside the stop phase
+  EXPECT_EQ(game.state().command, Command::Stop);
+  EXPECT_TRUE(game.placements().empty());
+  game.run(0.2);
+  EXPECT_EQ(game.state().command, Command::PrepareKickoffYellow);
+  ASSERT_EQ(game.placements().size(), 1u);
+  EXPECT_EQ(game.placements()[0].kind, Situation::KickOff);
+  EXPECT_EQ(game.placements()[0].team, Team::Yellow);
+
+  game.run(1.1);
+  EXPECT_EQ(game.state().command, Command::NormalStart);
+  EXPECT_EQ(game.state().stage, Stage::FirstHalf);
+  EXPECT_GT(game.state().stage_time_left, 299.8);  // the half's clock started at NORMAL_START
+  EXPECT_LE(game.state().stage_time_left, 300.0);
+  EXPECT_FALSE(game.state().ball_in_play);  // until the kick-off is taken
+  game.ball(0.1, 0);
+  game.tick();
+  EXPECT_TRUE(game.state().ball_in_play);
+}
+
+TEST(AutoRefereeGoal, WholeBallOverTheGoalLineBetweenThePostsScores) {
+  Game game;
+  game.kick_off_and_play();
+  game.ball(4.5 + 0.02, 0.1);  // not wholly over the line yet
+  game.tick();
+  EXPECT_EQ(game.state().yellow.goals, 0);
+  game.ball(4.5 + 0.03, 0.1, 2.0, 0.0);
+  game.tick();
+  ASSERT_EQ(game.events().size(), 1u);
+  EXPECT_EQ(game.events()[0].type, EventType::Goal);
+  EXPECT_EQ(*game.events()[0].team, Team::Yellow);  // yellow attacks the positive-x goal
+  EXPECT_EQ(game.state().yellow.goals, 1);
+  EXPECT_EQ(game.state().blue.goals, 0);
+  EXPECT_EQ(game.state().command, Command::Stop);
+  EXPECT_EQ(*game.state().next_command, Command::PrepareKickoffBlue);  // the other team kicks off
+
+  // The ball still lies in the goal until the referee's placement arrives: no second goal.
+  game.run(2.1);
+  EXPECT_EQ(game.state().command, Command::PrepareKickoffBlue);
+  game.run(0.5);
+  EXPECT_EQ(game.state().yellow.goals, 1);
+}
+
+TEST(AutoRefereeGoal, OverTheCrossbarOrBesideThePostIsAGoalLineOutNotAGoal) {
+  for (const auto& [y, z] : {std::pair{0.1, 0.3}, std::pair{0.7, 0.0215}}) {
+    Game game;
+    game.kick_off_and_play();
+    game.ball(4.6, y, 2.0, 0.0, z);
+    game.tick();
+    ASSERT_EQ(game.events().size(), 1u);
+    EXPECT_EQ(game.events()[0].type, EventType::BallLeftFieldGoalLine);
+    EXPECT_EQ(game.state().yellow.goals, 0);
+  }
+}
+
+TEST(AutoRefereeOut, TouchLineGivesTheOtherTeamAFreeKickOnTheLine) {
+  Game game;
+  game.kick_off_and_play();
+  // Blue 2 touches the ball, which then rolls over the touch line at y = +3.
+  auto& blue = game.robot(Team::Blue, 2);
+  blue.x = 1.0;
+  blue.y = 2.0;
+  game.ball(1.0 + 0.09 + 0.0215 + 0.005, 2.0);
+  game.tick();
+  blue.y = 0;  // it drives away
+  game.ball(1.5, 3.03, 0, 1.0);
+  game.tick();
+  ASSERT_EQ(game.events().size(), 1u);
+  const auto& e = game.events()[0];
+  EXPECT_EQ(e.type, EventType::BallLeftFieldTouchLine);
+  EXPECT_EQ(*e.team, Team::Blue);
+  EXPECT_EQ(e.robot, 2);
+  EXPECT_EQ(game.state().command, Command::Stop);
+  EXPECT_EQ(*game.state().next_command, Command::DirectFreeYellow);
+  ASSERT_TRUE(game.state().designated_position);
+  EXPECT_NEAR(game.state().designated_position->first, 1.5, 1e-9);
+  EXPECT_NEAR(game.state().designated_position->second, 2.8, 1e-9);  // 0.2 m inside the line
+
+  game.run(2.1);
+  EXPECT_EQ(game.state().command, Command::DirectFreeYellow);
+  ASSERT_EQ(game.placements().size(), 1u);
+  EXPECT_EQ(game.placements()[0].kind, Situation::FreeKick);
+  EXPECT_EQ(game.placements()[0].team, Team::Yellow);
+  EXPECT_NEAR(game.placements()[0].y, 2.8, 1e-9);
+  // The free kick is taken: play goes on.
+  game.carry_out_placement();
+  game.tick();
+  EXPECT_FALSE(game.state().ball_in_play);
+  game.ball(1.7, 2.7);
+  game.tick();
+  EXPECT_TRUE(game.state().ball_in_play);
+}
+
+TEST(AutoRefereeOut, GoalLineByTheAttackerIsAGoalKickByTheDefenderACorner) {
+  {
+    Game game;
+    game.kick_off_and_play();
+    auto& yellow = game.robot(Team::Yellow, 3);  // attacks +x
+    yellow.x = 4.0;
+    yellow.y = 1.5;
+    game.ball(4.0 + 0.12, 1.5);
+    game.tick();
+    yellow.x = 3.0;
+    game.ball(4.53, 1.5, 1.0, 0.0);
+    game.tick();
+    ASSERT_EQ(game.events().size(), 1u);
+    EXPECT_EQ(game.events()[0].type, EventType::BallLeftFieldGoalLine);
+    EXPECT_EQ(*game.state().next_command, Command::DirectFreeBlue);
+    EXPECT_NEAR(game.state().designated_position->first, 3.5, 1e-9);
+    EXPECT_NEAR(game.state().designated_position->second, 2.0, 1e-9);
+  }
+  {
+    Game game;
+    game.kick_off_and_play();
+    auto& blue = game.robot(Team::Blue, 3);  // defends +x
+    blue.x = 4.0;
+    blue.y = -1.5;
+    game.ball(4.0 + 0.12, -1.5);
+    game.tick();
+    blue.x = 3.0;
+    game.ball(4.53, -1.5, 1.0, 0.0);
+    game.tick();
+    EXPECT_EQ(*game.state().next_command, Command::DirectFreeYellow);
+    EXPECT_NEAR(game.state().designated_position->first, 4.3, 1e-9);  // the corner, 0.2 m in
+    EXPECT_NEAR(game.state().designated_position->second, -2.8, 1e-9);
+  }
+}
+
+TEST(AutoRefereeFouls, BallFasterThanTheLimitIsAFoulOfTheKickerAndPlayGoesOn) {
+  Game game;
+  game.kick_off_and_play();
+  auto& yellow = game.robot(Team::Yellow, 1);
+  yellow.x = 0.5;
+  yellow.y = 0.0;
+  game.ball(0.5 + 0.12, 0.0);
+  game.tick();
+  game.ball(0.8, 0.0, 6.0, 0.0);  // fast, but legal
+  game.tick();
+  EXPECT_TRUE(game.events().empty());
+  game.ball(0.9, 0.0, 7.0, 1.0);
+  game.tick();
+  game.ball(1.0, 0.0, 7.0, 1.0);  // judged once per kick
+  game.tick();
+  ASSERT_EQ(game.events().size(), 1u);
+  EXPECT_EQ(game.events()[0].type, EventType::BotKickedBallTooFast);
+  EXPECT_EQ(*game.events()[0].team, Team::Yellow);
+  EXPECT_EQ(game.events()[0].robot, 1);
+  EXPECT_NEAR(game.events()[0].value, std::hypot(7.0, 1.0), 1e-9);
+  EXPECT_EQ(game.state().yellow.fouls, 1);
+  EXPECT_TRUE(game.state().ball_in_play);  // a non-stopping foul
+}
+
+TEST(AutoRefereeFouls, DefenderTouchingTheBallInItsDefenceAreaGivesAPenalty) {
+  Game game;
+  game.kick_off_and_play();
+  // Blue defends +x; its defence area is x in [3.5, 4.5], |y| <= 1.
+  auto& keeper = game.robot(Team::Blue, 0);
+  keeper.x = 4.2;
+  keeper.y = 0.0;
+  game.ball(4.2 - 0.12, 0.0);  // the keeper may
+  game.tick();
+  EXPECT_TRUE(game.events().empty());
+  auto& defender = game.robot(Team::Blue, 4);
+  defender.x = 3.8;
+  defender.y = 0.6;
+  game.ball(3.8 - 0.12, 0.6);
+  game.tick();
+  ASSERT_EQ(game.events().size(), 1u);
+  EXPECT_EQ(game.events()[0].type, EventType::DefenderInDefenseArea);
+  EXPECT_EQ(*game.events()[0].team, Team::Blue);
+  EXPECT_EQ(game.events()[0].robot, 4);
+  EXPECT_EQ(game.state().blue.fouls, 1);
+  EXPECT_EQ(*game.state().next_command, Command::PreparePenaltyYellow);
+  EXPECT_NEAR(game.state().designated_position->first, 1.5, 1e-9);  // 3 m from the goal line
+  game.run(2.1);
+  ASSERT_EQ(game.placements().size(), 1u);
+  EXPECT_EQ(game.placements()[0].kind, Situation::Penalty);
+  EXPECT_EQ(game.placements()[0].team, Team::Yellow);
+}
+
+TEST(AutoRefereeFouls, PartlyInsideTheDefenceAreaIsNoFoul) {
+  Game game;
+  game.kick_off_and_play();
+  auto& defender = game.robot(Team::Blue, 4);
+  defender.x = 3.55;  // hull reaches out of the area (needs x >= 3.59)
+  defender.y = 0.0;
+  game.ball(3.55 - 0.12, 0.0);
+  game.tick();
+  EXPECT_TRUE(game.events().empty());
+}
+
+TEST(AutoRefereeFouls, TooManyRobotsGivesTheOtherTeamAFreeKick) {
+  Game game;
+  game.kick_off_and_play();
+  game.add_robot(Team::Yellow, 6);
+  game.tick();
+  ASSERT_EQ(game.events().size(), 1u);
+  EXPECT_EQ(game.events()[0].type, EventType::TooManyRobots);
+  EXPECT_EQ(*game.events()[0].team, Team::Yellow);
+  EXPECT_EQ(game.events()[0].value, 7);
+  EXPECT_EQ(game.state().yellow.fouls, 1);
+  EXPECT_EQ(*game.state().next_command, Command::DirectFreeBlue);
+}
+
+TEST(AutoRefereeProgress, BallStillForTenSecondsIsNoProgressThenForceStart) {
+  Game game;
+  game.kick_off_and_play();
+  game.ball(2.0, 2.98);  // stuck at the wall side of the touch line
+  game.run(9.9);
+  EXPECT_TRUE(game.events().empty());
+  game.run(0.2);
+  ASSERT_EQ(game.events().size(), 1u);
+  EXPECT_EQ(game.events()[0].type, EventType::NoProgressInGame);
+  EXPECT_FALSE(game.events()[0].foul);
+  EXPECT_EQ(game.state().command, Command::Stop);
+  EXPECT_EQ(*game.state().next_command, Command::ForceStart);
+  game.run(2.1);
+  EXPECT_EQ(game.state().command, Command::ForceStart);
+  ASSERT_EQ(game.placements().size(), 1u);
+  EXPECT_EQ(game.placements()[0].kind, Situation::BallPlacement);
+  EXPECT_NEAR(game.placements()[0].y, 2.8, 1e-9);  // moved off the line
+  EXPECT_TRUE(game.state().ball_in_play);
+}
+
+TEST(AutoRefereeProgress, AFreeKickNotTakenInTimeBecomesAForceStart) {
+  Game game;
+  game.kick_off_and_play();
+  game.ball(1.0, 3.05);
+  game.tick();
+  game.run(2.1);
+  // Nobody touched it since the kick-off: the team whose half it left in is
+  // taken to have put it out.
+  ASSERT_EQ(game.state().command, Command::DirectFreeYellow);
+  game.carry_out_placement();
+  game.run(9.8);
+  EXPECT_EQ(game.state().command, Command::DirectFreeYellow);
+  EXPECT_FALSE(game.state().ball_in_play);
+  game.run(0.3);
+  EXPECT_EQ(game.state().command, Command::ForceStart);
+  EXPECT_TRUE(game.state().ball_in_play);
+}
+
+TEST(AutoRefereeTime, HalvesAndGameLengthEndTheGame) {
+  GameConfig config = shipped_config();
+  config.game_length = 20;
+  config.half_time_break = 1;
+  Game game(config);
+  game.kick_off_and_play();
+  game.run(5);
+  game.ball(0.5, 0.5);  // keep the game progressing
+  game.run(4.5);
+  EXPECT_EQ(game.state().stage, Stage::FirstHalf);
+  game.run(0.6);
+  EXPECT_EQ(game.state().stage, Stage::HalfTime);
+  EXPECT_EQ(game.state().command, Command::Halt);
+  game.run(1.1);
+  EXPECT_EQ(game.state().stage, Stage::SecondHalfPre);
+  EXPECT_EQ(*game.state().next_command, Command::PrepareKickoffBlue);
+  game.run(2.1);
+  game.carry_out_placement();
+  game.run(1.1);
+  EXPECT_EQ(game.state().stage, Stage::SecondHalf);
+  EXPECT_GT(game.state().stage_time_left, 9.5);
+  game.ball(0.0, 0.2);
+  game.run(5);
+  game.ball(0.5, 0.2);
+  game.run(game.state().stage_time_left - 0.1);
+  EXPECT_FALSE(game.state().game_over);
+  game.run(0.2);
+  EXPECT_EQ(game.state().stage, Stage::PostGame);
+  EXPECT_EQ(game.state().command, Command::Halt);
+  EXPECT_TRUE(game.state().game_over);
+  const int counter = game.state().command_counter;
+  game.run(1);  // nothing happens after the end
+  EXPECT_EQ(game.state().command_counter, counter);
+}
+
+TEST(AutoRefereeStats, AKickIntoTheGoalMouthIsAShotAndTouchesGivePossession) {
+  Game game;
+  game.kick_off_and_play();
+  auto& yellow = game.robot(Team::Yellow, 1);
+  yellow.x = 2.0;
+  yellow.y = 0.0;
+  game.ball(2.12, 0.0);
+  game.run(1.0);  // yellow has the ball for 1 s
+  game.ball(2.3, 0.0, 3.0, 0.2);  // kicked towards the goal
+  game.tick();
+  game.ball(2.4, 0.0, 3.0, 0.2);
+  game.tick();
+  EXPECT_EQ(game.state().yellow.shots, 1);
+  EXPECT_EQ(game.state().blue.shots, 0);
+  EXPECT_NEAR(game.state().yellow.possession, 1.02, 0.03);
+  EXPECT_NEAR(game.state().blue.possession, 0.0, 1e-9);
+}
+
+TEST(AutoRefereeRules, GeometryOfGoalsOutsAndFreeKickSpots) {
+  const auto field = division_b();
+  EXPECT_EQ(goal_side(field, -4.53, 0.0, 0.02), -1);
+  EXPECT_EQ(goal_side(field, -4.51, 0.0, 0.02), 0);
+  EXPECT_EQ(ball_out(field, 0, -3.03), BallOut::TouchLine);
+  EXPECT_EQ(ball_out(field, 0, -3.01), BallOut::No);
+  double x = 4.4, y = 0.3;  // inside the defence area
+  free_kick_spot(field, x, y);
+  EXPECT_NEAR(x, 3.3, 1e-9);
+  EXPECT_NEAR(y, 0.3, 1e-9);
+  EXPECT_TRUE(heads_into_goal(field, 1, 2.0, 0.0, 3.0, 0.3));
+  EXPECT_FALSE(heads_into_goal(field, 1, 2.0, 0.0, 3.0, 2.0));
+  EXPECT_FALSE(heads_into_goal(field, 1, 2.0, 0.0, -3.0, 0.0));
+}
+
+TEST(AutoRefereeConfig, UnknownKeyIsAnErrorNamingFileAndLine) {
+  try {
+    load_game_config(ConfigFile::parse(
+        "GAME_LENGTH = 30\nHALVES = 2\nHALF_TIME_BREAK = 1\nSTOP_DURATION = 2\n"
+        "PREPARE_DURATION = 1\nRESTART_TIMEOUT = 10\nNO_PROGRESS_TIME = 10\n"
+        "PROGRESS_DISTANCE = 0.1\nMAX_ROBOTS = 6\nMAX_BALL_SPEED = 6.5\nROBOT_RADIUS = 0.09\n"
+        "TOUCH_MARGIN = 0.015\nKEEPER_YELLOW = 0\nKEEPER_BLUE = 0\nFIRST_KICKOFF = yellow\n"
+        "GAME_LENGHT = 20\n",
+        "game.cfg"));
+    FAIL() << "accepted an unknown key";
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what()).find("game.cfg:16"), std::string::npos) << error.what();
+  }
+}
