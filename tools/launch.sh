@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Starts the ubersim process set: physics, vision emulator, radio emulator, and
-# optionally demo teams and lcm-logger. Prints what runs, where each process
+# optionally demo teams and a logger. Prints what runs, where each process
 # logs and which channels to listen to. On Ctrl-C (or SIGTERM), or when any
 # process dies, it stops all the others (SIGTERM, then SIGKILL after 2 s) and
 # leaves none behind; it exits non-zero if any process failed.
@@ -17,6 +17,10 @@ usage: tools/launch.sh [options]
   --profile NAME       vision and radio emulator profile (default cmdragons02)
   --speed F            1 real time (default), 0.5, 4 ..., 0 as fast as possible
   --lockstep           physics advances only when told (referee step N)
+  --sync               sync mode: as fast as the demo teams' answers allow, latency exact and
+                       runs reproducible (docs/sync.md); the demo teams answer every frame
+  --sync-strict        in sync mode, a client that misses the timeout fails the run
+  --sync-clients N     clients physics waits for at the start (default: the demo teams started)
   --seed N             seed for physics and both emulators
   --duration S         stop everything after S seconds of sim time
   --lcm-url URL        LCM URL for every process (default \$LCM_DEFAULT_URL or LCM's)
@@ -25,7 +29,7 @@ usage: tools/launch.sh [options]
   --no-radio           do not start the radio emulator (a real radio server listens on RADIO_<TEAM>)
   --demo WHO           start the demo team for yellow | blue | both | none (default none)
   --demo-mode MODE     play | positions | figure8 (default play)
-  --log FILE           record every channel with lcm-logger into FILE
+  --log FILE           record every channel into FILE (an LCM log: lcm-logplayer replays it)
   --log-dir DIR        where process logs go (default: a new folder under /tmp)
   --viewer             start the browser viewer (ubersim_viewer) and print its address
   --viewer-port P      the viewer's port on 127.0.0.1 (default 8080)
@@ -35,7 +39,7 @@ usage: tools/launch.sh [options]
 USAGE
 }
 
-scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 seed="" duration=""
+scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix=""
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port=8080 ssl_bridge=0
 while [ $# -gt 0 ]; do
@@ -45,6 +49,9 @@ while [ $# -gt 0 ]; do
     --profile) profile=$2; shift 2 ;;
     --speed) speed=$2; shift 2 ;;
     --lockstep) lockstep=1; shift ;;
+    --sync) sync=1; shift ;;
+    --sync-strict) sync=1; sync_strict=1; shift ;;
+    --sync-clients) sync_clients=$2; shift 2 ;;
     --seed) seed=$2; shift 2 ;;
     --duration) duration=$2; shift 2 ;;
     --lcm-url) lcm_url=$2; shift 2 ;;
@@ -73,7 +80,7 @@ if [ -z "$scenario" ]; then
   esac
 fi
 case "$demo" in yellow|blue|both|none) ;; *) echo "launch: --demo takes yellow, blue, both or none" >&2; exit 2 ;; esac
-for program in ubersim_physics ubersim_vision ubersim_radio ubersim_demo_team; do
+for program in ubersim_physics ubersim_vision ubersim_radio ubersim_demo_team ubersim_logger; do
   [ -x "$bin_dir/$program" ] || { echo "launch: $bin_dir/$program not found: run tools/build.sh" >&2; exit 2; }
 done
 [ "$ssl_bridge" = 0 ] || [ -x "$bin_dir/ubersim_ssl_bridge" ] || { echo "launch: $bin_dir/ubersim_ssl_bridge not found (is protobuf installed?): run tools/build.sh" >&2; exit 2; }
@@ -97,10 +104,15 @@ start() {  # start NAME COMMAND...
   printf '  %-14s pid %-7s log %s\n' "$name" "$!" "$log_dir/$name.log"
 }
 
-echo "ubersim: scenario $scenario, profile $profile, speed $( [ "$lockstep" = 1 ] && echo lockstep || echo "$speed"), LCM $lcm_url"
+mode=$speed
+[ "$lockstep" = 1 ] && mode=lockstep
+[ "$sync" = 1 ] && mode=sync
+echo "ubersim: scenario $scenario, profile $profile, speed $mode, LCM $lcm_url"
 if [ -n "$log_file" ]; then
-  # lcm-logger 1.3.1 lists -l in its help but accepts only the long form.
-  start lcm-logger lcm-logger --lcm-url="$lcm_url" -f -q --channel="${prefix}.*" "$log_file"
+  # ubersim_logger, not lcm-logger: lcm-logger 1.3.1 queues only 30 messages
+  # per subscription and loses SIM_STATE when physics runs ahead in bursts.
+  # Its log is an ordinary LCM log (lcm-logplayer replays it).
+  start logger "$bin_dir/ubersim_logger" --lcm-url "$lcm_url" --channels "${prefix}.*" "$log_file"
   # The logger must be listening before anything publishes: it creates the
   # file just before it subscribes, so wait for the file (at most 2 s).
   for _ in $(seq 20); do [ -e "$log_file" ] && break; sleep 0.1; done
@@ -108,13 +120,24 @@ if [ -n "$log_file" ]; then
 fi
 physics_args=(--scenario "$scenario" --speed "$speed")
 [ "$lockstep" = 1 ] && physics_args+=(--lockstep)
+radio_args=() demo_args=()
+if [ "$sync" = 1 ]; then
+  # Physics holds at sim time 0 until every demo team has registered, so
+  # that two runs start alike; a client of your own counts too (docs/sync.md).
+  clients=0
+  case "$demo" in yellow|blue) clients=1 ;; both) clients=2 ;; esac
+  physics_args+=(--sync)
+  radio_args+=(--sync --sync-clients "${sync_clients:-$clients}")
+  [ "$sync_strict" = 1 ] && radio_args+=(--sync-strict)
+  demo_args+=(--sync)
+fi
 [ -n "$duration" ] && physics_args+=(--duration "$duration")
 start physics "$bin_dir/ubersim_physics" "${common[@]}" "${physics_args[@]}" "${seed_args[@]}"
 [ "$vision" = 1 ] && start vision "$bin_dir/ubersim_vision" "${common[@]}" --profile "$profile" "${seed_args[@]}"
-[ "$radio" = 1 ] && start radio "$bin_dir/ubersim_radio" "${common[@]}" --profile "$profile" "${seed_args[@]}"
+[ "$radio" = 1 ] && start radio "$bin_dir/ubersim_radio" "${common[@]}" --profile "$profile" "${seed_args[@]}" "${radio_args[@]}"
 for team in yellow blue; do
   if [ "$demo" = "$team" ] || [ "$demo" = both ]; then
-    start "demo_$team" "$bin_dir/ubersim_demo_team" "${common[@]}" --team "$team" --mode "$demo_mode"
+    start "demo_$team" "$bin_dir/ubersim_demo_team" "${common[@]}" --team "$team" --mode "$demo_mode" "${demo_args[@]}"
   fi
 done
 [ "$ssl_bridge" = 1 ] && start ssl_bridge "$bin_dir/ubersim_ssl_bridge" "${common[@]}"
@@ -149,11 +172,11 @@ stop_indices() {
   done
 }
 stop_all() {
-  # lcm-logger stops last, once every producer has exited, so that the log
+  # The logger stops last, once every producer has exited, so that the log
   # holds every message anyone could have received during the run.
   local i producers=() loggers=()
   for i in "${!pids[@]}"; do
-    if [ "${names[$i]}" = lcm-logger ]; then loggers+=("$i"); else producers+=("$i"); fi
+    if [ "${names[$i]}" = logger ]; then loggers+=("$i"); else producers+=("$i"); fi
   done
   [ "${#producers[@]}" = 0 ] || stop_indices "${producers[@]}"
   if [ "${#loggers[@]}" != 0 ]; then

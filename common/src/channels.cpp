@@ -55,7 +55,8 @@ const char* base_channel_name(Channel channel) {
 ChannelNames::ChannelNames(std::string prefix, std::map<std::string, std::string> overrides)
     : prefix_(std::move(prefix)), overrides_(std::move(overrides)) {
   for (const auto& [base, name] : overrides_) {
-    bool known = base == kEmulatorRealismChannel;
+    bool known = false;
+    for (const char* extra : kExtraChannels) known = known || base == extra;
     for (Channel channel : kAllChannels) known = known || base == base_channel_name(channel);
     if (!known) throw std::invalid_argument("no channel named '" + base + "' to override");
     if (name.empty()) throw std::invalid_argument("empty channel name for '" + base + "'");
@@ -76,11 +77,9 @@ std::string ChannelNames::radio_feedback(Team team) const {
   return (*this)(team == Team::Yellow ? Channel::RadioFeedbackYellow : Channel::RadioFeedbackBlue);
 }
 
-std::string ChannelNames::emulator_realism() const {
-  if (auto found = overrides_.find(kEmulatorRealismChannel); found != overrides_.end()) {
-    return found->second;
-  }
-  return prefix_ + kEmulatorRealismChannel;
+std::string ChannelNames::extra(const char* base) const {
+  if (auto found = overrides_.find(base); found != overrides_.end()) return found->second;
+  return prefix_ + base;
 }
 
 std::pair<std::string, std::string> ChannelNames::parse_override(const std::string& text) {

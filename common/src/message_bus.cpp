@@ -10,6 +10,17 @@ MessageBus::MessageBus(const std::string& url) : lcm_(url) {
   if (!lcm_.good()) throw std::runtime_error("cannot open LCM at '" + url + "'");
 }
 
+void MessageBus::subscribe_raw(const std::string& channel_regex, RawHandler handler,
+                               int queue_capacity) {
+  auto subscription = std::make_unique<RawSubscription>();
+  subscription->handler = std::move(handler);
+  lcm::Subscription* raw =
+      lcm_.subscribe(channel_regex, &RawSubscription::on_message, subscription.get());
+  if (raw == nullptr) throw std::runtime_error("cannot subscribe to " + channel_regex);
+  raw->setQueueCapacity(queue_capacity);
+  subscriptions_.push_back(std::move(subscription));
+}
+
 int MessageBus::handle_pending() {
   int handled = 0;
   while (lcm_.handleTimeout(0) > 0) ++handled;

@@ -32,6 +32,10 @@ int run(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--lockstep", lockstep, "advance only on STEP requests (SIM_CONTROL)");
+  bool sync = false;
+  app.add_flag("--sync", sync,
+               "sync mode: as fast as possible, but never past the horizon the radio emulator "
+               "announces (--sync there too; docs/sync.md)");
   app.add_flag("--paused", paused, "start paused (RESUME or STEP to advance)");
   app.add_option("--seed", seed, "seed of the solver's randomness")->capture_default_str();
   app.add_option("--duration", duration, "exit after this many seconds of sim time (0 = never)")
@@ -48,6 +52,7 @@ int run(int argc, char** argv) {
   options.speed = lockstep ? -1.0 : speed;
   options.paused = paused;
   options.duration = duration;
+  options.sync = sync;
   ubersim::MessageBus bus(ubersim::with_receive_buffer(common.lcm_url));
   ubersim::ShutdownSignal shutdown;
   ubersim::physics::PhysicsServer server(std::move(setup), bus, common.channels(), options);

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include <ubersim/vision_schedule_t.hpp>
+
 #include "ubersim/shutdown.hpp"
 
 namespace ubersim::physics {
@@ -41,6 +43,8 @@ const char* action_name(int action) {
       return "SET_FIELD";
     case sim_control_t::PING:
       return "PING";
+    case sim_control_t::SET_SYNC:
+      return "SET_SYNC";
     default:
       return "unknown action";
   }
@@ -59,7 +63,17 @@ PhysicsServer::PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNam
       pacer_(world_.dt(), options_.speed < 0 ? -1.0 : options_.speed,
              world_.setup().physics.max_pacing_lag),
       paused_(options_.paused),
-      next_state_time_(first_state_time()) {
+      next_state_time_(first_state_time()),
+      sync_(options_.sync) {
+  bus_.subscribe<sync_horizon_t>(channels.extra(kSyncHorizonChannel),
+                                 [this](const sync_horizon_t& h) {
+                                   if (std::isnan(h.horizon)) return;
+                                   horizon_ = h.horizon;
+                                   radio_heard_ = true;
+                                   horizon_bound_ = h.waiting_for.empty() ? "?" : h.waiting_for;
+                                 });
+  bus_.subscribe<vision_schedule_t>(channels.extra(kVisionScheduleChannel),
+                                    [this](const vision_schedule_t&) { vision_heard_ = true; });
   bus_.subscribe<sim_commands_t>(channels(Channel::SimCommands), [this](const sim_commands_t& p) {
     ++stats_.packets_received;
     world_.submit(p);
@@ -77,7 +91,10 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
   const auto geometry_period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(world_.setup().physics.geometry_publish_period));
   publish_geometry();
-  publish_state();
+  if (!sync_) {
+    publish_state();
+    first_state_sent_ = true;
+  }
   auto next_geometry = start + geometry_period;
   const auto poll_period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(world_.setup().physics.message_poll_period));
@@ -85,7 +102,8 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
   pacer_.restart(start, world_.step_index());
   spdlog::info("physics running: scenario {}, {} robots, {} Hz, {}{}", options_.scenario,
                world_.robots().size(), 1.0 / world_.dt(),
-               pacer_.lockstep()              ? std::string("lockstep")
+               sync_                          ? std::string("sync (docs/sync.md)")
+               : pacer_.lockstep()            ? std::string("lockstep")
                : pacer_.as_fast_as_possible() ? std::string("as fast as possible")
                                               : fmt::format("{:g} x real time", pacer_.speed()),
                paused_ ? ", paused" : "");
@@ -99,6 +117,29 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
     }
     if (idle()) {
       wait_until(next_geometry, shutdown);
+      continue;
+    }
+    if (sync_ && !first_state_sent_) {
+      if (vision_heard_ && radio_heard_) {
+        publish_state();
+        first_state_sent_ = true;
+      } else {
+        wait_until(std::min(next_geometry, now + std::chrono::milliseconds(100)), shutdown);
+      }
+      continue;
+    }
+    if (sync_) {
+      if (!below_horizon()) {
+        wait_at_horizon(shutdown);
+        continue;
+      }
+      // Below the horizon: as fast as possible, looking for messages (a
+      // further horizon among them) a few thousand times a second.
+      if (now >= next_poll) {
+        bus_.handle_pending();
+        next_poll = now + poll_period;
+      }
+      if (!idle() && below_horizon() && !duration_reached()) step_and_publish(false);
       continue;
     }
     if (pacer_.as_fast_as_possible()) {
@@ -124,12 +165,33 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
   }
   const auto end = Clock::now();
   stats_.wall_seconds = seconds_between(start, end);
-  stats_.drift = pacer_.paced() && !paused_ ? pacer_.drift(end, world_.step_index()) : 0;
+  stats_.drift = pacer_.paced() && !paused_ && !sync_ ? pacer_.drift(end, world_.step_index()) : 0;
+  if (sync_ || !stats_.sync_waits.empty()) log_sync_waits();
   spdlog::info("physics stopping: {} steps, {:.3f} s of sim time in {:.3f} s of wall time{}",
                stats_.steps, world_.time(), stats_.wall_seconds,
-               pacer_.paced() ? fmt::format(", {:+.1f} ms from the schedule", stats_.drift * 1e3)
+               pacer_.paced() && !sync_ ? fmt::format(", {:+.1f} ms from the schedule", stats_.drift * 1e3)
                               : std::string());
   return 0;
+}
+
+void PhysicsServer::wait_at_horizon(const ShutdownSignal* shutdown) {
+  // What is already waiting may move the horizon: no system call to sleep then.
+  if (bus_.handle_pending() > 0) return;
+  const std::string bound = horizon_bound_;
+  const auto start = Clock::now();
+  wait_until(start + std::chrono::milliseconds(100), shutdown);
+  stats_.sync_wait_seconds[bound] += seconds_between(start, Clock::now());
+  ++stats_.sync_waits[bound];
+}
+
+void PhysicsServer::log_sync_waits() const {
+  double total = 0;
+  for (const auto& [name, seconds] : stats_.sync_wait_seconds) total += seconds;
+  spdlog::info("sync: waited {:.3f} s of wall time at the horizon", total);
+  for (const auto& [name, seconds] : stats_.sync_wait_seconds) {
+    spdlog::info("sync: waited {:.3f} s for {} ({} waits)", seconds, name,
+                 stats_.sync_waits.at(name));
+  }
 }
 
 void PhysicsServer::wait_until(Clock::time_point deadline, const ShutdownSignal* shutdown) {
@@ -170,7 +232,7 @@ void PhysicsServer::step_and_publish(bool publish_every_step) {
 void PhysicsServer::publish_state() {
   world_.fill_state(state_);
   state_.paused = paused_;
-  state_.speed_factor = pacer_.speed();
+  state_.speed_factor = sync_ ? 0.0 : pacer_.speed();
   // Encoded into a buffer kept across steps (LCM's own publish allocates each time).
   const auto size = static_cast<std::size_t>(state_.getEncodedSize());
   if (state_buffer_.size() < size) state_buffer_.resize(size);
@@ -249,12 +311,17 @@ void PhysicsServer::on_control(const sim_control_t& request) {
       }
       const double speed = request.speed_factor < 0 ? -1.0 : request.speed_factor;
       pacer_.set_speed(speed, now, world_.step_index());
+      sync_ = false;
       acknowledge(request, true,
                   speed < 0    ? std::string("lockstep")
                   : speed == 0 ? std::string("as fast as possible")
                                : fmt::format("{:g} x real time", speed));
       return;
     }
+    case sim_control_t::SET_SYNC:
+      sync_ = true;
+      acknowledge(request, true, "sync");
+      return;
     case sim_control_t::SET_SEED:
       world_.set_seed(static_cast<std::uint64_t>(request.seed));
       acknowledge(request, true, "seed " + std::to_string(request.seed));

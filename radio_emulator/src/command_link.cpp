@@ -13,7 +13,20 @@ CommandLink::CommandLink(const RadioProfile& profile, Team team, std::uint64_t s
       team_(team),
       random_(seed, team, Direction::Command),
       busy_until_(kLongAgo),
-      last_t_apply_(kLongAgo) {}
+      last_t_apply_(kLongAgo),
+      next_delay_(random_.delay(profile_.command)) {}
+
+void CommandLink::set_profile(const RadioProfile& profile) {
+  profile_ = profile;
+  next_delay_ = random_.delay(profile_.command);
+}
+
+double CommandLink::earliest_apply(double earliest_arrival) const {
+  double t_transmit = std::max(busy_until_, earliest_arrival);
+  if (waiting_) t_transmit = std::min(t_transmit, std::max(busy_until_, waiting_->t_received));
+  if (t_transmit == std::numeric_limits<double>::infinity()) return t_transmit;
+  return std::max(t_transmit + next_delay_, last_t_apply_);
+}
 
 std::optional<sim_commands_t> CommandLink::offer(radio_packet_t packet, double now) {
   ++stats_.offered;
@@ -59,7 +72,8 @@ std::optional<sim_commands_t> CommandLink::transmit(Waiting waiting, double t_tr
   }
   out.num_commands = static_cast<std::int32_t>(out.commands.size());
   // A radio delivers in order: jitter may delay a packet, never let a later one overtake it.
-  out.t_apply = std::max(t_transmit + random_.delay(profile_.command), last_t_apply_);
+  out.t_apply = std::max(t_transmit + next_delay_, last_t_apply_);
+  next_delay_ = random_.delay(profile_.command);
   last_t_apply_ = out.t_apply;
   if (out.commands.empty()) return std::nullopt;  // nothing reached any robot
   ++stats_.forwarded_packets;

@@ -16,6 +16,7 @@
 #include "ubersim/process_main.hpp"
 #include "ubersim/radio/radio_emulator.hpp"
 #include "ubersim/radio/radio_profile.hpp"
+#include "ubersim/radio/sync_driver.hpp"
 #include "ubersim/shutdown.hpp"
 
 namespace {
@@ -26,6 +27,8 @@ struct Options {
   std::string yellow_profile;
   std::string blue_profile;
   std::optional<std::uint64_t> seed;
+  bool sync = false;
+  ubersim::radio::SyncOptions sync_options;
 };
 
 int run(const Options& options) {
@@ -53,9 +56,15 @@ int run(const Options& options) {
 
   bus.subscribe<sim_state_t>(channels(Channel::SimState),
                              [&](const sim_state_t& state) { emulator.on_sim_state(state); });
+  std::optional<radio::SyncDriver> sync;
+  if (options.sync) sync.emplace(bus, channels, emulator, options.sync_options);
   for (Team team : kTeams) {
-    bus.subscribe<radio_packet_t>(channels.radio(team), [&emulator, team](const radio_packet_t& p) {
-      emulator.on_radio_packet(team, p);
+    bus.subscribe<radio_packet_t>(channels.radio(team), [&, team](const radio_packet_t& p) {
+      if (sync) {
+        sync->on_packet(team, p);
+      } else {
+        emulator.on_radio_packet(team, p);
+      }
     });
   }
 
@@ -84,12 +93,20 @@ int run(const Options& options) {
   }
   spdlog::info("sim time from {}; LCM {}", channels(Channel::SimState), options.common.lcm_url);
 
-  while (!shutdown.requested()) bus.wait_and_handle(200, &shutdown);
+  int status = 0;
+  while (!shutdown.requested()) {
+    bus.wait_and_handle(sync ? 50 : 200, &shutdown);
+    if (sync && !sync->tick()) {
+      status = 1;
+      break;
+    }
+  }
 
   for (Team team : kTeams) spdlog::info("{}", emulator.summary(team));
   spdlog::info("malformed LCM messages dropped: {}; out-of-order SIM_STATEs ignored: {}",
                bus.malformed_count(), emulator.rejected_sim_states());
-  return 0;
+  if (sync) sync->log_summary();
+  return status;
 }
 
 int parse_and_run(int argc, char** argv) {
@@ -102,6 +119,19 @@ int parse_and_run(int argc, char** argv) {
   app.add_option("--yellow-profile", options.yellow_profile, "profile for the yellow team only");
   app.add_option("--blue-profile", options.blue_profile, "profile for the blue team only");
   app.add_option("--seed", options.seed, "seed of every random draw (default: the profiles' SEED)");
+  app.add_flag("--sync", options.sync,
+               "sync mode: registered clients answer every frame; tell physics how far it may "
+               "step (SIM_SYNC_HORIZON, docs/sync.md)");
+  app.add_option("--sync-timeout", options.sync_options.client_timeout,
+                 "s of wall time a sync client may take to answer a frame; then it is dropped")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_flag("--sync-strict", options.sync_options.strict,
+               "a sync client missing the timeout fails the run (exit 1)");
+  app.add_option("--sync-clients", options.sync_options.expected_clients,
+                 "physics holds at the start until this many clients registered")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 2));
   CLI11_PARSE(app, argc, argv);
 
   ubersim::setup_logging("radio", options.common.verbosity());

@@ -48,7 +48,7 @@ void RadioEmulator::on_sim_state(const sim_state_t& state) {
 
   for (Team team : kTeams) {
     TeamLink& team_link = link(team);
-    publish_commands(team_link.commands.poll(clock_.now()));
+    if (!sync_) publish_commands(team_link.commands.poll(clock_.now()));
     for (const auto& feedback : team_link.feedback.on_sim_state(state)) {
       if (sinks_.feedback) sinks_.feedback(team, feedback);
     }
@@ -67,6 +67,24 @@ void RadioEmulator::on_radio_packet(Team channel_team, const radio_packet_t& pac
   for (const auto& finding : validated.findings) record(channel_team, finding);
   if (!validated.packet_ok || validated.packet.commands.empty()) return;
   publish_commands(team_link.commands.offer(std::move(validated.packet), clock_.now()));
+}
+
+void RadioEmulator::on_answer(Team channel_team, const radio_packet_t& packet, double t_arrival) {
+  TeamLink& team_link = link(channel_team);
+  ++team_link.packets_received;
+  sync_poll(channel_team, t_arrival);
+  if (packet.num_commands == 0 && packet.commands.empty()) return;  // "nothing to send"
+  Validated validated =
+      validate_packet(packet, channel_team, team_link.profile.limits, team_link.robots);
+  for (const auto& finding : validated.findings) record(channel_team, finding);
+  if (!validated.packet_ok || validated.packet.commands.empty()) return;
+  publish_commands(team_link.commands.offer(std::move(validated.packet), t_arrival));
+}
+
+void RadioEmulator::sync_poll(Team team, double earliest_arrival) {
+  // A packet arriving exactly when the link frees replaces the waiting one,
+  // so transmit only what frees strictly before the next possible arrival.
+  publish_commands(link(team).commands.poll(earliest_arrival - 2 * CommandLink::kTimeEpsilon));
 }
 
 void RadioEmulator::publish_commands(const std::optional<sim_commands_t>& message) {

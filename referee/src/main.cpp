@@ -40,7 +40,7 @@ struct Options {
   double x = 0, y = 0, z = 0, heading_deg = 0;
   std::vector<double> velocity;
   int steps = 1;
-  double speed = 1.0;
+  std::string speed = "1";  // a factor, or "sync"
   std::int64_t seed = 0;
   std::string scenario;
 };
@@ -103,8 +103,20 @@ class Referee {
 
   int speed() {
     sim_control_t control{};
+    if (options_.speed == "sync") {
+      // Sync mode needs the radio emulator's horizon (ubersim_radio --sync): docs/sync.md.
+      control.action = sim_control_t::SET_SYNC;
+      return send(control);
+    }
     control.action = sim_control_t::SET_SPEED;
-    control.speed_factor = options_.speed;
+    try {
+      std::size_t used = 0;
+      control.speed_factor = std::stod(options_.speed, &used);
+      if (used != options_.speed.size()) throw std::invalid_argument(options_.speed);
+    } catch (const std::exception&) {
+      std::cerr << "speed: expected a number or 'sync', got '" << options_.speed << "'\n";
+      return 2;
+    }
     return send(control);
   }
 
@@ -314,7 +326,9 @@ int main(int argc, char** argv) {
       ->add_option("n", o.steps, "steps")
       ->required()
       ->check(CLI::PositiveNumber);
-  command("speed", "set the speed: 1 real time, 0.5, 4 ..., 0 as fast as possible, -1 lockstep",
+  command("speed",
+          "set the speed: 1 real time, 0.5, 4 ..., 0 as fast as possible, -1 lockstep, sync "
+          "(docs/sync.md)",
           [](Referee& r) { return r.speed(); })
       ->add_option("factor", o.speed)
       ->required();

@@ -1,4 +1,4 @@
-// End to end: the launch script, the demo team, the referee, lcm-logger and
+// End to end: the launch script, the demo team, the referee, the logger and
 // lcm-logplayer as a user runs them, over real LCM multicast (this binary runs
 // in its own network namespace: tests/run_isolated.sh).
 #include <gtest/gtest.h>
@@ -44,7 +44,7 @@ std::pair<int, std::string> run(const std::vector<std::string>& argv, const Temp
 }  // namespace
 
 // One demo game, run once for the tests that look at it: 2 x 6 robots, both
-// demo teams, at twice real time, recorded with lcm-logger.
+// demo teams, at twice real time, recorded with ubersim_logger.
 class DemoGame : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -110,7 +110,7 @@ TEST_F(DemoGame, SigintStopsEveryProcessWithinTwoSeconds) {
   EXPECT_EQ(output_.find("did not stop within 2 s"), std::string::npos) << output_;
   EXPECT_LT(stop_seconds_, 5.0);
   for (const char* name :
-       {"physics", "vision", "radio", "demo_yellow", "demo_blue", "lcm-logger"}) {
+       {"physics", "vision", "radio", "demo_yellow", "demo_blue", "logger"}) {
     ASSERT_TRUE(pids_.count(name)) << name << " not started: " << output_;
     EXPECT_FALSE(process_alive(pids_.at(name))) << name << " left running";
   }

@@ -2,8 +2,12 @@
 // RADIO_<TEAM> — the interface a team's own software has on the real field.
 // It acts on each vision frame (throttled to --rate in capture time, so it
 // behaves the same at any simulation speed) and sends one radio packet.
+// With --sync it is a sync client (docs/sync.md): it registers on SYNC_CLIENT
+// and answers every frame, with an empty packet when it has nothing to send.
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <ubersim/radio_packet_t.hpp>
+#include <ubersim/sync_client_t.hpp>
 #include <ubersim/team_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
 #include <ubersim/vision_geometry_t.hpp>
@@ -22,6 +26,7 @@ int main(int argc, char** argv) {
   double rate = 60.0;
   double figure8_speed = 0.8;
   double figure8_size = 1.0;
+  bool sync = false;
   demo::TeamSetup team;
 
   CLI::App app{"ubersim demo team: drives one team's robots from VISION over RADIO_<TEAM>"};
@@ -40,6 +45,9 @@ int main(int argc, char** argv) {
   app.add_option("--figure8-size", figure8_size, "m across")->capture_default_str();
   app.add_option("--kick-speed", team.kick_speed, "m/s")->capture_default_str();
   app.add_option("--max-speed", team.limits.max_speed, "m/s")->capture_default_str();
+  app.add_flag("--sync", sync,
+               "sync client: register on SYNC_CLIENT and answer every vision frame "
+               "(docs/sync.md)");
   CLI11_PARSE(app, argc, argv);
 
   ubersim::Team own{};
@@ -58,6 +66,25 @@ int main(int argc, char** argv) {
     demo::WorldModel world(yellow);
     double last_sent = -1e9;
     std::int64_t sequence = 0;
+    const std::string radio_channel = channels.radio(own);
+    const std::int8_t team_code = yellow ? ubersim::team_t::YELLOW : ubersim::team_t::BLUE;
+
+    // Sync mode's contract, all of it: say who we are (again every second,
+    // for a radio emulator that starts later), and answer every frame with
+    // a packet whose t_sent is the frame's t_capture -- empty when there is
+    // nothing to send.
+    ubersim::sync_client_t hello{};
+    hello.team = team_code;
+    hello.name = std::string("demo_") + ubersim::team_name(own);
+    const std::string sync_channel = channels.extra(ubersim::kSyncClientChannel);
+    auto next_hello = std::chrono::steady_clock::now();
+    auto answer_nothing = [&](const ubersim::vision_frame_t& frame) {
+      ubersim::radio_packet_t nothing{};
+      nothing.team = team_code;
+      nothing.sequence = sequence++;
+      nothing.t_sent = frame.t_capture;
+      bus.publish(radio_channel, nothing);
+    };
 
     bus.subscribe<ubersim::vision_geometry_t>(channels(ubersim::Channel::VisionGeometry),
                                               [&](const ubersim::vision_geometry_t& g) {
@@ -71,26 +98,39 @@ int main(int argc, char** argv) {
             last_sent = -1e9;
           }
           world.update(frame);
-          if (world.now() - last_sent < 1.0 / rate - 1e-9) return;
+          if (world.now() - last_sent < 1.0 / rate - 1e-9) {
+            if (sync) answer_nothing(frame);
+            return;
+          }
           last_sent = world.now();
           world.forget_older_than(1.0);
 
           ubersim::radio_packet_t packet{};
-          packet.team = yellow ? ubersim::team_t::YELLOW : ubersim::team_t::BLUE;
+          packet.team = team_code;
           packet.sequence = sequence++;
-          packet.t_sent = world.now();
+          packet.t_sent = sync ? frame.t_capture : world.now();
           packet.commands = mode == "positions" ? demo::hold_positions(world, team)
                             : mode == "figure8"
                                 ? demo::figure_eights(world, team, figure8_speed, figure8_size)
                                 : demo::play(world, team);
           packet.num_commands = static_cast<int32_t>(packet.commands.size());
-          bus.publish(channels.radio(own), packet);
+          bus.publish(radio_channel, packet);
         });
 
     spdlog::info("{} team, mode {}, defending the {} goal: listening on {}, sending on {}",
                  ubersim::team_name(own), mode, team.defends < 0 ? "negative-x" : "positive-x",
                  channels(ubersim::Channel::Vision), channels.radio(own));
-    while (!shutdown.requested()) bus.wait_and_handle(100, &shutdown);
+    while (!shutdown.requested()) {
+      if (sync && std::chrono::steady_clock::now() >= next_hello) {
+        bus.publish(sync_channel, hello);
+        next_hello += std::chrono::seconds(1);
+      }
+      bus.wait_and_handle(100, &shutdown);
+    }
+    if (sync) {
+      hello.leaving = true;
+      bus.publish(sync_channel, hello);
+    }
     spdlog::info("stopped after {} packets", sequence);
     return 0;
   } catch (const std::exception& error) {

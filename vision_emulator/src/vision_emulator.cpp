@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "ubersim/vision/sim_state_check.hpp"
@@ -34,7 +35,8 @@ VisionEmulator::VisionEmulator(VisionProfile profile, RobotSizes robot_sizes)
     cameras_.push_back(Camera{CameraDetector(c, profile_, profile_.seed),
                               CaptureSchedule(c.frame_rate, c.phase),
                               RandomSource(profile_.seed, 2 * static_cast<std::uint64_t>(c.id) + 1),
-                              DelayLine<vision_frame_t>{}, c});
+                              0.0, DelayLine<vision_frame_t>{}, c});
+    cameras_.back().next_jitter = cameras_.back().latency_random.gaussian();
   }
 }
 
@@ -87,12 +89,35 @@ const WorldSnapshot& VisionEmulator::snapshot(const sim_state_t& state) {
   return world_;
 }
 
-double VisionEmulator::release_time(Camera& camera, double t_capture) {
+double VisionEmulator::latency_of(const Camera& camera) {
   // Jitter never makes a frame leave before it was processed.
-  const double latency = std::max(
-      camera.timing.processing_time,
-      camera.timing.latency + camera.latency_random.gaussian(camera.timing.latency_jitter));
+  return std::max(camera.timing.processing_time,
+                  camera.timing.latency + camera.timing.latency_jitter * camera.next_jitter);
+}
+
+double VisionEmulator::release_time(Camera& camera, double t_capture) {
+  const double latency = latency_of(camera);
+  camera.next_jitter = camera.latency_random.gaussian();
   return t_capture + latency;
+}
+
+double VisionEmulator::next_capture() const {
+  double next = std::numeric_limits<double>::infinity();
+  for (const Camera& camera : cameras_) {
+    if (camera.schedule.started()) next = std::min(next, camera.schedule.next_instant());
+  }
+  return next;
+}
+
+double VisionEmulator::next_publication() const {
+  double next = std::numeric_limits<double>::infinity();
+  for (const Camera& camera : cameras_) {
+    if (!camera.pending.empty()) next = std::min(next, camera.pending.front_release());
+    if (camera.schedule.started()) {
+      next = std::min(next, camera.schedule.next_instant() + latency_of(camera));
+    }
+  }
+  return next;
 }
 
 void VisionEmulator::restart_after_reset() {

@@ -4,7 +4,9 @@
 
 #include <chrono>
 #include <functional>
+#include <limits>
 #include <ubersim/sim_control_t.hpp>
+#include <ubersim/vision_schedule_t.hpp>
 
 #include "ubersim/cli.hpp"
 #include "ubersim/field_config.hpp"
@@ -69,6 +71,47 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
     next_geometry = Clock::now() + geometry_period;
   };
 
+  // The schedule goes out before the frames it lists, on the same bus, so a
+  // listener (the radio emulator in sync mode) knows when a frame was
+  // published before any answer to it can reach it.
+  const std::string schedule_channel = options.channels.extra(kVisionScheduleChannel);
+  vision_schedule_t schedule{};
+  // Until the first state: "listening, no state yet" (step -1), which is what
+  // physics in sync mode waits for before its first state.
+  schedule.t_state = -1;
+  schedule.step = -1;
+  schedule.next_publication = schedule.next_capture = std::numeric_limits<double>::infinity();
+  double announced_next = -1;
+  Clock::time_point last_schedule{};
+  auto publish_schedule = [&](const sim_state_t& state, const std::vector<vision_frame_t>& frames,
+                              bool always) {
+    const double next = emulator.next_publication();
+    if (!always && frames.empty() && next == announced_next) return;
+    announced_next = next;
+    schedule.t_state = state.sim_time;
+    schedule.step = state.step;
+    schedule.next_publication = next;
+    schedule.next_capture = emulator.next_capture();
+    schedule.num_frames = static_cast<std::int32_t>(frames.size());
+    schedule.camera_id.clear();
+    schedule.frame_number.clear();
+    schedule.t_capture.clear();
+    for (const vision_frame_t& frame : frames) {
+      schedule.camera_id.push_back(frame.camera_id);
+      schedule.frame_number.push_back(frame.frame_number);
+      schedule.t_capture.push_back(frame.t_capture);
+    }
+    bus.publish(schedule_channel, schedule);
+    last_schedule = Clock::now();
+  };
+  // The last schedule again, 10 times a second when nothing new was said, for
+  // a process that started later.
+  const auto repeat_schedule = [&] {
+    if (Clock::now() - last_schedule < std::chrono::milliseconds(100)) return;
+    bus.publish(schedule_channel, schedule);
+    last_schedule = Clock::now();
+  };
+
   bus.subscribe<sim_state_t>(
       options.channels(Channel::SimState),
       std::function<void(const sim_state_t&)>([&](const sim_state_t& state) {
@@ -84,8 +127,12 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
           case Verdict::Reset:
             spdlog::info("sim time went back to {} s: simulation reset, pending frames dropped",
                          state.sim_time);
+            publish_schedule(state, outcome.frames, true);
             break;
-          default:
+          case Verdict::Repeated:
+            break;
+          case Verdict::Used:
+            publish_schedule(state, outcome.frames, false);
             break;
         }
         for (const vision_frame_t& frame : outcome.frames) bus.publish(vision_channel, frame);
@@ -157,6 +204,7 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
         std::chrono::duration_cast<std::chrono::milliseconds>(next_geometry - Clock::now());
     bus.wait_and_handle(static_cast<int>(std::clamp<std::int64_t>(wait.count(), 0, 100)),
                         &shutdown);
+    repeat_schedule();
     if (Clock::now() >= next_geometry) {
       publish_geometry();
       if (!emulator.field()) next_geometry = Clock::now() + geometry_period;

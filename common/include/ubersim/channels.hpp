@@ -40,6 +40,14 @@ inline constexpr std::array<Channel, 11> kAllChannels{Channel::Vision,
                                                       Channel::SimGeometry};
 
 inline constexpr const char* kEmulatorRealismChannel = "EMULATOR_REALISM";
+// Sync mode's coordination (docs/sync.md), low rate, on the main bus.
+inline constexpr const char* kSyncClientChannel = "SYNC_CLIENT";            // sync_client_t
+inline constexpr const char* kSyncHorizonChannel = "SIM_SYNC_HORIZON";      // sync_horizon_t
+inline constexpr const char* kVisionScheduleChannel = "SIM_VISION_SCHEDULE";  // vision_schedule_t
+// Channels outside the Channel list (which the DDS bridge maps one for one
+// onto topics): these have no DDS topic.
+inline constexpr std::array<const char*, 4> kExtraChannels{
+    kEmulatorRealismChannel, kSyncClientChannel, kSyncHorizonChannel, kVisionScheduleChannel};
 
 // The name a channel has with no prefix and no override, e.g. "RADIO_YELLOW".
 const char* base_channel_name(Channel channel);
@@ -56,7 +64,9 @@ class ChannelNames {
   // EMULATOR_REALISM (emulator_realism_t, SSL bridge and tools -> vision and
   // radio emulators). Outside the Channel list, which the DDS bridge maps one
   // for one onto topics: this one has no DDS topic.
-  std::string emulator_realism() const;
+  std::string emulator_realism() const { return extra(kEmulatorRealismChannel); }
+  // One of kExtraChannels, with the prefix or its override.
+  std::string extra(const char* base) const;
 
   // Parses "BASE_NAME=CHANNEL" as given on a command line.
   static std::pair<std::string, std::string> parse_override(const std::string& text);

@@ -29,6 +29,8 @@ class DelayLine {
   }
 
   void clear() { items_.clear(); }
+  // Release time of the oldest item (the line must not be empty).
+  double front_release() const { return items_.front().first; }
   bool empty() const { return items_.empty(); }
   std::size_t size() const { return items_.size(); }
 

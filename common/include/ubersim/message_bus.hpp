@@ -27,6 +27,13 @@ class MessageBus {
   void subscribe(const std::string& channel, std::function<void(const Msg&)> handler,
                  int queue_capacity = 1000);
 
+  // Every message on the channels `channel_regex` matches, undecoded (for
+  // recorders): channel, bytes, size, receive time (us since the epoch).
+  using RawHandler =
+      std::function<void(const std::string&, const void*, std::size_t, std::int64_t)>;
+  void subscribe_raw(const std::string& channel_regex, RawHandler handler,
+                     int queue_capacity = 100000);
+
   template <class Msg>
   void publish(const std::string& channel, const Msg& message) {
     lcm_.publish(channel, &message);
@@ -67,6 +74,13 @@ class MessageBus {
         return;
       }
       handler(message);
+    }
+  };
+
+  struct RawSubscription : Subscription {
+    RawHandler handler;
+    void on_message(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+      handler(channel, buffer->data, buffer->data_size, buffer->recv_utime);
     }
   };
 

@@ -3,17 +3,20 @@
 //
 //   subscribes SIM_COMMANDS (sim_commands_t): held until t_apply, then applied
 //              SIM_CONTROL  (sim_control_t):  place, setup, pause, resume, reset,
-//                                             step, speed, seed, geometry, ping
+//                                             step, speed, sync, seed, geometry, ping
+//              SIM_SYNC_HORIZON (sync_horizon_t): in sync mode, how far it may step
 //   publishes  SIM_STATE    (sim_state_t):    after every step (or at STATE_PUBLISH_RATE)
 //              SIM_GEOMETRY (field_geometry_t): at start, every GEOMETRY_PUBLISH_PERIOD
 //                                             of wall time, and on request
 //              SIM_CONTROL_ACK (sim_control_ack_t): one per SIM_CONTROL
 #include <chrono>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
+#include <ubersim/sync_horizon_t.hpp>
 #include <vector>
 
 #include "ubersim/channels.hpp"
@@ -33,6 +36,7 @@ struct ServerOptions {
   double speed = 1.0;    // > 0 times real time, 0 as fast as possible, < 0 lockstep
   bool paused = false;
   double duration = 0;  // s of sim time after which run() returns, 0 = never
+  bool sync = false;    // sync mode (docs/sync.md): step up to the radio emulator's horizon
 };
 
 struct ServerStats {
@@ -43,6 +47,10 @@ struct ServerStats {
   std::int64_t schedule_restarts = 0;  // times real time could not be kept
   double wall_seconds = 0;
   double drift = 0;  // s, sim time ahead of the real-time schedule at the end (paced modes)
+  // Sync mode: wall time spent waiting at the horizon, by what bounded it
+  // (a client's name, "vision", "registration"), and how many waits.
+  std::map<std::string, double> sync_wait_seconds;
+  std::map<std::string, std::int64_t> sync_waits;
 };
 
 class PhysicsServer {
@@ -62,7 +70,12 @@ class PhysicsServer {
   void step_and_publish(bool publish_every_step);
   void publish_state();
   void publish_geometry();
-  bool idle() const { return paused_ || pacer_.lockstep(); }
+  bool idle() const { return paused_ || (!sync_ && pacer_.lockstep()); }
+  // Sync mode: whether the step starting now may run: no command can still
+  // come that applies at its start (docs/sync.md).
+  bool below_horizon() const { return world_.time() + world_.dt() * 1e-6 < horizon_; }
+  void wait_at_horizon(const ShutdownSignal* shutdown);
+  void log_sync_waits() const;
   // Waits until `deadline` or a message or a signal; handles messages.
   void wait_until(Pacer::Clock::time_point deadline, const ShutdownSignal* shutdown);
   bool duration_reached() const;
@@ -81,6 +94,14 @@ class PhysicsServer {
   std::vector<uint8_t> state_buffer_;  // encoded SIM_STATE, reused every step
   ServerStats stats_;
   ThrottledLog log_;
+  bool sync_ = false;
+  double horizon_ = 0;  // s, from SIM_SYNC_HORIZON
+  std::string horizon_bound_ = "the radio emulator (no SIM_SYNC_HORIZON yet)";
+  // Sync mode publishes its first state only once the vision and radio
+  // emulators listen (each has spoken), so that every run starts alike.
+  bool vision_heard_ = false;
+  bool radio_heard_ = false;
+  bool first_state_sent_ = false;
 };
 
 }  // namespace ubersim::physics

@@ -48,7 +48,12 @@ class CommandLink {
   // The world was reset: forget the waiting packet and the link's timing.
   void reset();
   // New delay and loss from the next transmission on (a run-time realism change).
-  void set_profile(const RadioProfile& profile) { profile_ = profile; }
+  void set_profile(const RadioProfile& profile);
+
+  // Sync mode (docs/sync.md): the earliest t_apply a packet not yet
+  // transmitted can get, when no packet can arrive before `earliest_arrival`
+  // (+inf: none will). Exact, because the next delay is drawn ahead.
+  double earliest_apply(double earliest_arrival) const;
 
   bool has_waiting_packet() const { return waiting_.has_value(); }
   const CommandLinkStats& stats() const { return stats_; }
@@ -67,6 +72,9 @@ class CommandLink {
   std::optional<Waiting> waiting_;
   double busy_until_;
   double last_t_apply_;
+  // The next transmission's delay, drawn one packet ahead so that the earliest
+  // moment a command can take effect is known before the packet exists.
+  double next_delay_;
   CommandLinkStats stats_;
 };
 

@@ -50,6 +50,19 @@ class RadioEmulator {
   // A packet that came on `channel_team`'s radio channel.
   void on_radio_packet(Team channel_team, const radio_packet_t& packet);
 
+  // Sync mode (docs/sync.md): packets arrive at the sim time given (their
+  // frame's publication), not at the latest SIM_STATE's, and a waiting packet
+  // goes out only when sync_poll() says no newer one can arrive before the
+  // link frees; SIM_STATE then only drives the feedback.
+  void set_sync(bool sync) { sync_ = sync; }
+  void on_answer(Team channel_team, const radio_packet_t& packet, double t_arrival);
+  // No packet of `team` can arrive before `earliest_arrival` (s of sim time).
+  void sync_poll(Team team, double earliest_arrival);
+  // The earliest t_apply of a command of `team` not yet forwarded.
+  double earliest_apply(Team team, double earliest_arrival) const {
+    return link(team).commands.earliest_apply(earliest_arrival);
+  }
+
   // A run-time realism change (EMULATOR_REALISM) for both teams: the radio
   // values >= 0 replace the profiles'. Returns what was wrong (nothing
   // applied), or "".
@@ -87,6 +100,7 @@ class RadioEmulator {
   ThrottledLog warnings_;
   std::uint64_t rejected_sim_states_ = 0;
   std::uint64_t resets_ = 0;
+  bool sync_ = false;
 };
 
 }  // namespace ubersim::radio

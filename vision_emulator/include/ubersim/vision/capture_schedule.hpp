@@ -34,6 +34,9 @@ class CaptureSchedule {
     return phase_ + static_cast<double>(index) / frame_rate_;
   }
   std::int64_t next_frame_number() const { return next_frame_number_; }
+  // Once a state was seen: the next instant not yet captured.
+  bool started() const { return started_; }
+  double next_instant() const { return instant(next_index_); }
 
  private:
   double frame_rate_;

@@ -74,6 +74,14 @@ class VisionEmulator {
   // their timing). Returns what was wrong (nothing applied), or "".
   std::string apply_realism(const emulator_realism_t& realism);
 
+  // Earliest sim time at which a frame not yet published can be published
+  // (frames waiting for their release, and the next capture of each camera
+  // with its latency, drawn ahead). +inf before the first state. Sync mode
+  // bounds how far physics may run on it (docs/sync.md).
+  double next_publication() const;
+  // Next capture instant of any camera (+inf before the first state).
+  double next_capture() const;
+
   const VisionProfile& profile() const { return profile_; }
   const VisionStats& stats() const { return stats_; }
   double sim_time() const { return clock_.now(); }
@@ -85,12 +93,16 @@ class VisionEmulator {
     CameraDetector detector;
     CaptureSchedule schedule;
     RandomSource latency_random;
+    // The next frame's latency jitter (standard normal), drawn one frame ahead
+    // so that its publication time is known before its capture.
+    double next_jitter = 0;
     DelayLine<vision_frame_t> pending;
     CameraProfile timing;  // rate, phase, latency of this camera
   };
 
   const WorldSnapshot& snapshot(const sim_state_t& state);
   double release_time(Camera& camera, double t_capture);
+  static double latency_of(const Camera& camera);
   void restart_after_reset();
   void check_step_fits(const sim_state_t& state);
 

@@ -1,0 +1,103 @@
+#pragma once
+// Sync mode's bookkeeping in the radio emulator (docs/sync.md), without LCM:
+// which control programs take part (SYNC_CLIENT), which frames the vision
+// emulator published and when (SIM_VISION_SCHEDULE), and which of those each
+// client has answered (its radio packets, t_sent = the frame's t_capture).
+//
+// An answer arrives, in sim time, when its frame was published: the client's
+// own processing takes no sim time. So the earliest sim time a client's next
+// answer can arrive is its oldest unanswered frame's publication, or, when it
+// is up to date, the vision emulator's next publication. The radio links add
+// their delay to that to give physics its horizon.
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <optional>
+#include <string>
+#include <ubersim/sync_client_t.hpp>
+#include <ubersim/vision_schedule_t.hpp>
+#include <vector>
+
+#include "ubersim/channels.hpp"
+
+namespace ubersim::radio {
+
+struct SyncClientStats {
+  std::string name;
+  std::uint64_t answers = 0;
+  std::uint64_t frames_skipped = 0;  // answered a later frame first: these count as nothing to send
+  double answer_wall_seconds = 0;    // sum over answers of wall time from publication to answer
+  double slowest_answer = 0;         // s of wall time
+};
+
+struct SyncStats {
+  std::uint64_t schedules = 0;
+  std::uint64_t frames = 0;
+  std::uint64_t answers = 0;
+  std::uint64_t unregistered = 0;  // packets of a team with no registered client: ignored
+  std::uint64_t unmatched = 0;     // duplicated, out of order, or for no published frame: ignored
+  std::uint64_t timeouts = 0;      // clients dropped for answering too late
+  std::uint64_t refused = 0;       // registrations for a team that already has a client
+  std::uint64_t schedules_out_of_order = 0;
+};
+
+class SyncCoordinator {
+ public:
+  using Clock = std::chrono::steady_clock;
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+  explicit SyncCoordinator(double client_timeout_s) : timeout_(client_timeout_s) {}
+
+  // Registration or goodbye; returns a line for the log when something changed.
+  std::string on_client(const sync_client_t& message);
+  void on_schedule(const vision_schedule_t& schedule, Clock::time_point now);
+
+  enum class Verdict { Accepted, Unregistered, Unmatched };
+  struct Answer {
+    Verdict verdict = Verdict::Unmatched;
+    double t_arrival = 0;  // s of sim time: when its frame was published
+  };
+  Answer on_answer(Team team, double t_sent, Clock::time_point now);
+
+  // Drops every client whose oldest unanswered frame waits longer than the
+  // timeout (the run goes on without it); returns their descriptions.
+  std::vector<std::string> expire(Clock::time_point now);
+
+  // The earliest sim time a further answer of `team` can arrive (kInfinity
+  // when the team has no client, or vision has not been heard yet).
+  double earliest_arrival(Team team) const;
+  // Who holds `team` back: its client's name when it owes an answer, else "vision".
+  std::string bound_by(Team team) const;
+
+  bool vision_heard() const { return vision_heard_; }
+  int clients() const;
+  std::optional<std::string> client_name(Team team) const;
+  std::vector<SyncClientStats> client_stats() const;
+  const SyncStats& stats() const { return stats_; }
+
+ private:
+  struct Outstanding {
+    double t_capture;
+    double t_published;
+    Clock::time_point wall_published;
+  };
+  struct Client {
+    bool present = false;
+    SyncClientStats stats;
+    std::deque<Outstanding> owed;
+  };
+  Client& client(Team team) { return clients_[static_cast<int>(team)]; }
+  const Client& client(Team team) const { return clients_[static_cast<int>(team)]; }
+
+  double timeout_;
+  Client clients_[2];
+  bool vision_heard_ = false;
+  double next_publication_ = 0;
+  double last_schedule_time_ = -kInfinity;
+  std::int64_t last_schedule_step_ = -1;
+  SyncStats stats_;
+  std::vector<SyncClientStats> departed_;
+};
+
+}  // namespace ubersim::radio

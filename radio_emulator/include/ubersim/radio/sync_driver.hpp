@@ -1,0 +1,52 @@
+#pragma once
+// Sync mode in the radio emulator process (docs/sync.md): wires the
+// SyncCoordinator and the emulator's links to the bus. It listens to
+// SYNC_CLIENT and SIM_VISION_SCHEDULE, takes the teams' radio packets as
+// answers, and publishes on SIM_SYNC_HORIZON how far physics may step:
+// the earliest t_apply any command not yet forwarded can still get.
+#include <chrono>
+#include <string>
+#include <ubersim/radio_packet_t.hpp>
+#include <ubersim/sync_horizon_t.hpp>
+
+#include "ubersim/channels.hpp"
+#include "ubersim/logging.hpp"
+#include "ubersim/message_bus.hpp"
+#include "ubersim/radio/radio_emulator.hpp"
+#include "ubersim/radio/sync_coordinator.hpp"
+
+namespace ubersim::radio {
+
+struct SyncOptions {
+  double client_timeout = 1.0;  // s of wall time a client may take to answer a frame
+  bool strict = false;          // a client timing out fails the run
+  int expected_clients = 0;     // physics holds at the start until this many registered
+};
+
+class SyncDriver {
+ public:
+  SyncDriver(MessageBus& bus, const ChannelNames& channels, RadioEmulator& emulator,
+             SyncOptions options);
+
+  // A packet on RADIO_<team>: an answer, if the team has a client.
+  void on_packet(Team team, const radio_packet_t& packet);
+  // Every wakeup: drops clients past the timeout. False when that fails the run (strict).
+  bool tick();
+  void log_summary() const;
+
+ private:
+  void update(bool always_publish);
+
+  MessageBus& bus_;
+  std::string horizon_channel_;
+  RadioEmulator& emulator_;
+  SyncOptions options_;
+  SyncCoordinator coordinator_;
+  bool started_ = false;  // the expected clients registered once
+  sync_horizon_t horizon_{};
+  ThrottledLog log_;
+  std::chrono::steady_clock::time_point next_hold_log_{};
+  std::chrono::steady_clock::time_point last_published_{};
+};
+
+}  // namespace ubersim::radio

@@ -1,0 +1,127 @@
+#include "ubersim/radio/sync_driver.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <limits>
+
+namespace ubersim::radio {
+
+using Clock = SyncCoordinator::Clock;
+
+SyncDriver::SyncDriver(MessageBus& bus, const ChannelNames& channels, RadioEmulator& emulator,
+                       SyncOptions options)
+    : bus_(bus),
+      horizon_channel_(channels.extra(kSyncHorizonChannel)),
+      emulator_(emulator),
+      options_(options),
+      coordinator_(options.client_timeout) {
+  emulator_.set_sync(true);
+  horizon_.horizon = -1;
+  bus_.subscribe<sync_client_t>(channels.extra(kSyncClientChannel),
+                                [this](const sync_client_t& message) {
+                                  const std::string change = coordinator_.on_client(message);
+                                  if (change.empty()) return;
+                                  spdlog::info("{}", change);
+                                  update(true);
+                                });
+  bus_.subscribe<vision_schedule_t>(channels.extra(kVisionScheduleChannel),
+                                    [this](const vision_schedule_t& schedule) {
+                                      coordinator_.on_schedule(schedule, Clock::now());
+                                      update(true);
+                                    });
+}
+
+void SyncDriver::on_packet(Team team, const radio_packet_t& packet) {
+  const auto answer = coordinator_.on_answer(team, packet.t_sent, Clock::now());
+  switch (answer.verdict) {
+    case SyncCoordinator::Verdict::Unregistered:
+      log_.warn(std::string("unregistered:") + team_name(team),
+                std::string("ignored a ") + team_name(team) +
+                    " radio packet: in sync mode only a registered client's answers count "
+                    "(SYNC_CLIENT, docs/sync.md)");
+      return;
+    case SyncCoordinator::Verdict::Unmatched:
+      log_.warn(std::string("unmatched:") + team_name(team),
+                std::string("ignored a ") + team_name(team) + " radio packet with t_sent " +
+                    std::to_string(packet.t_sent) +
+                    " s: no unanswered frame was captured then (duplicate or out of order)");
+      return;
+    case SyncCoordinator::Verdict::Accepted:
+      break;
+  }
+  emulator_.on_answer(team, packet, answer.t_arrival);
+  update(false);
+}
+
+bool SyncDriver::tick() {
+  const auto dropped = coordinator_.expire(Clock::now());
+  for (const std::string& what : dropped) {
+    if (options_.strict) {
+      spdlog::error("sync client {}: failing the run (--sync-strict)", what);
+      return false;
+    }
+    spdlog::warn("sync client {}: the run goes on without it", what);
+  }
+  // Said again at least 10 times a second: physics waits for a first word
+  // from the radio emulator before it starts.
+  update(!dropped.empty() || Clock::now() - last_published_ >= std::chrono::milliseconds(100));
+  return true;
+}
+
+void SyncDriver::update(bool always_publish) {
+  double horizon = std::numeric_limits<double>::infinity();
+  std::string bound;
+  if (!started_ && coordinator_.clients() >= options_.expected_clients) {
+    started_ = true;
+    spdlog::info("sync: {} client(s) registered, physics may run", coordinator_.clients());
+  }
+  if (!started_ || !coordinator_.vision_heard()) {
+    // Physics holds where it is until every expected client can see the
+    // first frame, so that runs start alike.
+    horizon = 0;
+    bound = started_ ? "vision" : "registration";
+    const auto now = Clock::now();
+    if (now >= next_hold_log_) {
+      next_hold_log_ = now + std::chrono::seconds(5);
+      spdlog::info("sync: physics holds: waiting for {}", started_
+                                                               ? std::string("the vision emulator")
+                                                               : std::to_string(options_.expected_clients - coordinator_.clients()) +
+                                                                     " more client(s) on SYNC_CLIENT");
+    }
+  } else {
+    for (Team team : kTeams) {
+      const double arrival = coordinator_.earliest_arrival(team);
+      emulator_.sync_poll(team, arrival);
+      const double apply = emulator_.earliest_apply(team, arrival);
+      if (apply < horizon) {
+        horizon = apply;
+        bound = coordinator_.bound_by(team);
+      }
+    }
+  }
+  if (!always_publish && horizon == horizon_.horizon && bound == horizon_.waiting_for) return;
+  ++horizon_.sequence;
+  horizon_.horizon = horizon;
+  horizon_.waiting_for = bound;
+  horizon_.clients = coordinator_.clients();
+  bus_.publish(horizon_channel_, horizon_);
+  last_published_ = Clock::now();
+}
+
+void SyncDriver::log_summary() const {
+  const SyncStats& s = coordinator_.stats();
+  spdlog::info(
+      "sync: {} frames scheduled, {} answers; ignored: {} from unregistered teams, {} duplicated "
+      "or out of order; {} client timeouts, {} registrations refused",
+      s.frames, s.answers, s.unregistered, s.unmatched, s.timeouts, s.refused);
+  for (const SyncClientStats& c : coordinator_.client_stats()) {
+    spdlog::info(
+        "sync client '{}': {} answers, {} frames skipped, answer time mean {:.3f} ms, slowest "
+        "{:.3f} ms (wall)",
+        c.name, c.answers, c.frames_skipped,
+        c.answers ? 1e3 * c.answer_wall_seconds / static_cast<double>(c.answers) : 0.0,
+        1e3 * c.slowest_answer);
+  }
+}
+
+}  // namespace ubersim::radio

@@ -1,0 +1,20 @@
+#pragma once
+// Reading what lcm-logger recorded, channel by channel: sync mode promises the
+// same bytes on each channel, in the same order, from two runs alike
+// (the interleaving of channels follows the wall clock and may differ).
+#include <map>
+#include <string>
+#include <vector>
+
+namespace e2e {
+
+using ChannelLog = std::vector<std::vector<unsigned char>>;
+
+// Every message of every channel in `path`, in the order recorded. Throws
+// std::runtime_error when the log cannot be read.
+std::map<std::string, ChannelLog> read_log_by_channel(const std::string& path);
+
+// "" when equal, else where the two first differ.
+std::string compare_channel(const ChannelLog& a, const ChannelLog& b);
+
+}  // namespace e2e
