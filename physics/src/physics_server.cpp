@@ -123,6 +123,7 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
       if (vision_heard_ && radio_heard_) {
         publish_state();
         first_state_sent_ = true;
+        first_state_wall_ = Clock::now();
       } else {
         wait_until(std::min(next_geometry, now + std::chrono::milliseconds(100)), shutdown);
       }
@@ -166,6 +167,11 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
   const auto end = Clock::now();
   stats_.wall_seconds = seconds_between(start, end);
   stats_.drift = pacer_.paced() && !paused_ && !sync_ ? pacer_.drift(end, world_.step_index()) : 0;
+  if (options_.sync && first_state_sent_) {
+    stats_.sync_run_seconds = seconds_between(first_state_wall_, end);
+    spdlog::info("sync: {:.3f} s of sim time in {:.3f} s of wall time from the first state",
+                 world_.time(), stats_.sync_run_seconds);
+  }
   if (sync_ || !stats_.sync_waits.empty()) log_sync_waits();
   spdlog::info("physics stopping: {} steps, {:.3f} s of sim time in {:.3f} s of wall time{}",
                stats_.steps, world_.time(), stats_.wall_seconds,

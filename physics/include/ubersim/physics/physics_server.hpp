@@ -51,6 +51,9 @@ struct ServerStats {
   // (a client's name, "vision", "registration"), and how many waits.
   std::map<std::string, double> sync_wait_seconds;
   std::map<std::string, std::int64_t> sync_waits;
+  // Sync mode: wall time from the first state to the end (the start, waiting
+  // for the emulators and clients to be ready, left out).
+  double sync_run_seconds = 0;
 };
 
 class PhysicsServer {
@@ -102,6 +105,7 @@ class PhysicsServer {
   bool vision_heard_ = false;
   bool radio_heard_ = false;
   bool first_state_sent_ = false;
+  Pacer::Clock::time_point first_state_wall_{};
 };
 
 }  // namespace ubersim::physics
