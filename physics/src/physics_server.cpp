@@ -69,7 +69,8 @@ PhysicsServer::PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNam
                                  [this](const sync_horizon_t& h) {
                                    if (std::isnan(h.horizon)) return;
                                    horizon_ = h.horizon;
-                                   radio_heard_ = true;
+                                   // Until its clients registered, the radio holds the start.
+                                   radio_ready_ = h.waiting_for != "registration";
                                    horizon_bound_ = h.waiting_for.empty() ? "?" : h.waiting_for;
                                  });
   bus_.subscribe<vision_schedule_t>(channels.extra(kVisionScheduleChannel),
@@ -120,7 +121,7 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
       continue;
     }
     if (sync_ && !first_state_sent_) {
-      if (vision_heard_ && radio_heard_) {
+      if (vision_heard_ && radio_ready_) {
         publish_state();
         first_state_sent_ = true;
         first_state_wall_ = Clock::now();

@@ -43,17 +43,22 @@ void SyncCoordinator::on_schedule(const vision_schedule_t& schedule, Clock::time
     ++stats_.schedules_out_of_order;  // not finite or not ahead: a bad message
     return;
   }
-  if (schedule.step < last_schedule_step_) {
+  const bool reset = schedule.step < last_schedule_step_;
+  if (reset) {
     // Sim time went back: the world was reset; frames of the old one are owed no answer.
     for (Client& c : clients_) c.owed.clear();
   }
+  // A schedule for a step already heard of (a repetition) announces no new frame.
+  const bool fresh = reset || schedule.step > last_schedule_step_;
   ++stats_.schedules;
   vision_heard_ = true;
   last_schedule_step_ = schedule.step;
   last_schedule_time_ = schedule.t_state;
   next_publication_ = schedule.next_publication;
-  const std::size_t frames = std::min<std::size_t>(
-      static_cast<std::size_t>(std::max(0, schedule.num_frames)), schedule.t_capture.size());
+  const std::size_t frames =
+      fresh ? std::min<std::size_t>(static_cast<std::size_t>(std::max(0, schedule.num_frames)),
+                                    schedule.t_capture.size())
+            : 0;
   stats_.frames += frames;
   for (Client& c : clients_) {
     if (!c.present) continue;

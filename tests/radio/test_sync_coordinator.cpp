@@ -127,3 +127,14 @@ TEST(CommandLinkHorizon, BusyLinkBoundsByWhenItFrees) {
   EXPECT_FALSE(link.offer(radio_test::packet(0, 2, {0}), 0.05));  // waits for the link
   EXPECT_DOUBLE_EQ(link.earliest_apply(SyncCoordinator::kInfinity), 0.1);
 }
+
+TEST(SyncCoordinator, RepeatedScheduleAnnouncesNoFrameTwice) {
+  SyncCoordinator sync(1.0);
+  const auto now = Clock::now();
+  sync.on_client(client(0, "a"));
+  sync.on_schedule(schedule(0.0, 0, {0.0}, 0.033), now);
+  EXPECT_EQ(sync.on_answer(Team::Yellow, 0.0, now).verdict, SyncCoordinator::Verdict::Accepted);
+  sync.on_schedule(schedule(0.0, 0, {0.0}, 0.033), now);  // the same step again
+  EXPECT_DOUBLE_EQ(sync.earliest_arrival(Team::Yellow), 0.033) << "owes nothing";
+  EXPECT_EQ(sync.stats().frames, 1u);
+}

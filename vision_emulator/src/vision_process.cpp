@@ -108,6 +108,11 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
   // a process that started later.
   const auto repeat_schedule = [&] {
     if (Clock::now() - last_schedule < std::chrono::milliseconds(100)) return;
+    // The frames were announced once: a repetition must not announce them again.
+    schedule.num_frames = 0;
+    schedule.camera_id.clear();
+    schedule.frame_number.clear();
+    schedule.t_capture.clear();
     bus.publish(schedule_channel, schedule);
     last_schedule = Clock::now();
   };

@@ -100,10 +100,11 @@ class PhysicsServer {
   bool sync_ = false;
   double horizon_ = 0;  // s, from SIM_SYNC_HORIZON
   std::string horizon_bound_ = "the radio emulator (no SIM_SYNC_HORIZON yet)";
-  // Sync mode publishes its first state only once the vision and radio
-  // emulators listen (each has spoken), so that every run starts alike.
+  // Sync mode publishes its first state only once the vision emulator listens
+  // and the radio emulator has every client it expects (both have spoken), so
+  // that every run starts alike.
   bool vision_heard_ = false;
-  bool radio_heard_ = false;
+  bool radio_ready_ = false;
   bool first_state_sent_ = false;
   Pacer::Clock::time_point first_state_wall_{};
 };
