@@ -18,8 +18,10 @@ packages=(
   libprotobuf-dev protobuf-compiler  # optional SSL protocol bridge
   # optional DDS bridge
   cyclonedds-dev cyclonedds-tools
-  # plots for the validation report
+  # plots for the validation report and the batch runner's figures
   gnuplot-nox
+  # batch experiments (tools/ubersim_batch): Python 3; Dask distributed to spread them over machines
+  python3 python3-distributed
   # browser viewer: HTTP/WebSocket server and JSON; headless chromium for its end-to-end test
   libwebsocketpp-dev libasio-dev nlohmann-json3-dev chromium
 )

@@ -7,6 +7,7 @@
 #include <map>
 #include <ubersim/team_t.hpp>
 
+#include "ubersim/referee/auto_runner.hpp"
 #include "ubersim/referee/scene_io.hpp"
 #include "ubersim/referee/sim_link.hpp"
 #include "ubersim/referee/situations.hpp"
@@ -16,6 +17,7 @@
 #include "ubersim/logging.hpp"
 #include "ubersim/robot_config.hpp"
 #include "ubersim/scenario_config.hpp"
+#include "ubersim/shutdown.hpp"
 
 namespace {
 
@@ -43,7 +45,28 @@ struct Options {
   std::string speed = "1";  // a factor, or "sync"
   std::int64_t seed = 0;
   std::string scenario;
+  // auto
+  std::string game = "division_b";
+  double game_length = 0;
+  std::string events_file;
+  bool keep_running = false;
+  bool start_physics = false;
 };
+
+// `auto`: the automatic referee runs the game until it is over.
+int run_auto(const Options& o) {
+  AutoOptions a;
+  a.common = o.common;
+  a.game = load_game_config(o.common.config_root(), o.game);
+  if (o.game_length > 0) a.game.game_length = o.game_length;
+  a.sides.yellow_defends = o.yellow_defends == "positive" ? 1 : -1;
+  a.events_file = o.events_file;
+  a.timeout_s = o.timeout_s;
+  a.exit_at_end = !o.keep_running;
+  a.start_physics = o.start_physics;
+  ShutdownSignal shutdown;
+  return run_auto_referee(a, shutdown);
+}
 
 class Referee {
  public:
@@ -384,10 +407,23 @@ int main(int argc, char** argv) {
   command("stop", "stop: every robot 0.5 m from the ball and still",
           [](Referee& r) { return r.situation(Situation::Stop); });
 
+  auto* automatic = app.add_subcommand(
+      "auto", "automatic referee: run the game (kick-offs, goals, outs, fouls, halves) until it ends");
+  automatic->add_option("--game", o.game, "game config (config/referee/<name>.cfg)")
+      ->capture_default_str();
+  automatic->add_option("--game-length", o.game_length, "s of sim time (overrides GAME_LENGTH)")
+      ->check(CLI::PositiveNumber);
+  automatic->add_option("--events", o.events_file, "write the event log (JSON lines) here");
+  automatic->add_flag("--keep-running", o.keep_running, "do not exit when the game is over");
+  automatic->add_flag("--start", o.start_physics,
+                      "resume physics once listening (start physics with --paused)");
+
   CLI11_PARSE(app, argc, argv);
-  setup_logging("referee",
-                o.common.verbosity() - 1);  // quiet by default: it is a command-line tool
+  const bool is_auto = app.got_subcommand("auto");
+  // Quiet by default as a command-line tool; the automatic referee logs its game.
+  setup_logging("referee", o.common.verbosity() - (is_auto ? 0 : 1));
   try {
+    if (is_auto) return run_auto(o);
     Referee referee(o);
     return actions.at(app.get_subcommands().front()->get_name())(referee);
   } catch (const NoAnswer& error) {

@@ -10,6 +10,7 @@
 #include "ubersim/field_config.hpp"
 #include "ubersim/referee/autoref.hpp"
 #include "ubersim/referee/autoref_rules.hpp"
+#include "ubersim/referee/referee_message.hpp"
 
 using namespace ubersim;
 using namespace ubersim::referee;
@@ -443,4 +444,37 @@ TEST(AutoRefereeConfig, UnknownKeyIsAnErrorNamingFileAndLine) {
   } catch (const ConfigError& error) {
     EXPECT_NE(std::string(error.what()).find("game.cfg:16"), std::string::npos) << error.what();
   }
+}
+
+TEST(AutoRefereeMessage, StateGoesOnTheWireWithSslNumberingAndIntoTheLog) {
+  Game game;
+  game.kick_off_and_play();
+  game.ball(4.53, 0.0, 2.0, 0.0);
+  game.tick();
+  GameConfig config = shipped_config();
+  config.keeper_blue = 3;
+  const auto m = to_message(game.state(), config, FieldSides{}, 12.5);
+  EXPECT_EQ(m.sim_time, 12.5);
+  EXPECT_EQ(m.command, int{referee_t::STOP});
+  EXPECT_EQ(m.command, 1);  // Referee.Command.STOP
+  EXPECT_EQ(m.stage, int{referee_t::STAGE_FIRST_HALF});
+  EXPECT_TRUE(m.has_next_command);
+  EXPECT_EQ(m.next_command, int{referee_t::PREPARE_KICKOFF_BLUE});
+  EXPECT_EQ(m.yellow_score, 1);
+  EXPECT_EQ(m.blue_goalkeeper, 3);
+  EXPECT_TRUE(m.blue_on_positive_half);
+  EXPECT_TRUE(m.has_designated_position);
+  ASSERT_EQ(m.num_events, 1);
+  ASSERT_EQ(m.events.size(), 1u);
+  EXPECT_EQ(m.events[0].type, int{referee_event_t::GOAL});
+  EXPECT_EQ(m.events[0].type, 8);  // GameEvent.Type.GOAL
+  EXPECT_EQ(m.events[0].team, int{team_t::YELLOW});
+
+  const std::string line = event_line(game.state().events[0]);
+  EXPECT_NE(line.find("\"event\": \"GOAL\""), std::string::npos) << line;
+  EXPECT_NE(line.find("\"team\": \"yellow\""), std::string::npos) << line;
+  GameEvent quoted;
+  quoted.description = "a \"quoted\"\nline";
+  EXPECT_NE(event_line(quoted).find(R"(a \"quoted\"\u000aline)"), std::string::npos)
+      << event_line(quoted);
 }

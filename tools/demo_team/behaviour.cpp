@@ -11,6 +11,10 @@ namespace {
 
 constexpr double kRobotRadius = 0.09;   // m, SSL robots
 constexpr double kBallRadius = 0.0215;  // m
+// Our defence area (Division B: 1 m deep, 2 m wide) plus a margin: only the
+// keeper may touch the ball in there, so the others leave such balls to it.
+constexpr double kDefenceDepth = 1.0 + 0.25;     // m
+constexpr double kDefenceHalfWidth = 1.0 + 0.25;  // m
 
 // Formation spot of the n-th robot: a grid in the own half.
 void formation_spot(const TeamSetup& team, int index, double& x, double& y) {
@@ -61,9 +65,13 @@ std::vector<ubersim::robot_command_t> play(const WorldModel& world, const TeamSe
   // Keeper: the robot nearest our own goal; attacker: the nearest other robot to the ball.
   int keeper = -1, attacker = -1;
   double keeper_distance = std::numeric_limits<double>::infinity();
-  for (const auto& [id, pose] : world.own()) {
-    const double d = std::hypot(pose.x - team.defends * half, pose.y);
-    if (d < keeper_distance) keeper_distance = d, keeper = id;
+  if (world.own().count(team.keeper_id) > 0) {
+    keeper = team.keeper_id;  // the rules let only this one into the defence area
+  } else {
+    for (const auto& [id, pose] : world.own()) {
+      const double d = std::hypot(pose.x - team.defends * half, pose.y);
+      if (d < keeper_distance) keeper_distance = d, keeper = id;
+    }
   }
   double attacker_distance = std::numeric_limits<double>::infinity();
   for (const auto& [id, pose] : world.own()) {
@@ -80,7 +88,9 @@ std::vector<ubersim::robot_command_t> play(const WorldModel& world, const TeamSe
       commands.push_back(go_to(id, pose, x, y, facing_opponents(team), team.limits));
       continue;
     }
-    if (id == attacker) {
+    const bool ball_in_our_area = ball.x * team.defends > half - kDefenceDepth &&
+                                  std::abs(ball.y) < kDefenceHalfWidth;
+    if (id == attacker && !ball_in_our_area) {
       // Line up behind the ball on the ball-goal line, then drive through it and kick.
       const double ux = goal_x - ball.x, uy = -ball.y;
       const double n = std::hypot(ux, uy);

@@ -15,6 +15,7 @@ struct TeamSetup {
   double field_length = 9.0;  // m
   double field_width = 6.0;   // m
   double kick_speed = 4.0;    // m/s
+  int keeper_id = -1;         // the referee's goalkeeper; -1: the robot nearest our goal
   MotionLimits limits;
 };
 

@@ -7,16 +7,35 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <ubersim/radio_packet_t.hpp>
+#include <ubersim/referee_t.hpp>
 #include <ubersim/sync_client_t.hpp>
 #include <ubersim/team_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
 #include <ubersim/vision_geometry_t.hpp>
 
 #include "behaviour.hpp"
+#include "referee_rules.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/shutdown.hpp"
+
+namespace {
+
+// In play mode the referee decides what the team may do.
+std::vector<ubersim::robot_command_t> play_by_the_rules(demo::GameMode mode,
+                                                       const demo::WorldModel& world,
+                                                       const demo::TeamSetup& team) {
+  switch (mode) {
+    case demo::GameMode::Halt:
+    case demo::GameMode::Hold: return demo::halt(world);
+    case demo::GameMode::Stop: return demo::keep_away(world, team);
+    case demo::GameMode::Play: break;
+  }
+  return demo::play(world, team);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   ubersim::CommonOptions common;
@@ -64,6 +83,7 @@ int main(int argc, char** argv) {
     ubersim::MessageBus bus(ubersim::with_receive_buffer(common.lcm_url));
     const auto channels = common.channels();
     demo::WorldModel world(yellow);
+    demo::RefereeFollower referee(yellow);
     double last_sent = -1e9;
     std::int64_t sequence = 0;
     const std::string radio_channel = channels.radio(own);
@@ -91,6 +111,12 @@ int main(int argc, char** argv) {
                                                 team.field_length = g.field.field_length;
                                                 team.field_width = g.field.field_width;
                                               });
+    bus.subscribe<ubersim::referee_t>(channels.referee(),
+                                      [&](const ubersim::referee_t& r) {
+                                        referee.update(r);
+                                        team.keeper_id =
+                                            yellow ? r.yellow_goalkeeper : r.blue_goalkeeper;
+                                      });
     bus.subscribe<ubersim::vision_frame_t>(
         channels(ubersim::Channel::Vision), [&](const ubersim::vision_frame_t& frame) {
           if (frame.t_capture + 1.0 < world.now()) {  // the simulation was reset
@@ -112,7 +138,7 @@ int main(int argc, char** argv) {
           packet.commands = mode == "positions" ? demo::hold_positions(world, team)
                             : mode == "figure8"
                                 ? demo::figure_eights(world, team, figure8_speed, figure8_size)
-                                : demo::play(world, team);
+                                : play_by_the_rules(referee.mode(), world, team);
           packet.num_commands = static_cast<int32_t>(packet.commands.size());
           bus.publish(radio_channel, packet);
         });

@@ -2,6 +2,7 @@
 // prints the first error (file, line, what was expected) or "ok". The same
 // loaders the processes use, so a file that passes here loads there.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <iostream>
 
 #include "ubersim/config.hpp"
@@ -9,6 +10,47 @@
 #include "ubersim/field_config.hpp"
 #include "ubersim/robot_config.hpp"
 #include "ubersim/scenario_config.hpp"
+
+namespace {
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buffer[8];
+      std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
+      out += buffer;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+// --dump: every key with where it is defined and its values, as one JSON
+// object, so that tools in other languages (the batch runner) read our format
+// through this one parser and report errors with the same file and line.
+void dump(const ubersim::ConfigFile& config) {
+  std::cout << "{";
+  const char* separator = "";
+  for (const auto& key : config.keys()) {
+    std::cout << separator << json_string(key) << ": {\"where\": " << json_string(config.where(key))
+              << ", \"values\": [";
+    const char* comma = "";
+    for (const auto& value : config.strings(key)) {
+      std::cout << comma << json_string(value);
+      comma = ", ";
+    }
+    std::cout << "]}";
+    separator = ", ";
+  }
+  std::cout << "}\n";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Check ubersim config files against the schema of their kind"};
@@ -20,6 +62,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"fields", "robots", "scenarios", "any"}));
   app.add_option("files", names, "config names or paths")->required();
   app.add_option("--config-dir", config_dir, "config folder")->capture_default_str();
+  bool dump_keys = false;
+  app.add_flag("--dump", dump_keys, "print every key, where it is defined and its values (JSON)");
   CLI11_PARSE(app, argc, argv);
 
   int failures = 0;
@@ -32,7 +76,11 @@ int main(int argc, char** argv) {
       if (kind == "fields") ubersim::load_field_config(config, short_name);
       if (kind == "robots") ubersim::load_robot_config(config, short_name);
       if (kind == "scenarios") ubersim::load_scenario_config(config, short_name);
-      std::cout << path.string() << ": ok\n";
+      if (dump_keys) {
+        dump(config);
+      } else {
+        std::cout << path.string() << ": ok\n";
+      }
     } catch (const ubersim::ConfigError& error) {
       std::cerr << error.what() << "\n";
       ++failures;

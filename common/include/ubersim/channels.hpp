@@ -44,10 +44,13 @@ inline constexpr const char* kEmulatorRealismChannel = "EMULATOR_REALISM";
 inline constexpr const char* kSyncClientChannel = "SYNC_CLIENT";            // sync_client_t
 inline constexpr const char* kSyncHorizonChannel = "SIM_SYNC_HORIZON";      // sync_horizon_t
 inline constexpr const char* kVisionScheduleChannel = "SIM_VISION_SCHEDULE";  // vision_schedule_t
+// The automatic referee's game state (referee_t, docs/autoref.md).
+inline constexpr const char* kRefereeChannel = "REFEREE";
 // Channels outside the Channel list (which the DDS bridge maps one for one
 // onto topics): these have no DDS topic.
-inline constexpr std::array<const char*, 4> kExtraChannels{
-    kEmulatorRealismChannel, kSyncClientChannel, kSyncHorizonChannel, kVisionScheduleChannel};
+inline constexpr std::array<const char*, 5> kExtraChannels{
+    kEmulatorRealismChannel, kSyncClientChannel, kSyncHorizonChannel, kVisionScheduleChannel,
+    kRefereeChannel};
 
 // The name a channel has with no prefix and no override, e.g. "RADIO_YELLOW".
 const char* base_channel_name(Channel channel);
@@ -67,6 +70,8 @@ class ChannelNames {
   std::string emulator_realism() const { return extra(kEmulatorRealismChannel); }
   // One of kExtraChannels, with the prefix or its override.
   std::string extra(const char* base) const;
+  // REFEREE (referee_t, automatic referee -> control software, SSL bridge).
+  std::string referee() const { return extra(kRefereeChannel); }
 
   // Parses "BASE_NAME=CHANNEL" as given on a command line.
   static std::pair<std::string, std::string> parse_override(const std::string& text);

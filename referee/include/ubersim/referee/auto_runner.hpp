@@ -1,0 +1,31 @@
+#pragma once
+// `ubersim_referee auto`: the automatic referee on the bus. It judges every
+// SIM_STATE with AutoReferee, publishes referee_t on REFEREE (on each change
+// and at 10 Hz of sim time), carries out each restart's placement through the
+// safe placement (SIM_CONTROL PLACE), and writes the event log. It returns
+// when the game is over (or on SIGINT/SIGTERM).
+#include <string>
+
+#include "ubersim/cli.hpp"
+#include "ubersim/referee/autoref.hpp"
+
+namespace ubersim {
+class ShutdownSignal;
+}
+
+namespace ubersim::referee {
+
+struct AutoOptions {
+  CommonOptions common;
+  GameConfig game;
+  FieldSides sides;
+  std::string events_file;     // event log (JSON lines); empty: none
+  double timeout_s = 2.0;      // for the field geometry at the start
+  bool exit_at_end = true;     // return once the game is over
+  bool start_physics = false;  // send RESUME once listening (physics started --paused)
+};
+
+// Returns 0 after a finished game (or a clean stop), 1 on an error.
+int run_auto_referee(const AutoOptions& options, ShutdownSignal& shutdown);
+
+}  // namespace ubersim::referee

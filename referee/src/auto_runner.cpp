@@ -1,0 +1,162 @@
+#include "ubersim/referee/auto_runner.hpp"
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <ubersim/referee_t.hpp>
+
+#include "ubersim/config.hpp"
+#include "ubersim/message_bus.hpp"
+#include "ubersim/referee/referee_message.hpp"
+#include "ubersim/referee/scene_io.hpp"
+#include "ubersim/referee/sim_link.hpp"
+#include "ubersim/robot_config.hpp"
+#include "ubersim/shutdown.hpp"
+
+namespace ubersim::referee {
+namespace {
+
+constexpr double kPublishPeriod = 0.1;       // s of sim time between unchanged referee_t
+constexpr double kFallbackRadius = 0.09;     // m, SSL maximum, for a type with no config
+constexpr std::int64_t kRequestBase = 7LL << 56;  // our request ids, apart from the CLI's
+
+class Runner {
+ public:
+  Runner(const AutoOptions& options, ShutdownSignal& shutdown)
+      : options_(options),
+        shutdown_(shutdown),
+        channels_(options.common.channels()),
+        bus_(with_receive_buffer(options.common.lcm_url)) {
+    if (!options.events_file.empty()) {
+      log_.open(options.events_file);
+      if (!log_) throw std::runtime_error("cannot write the event log " + options.events_file);
+    }
+  }
+
+  int run() {
+    const std::chrono::milliseconds timeout(static_cast<long>(options_.timeout_s * 1000));
+    SimLink link(bus_, channels_, "ubersim_referee auto");
+    field_ = link.geometry(timeout);
+    referee_.emplace(options_.game, field_, options_.sides);
+    bus_.subscribe<sim_state_t>(
+        channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 100000);
+    if (options_.start_physics) {
+      // Physics waited paused for us: the game starts at the first state we see.
+      sim_control_t resume{};
+      resume.action = sim_control_t::RESUME;
+      const auto ack = link.request(resume, timeout);
+      if (!ack.ok) throw std::runtime_error("physics refused to resume: " + ack.message);
+    }
+    bus_.subscribe<sim_control_ack_t>(channels_(Channel::SimControlAck),
+                                      [](const sim_control_ack_t& ack) {
+                                        if (ack.request_id >= kRequestBase && !ack.ok)
+                                          spdlog::warn("physics refused a placement: {}",
+                                                       ack.message);
+                                      });
+    spdlog::info("automatic referee: field {}, game {} s in {} half(s), publishing on {}",
+                 field_.name, options_.game.game_length, options_.game.halves,
+                 channels_.referee());
+    while (!shutdown_.requested() && !(over_ && options_.exit_at_end)) {
+      bus_.wait_and_handle(100, &shutdown_);
+    }
+    if (!over_) finish();
+    return 0;
+  }
+
+ private:
+  double radius_of(const std::string& type) {
+    if (auto found = radii_.find(type); found != radii_.end()) return found->second;
+    double radius = kFallbackRadius;
+    try {
+      radius = load_robot_config(options_.common.config_root(), type).radius;
+    } catch (const ConfigError& error) {
+      spdlog::warn("robot type '{}': {}; assuming radius {} m", type, error.what(), radius);
+    }
+    return radii_[type] = radius;
+  }
+
+  void write(const std::string& line) {
+    if (log_.is_open()) log_ << line << "\n" << std::flush;
+  }
+
+  void place(const SituationRequest& request, const sim_state_t& state) {
+    const auto before = scene_from_state(state, field_.ball_radius,
+                                         [this](const std::string& t) { return radius_of(t); });
+    try {
+      const auto planned = plan_situation(request, before, field_, options_.sides);
+      auto control = place_request(before, planned, true, true);
+      control.request_id = kRequestBase + next_request_++;
+      control.sender = "ubersim_referee auto";
+      bus_.publish(channels_(Channel::SimControl), control);
+    } catch (const std::exception& error) {
+      spdlog::warn("cannot place the restart: {}", error.what());
+    }
+  }
+
+  void on_state(const sim_state_t& state) {
+    if (over_) return;
+    if (!started_) {
+      started_ = true;
+      wall_start_ = std::chrono::steady_clock::now();
+    }
+    const auto decision = referee_->update(state);
+    const auto& s = referee_->state();
+    for (const auto& e : decision.events) {
+      spdlog::info("{:.2f} s: {} ({})", e.sim_time, event_name(e.type), e.description);
+      write(event_line(e));
+    }
+    if (decision.placement) place(*decision.placement, state);
+    if (decision.command_changed) {
+      spdlog::info("{:.2f} s: {} [{}] {}:{}", state.sim_time, command_name(s.command),
+                   stage_name(s.stage), s.yellow.goals, s.blue.goals);
+      write(command_line(s, state.sim_time));
+    }
+    if (decision.command_changed || !decision.events.empty() ||
+        state.sim_time - last_publish_ >= kPublishPeriod || state.sim_time < last_publish_) {
+      bus_.publish(channels_.referee(),
+                   to_message(s, options_.game, options_.sides, state.sim_time));
+      last_publish_ = state.sim_time;
+    }
+    last_time_ = state.sim_time;
+    if (decision.game_over) finish();
+  }
+
+  void finish() {
+    over_ = true;
+    const double wall =
+        started_ ? std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_)
+                       .count()
+                 : 0.0;
+    const RefereeState empty;
+    const auto& s = referee_ ? referee_->state() : empty;
+    write(result_line(s, last_time_, wall));
+    std::cout << "result: yellow " << s.yellow.goals << " : " << s.blue.goals << " blue ("
+              << (s.game_over ? "game over" : "stopped") << " at " << last_time_ << " s sim time, "
+              << wall << " s wall time)" << std::endl;
+  }
+
+  const AutoOptions& options_;
+  ShutdownSignal& shutdown_;
+  ChannelNames channels_;
+  MessageBus bus_;
+  std::ofstream log_;
+  field_geometry_t field_{};
+  std::optional<AutoReferee> referee_;
+  std::map<std::string, double> radii_;
+  std::int64_t next_request_ = 0;
+  double last_publish_ = -1e9;
+  double last_time_ = 0;
+  bool started_ = false;
+  bool over_ = false;
+  std::chrono::steady_clock::time_point wall_start_;
+};
+
+}  // namespace
+
+int run_auto_referee(const AutoOptions& options, ShutdownSignal& shutdown) {
+  Runner runner(options, shutdown);
+  return runner.run();
+}
+
+}  // namespace ubersim::referee

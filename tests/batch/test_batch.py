@@ -1,0 +1,173 @@
+#!/usr/bin/python3
+"""The batch runner with real processes: the shipped smoke experiment, errors
+that name file and line, a crashing team program, Ctrl-C. Each test works in a
+temporary folder of its own and removes it when it passes.
+
+Usage: test_batch.py SOURCE_DIR BUILD_DIR [unittest arguments]
+"""
+import csv
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+SOURCE, BUILD = sys.argv[1], sys.argv[2]
+BATCH = os.path.join(SOURCE, "tools", "ubersim_batch")
+SMOKE = os.path.join(SOURCE, "config", "experiments", "smoke.cfg")
+
+
+def run_batch(*args, timeout=600):
+    return subprocess.run([BATCH, "run", *args, "--build-dir", BUILD, "-q"],
+                          capture_output=True, text=True, timeout=timeout)
+
+
+def rows(out_dir):
+    with open(os.path.join(out_dir, "results.csv")) as f:
+        return list(csv.DictReader(f))
+
+
+def experiment(folder, text, name="experiment.cfg"):
+    path = os.path.join(folder, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+SHORT = """SCENARIO = division_b_6v6
+VISION_PROFILE = cmdragons02
+RADIO_PROFILE = cmdragons02
+GAME = division_b
+GAME_LENGTH = 4
+GAMES_PER_POINT = 2
+SEED = 1
+YELLOW = demo
+BLUE = demo
+MODE = fast
+GAME_TIMEOUT = 60
+"""
+
+
+def ubersim_processes_under(folder):
+    """Processes whose command line mentions `folder` (the games' config and logs)."""
+    found = []
+    for pid in os.listdir("/proc"):
+        if not pid.isdigit():
+            continue
+        try:
+            with open(f"/proc/{pid}/cmdline", "rb") as f:
+                command = f.read().replace(b"\0", b" ").decode(errors="replace")
+        except OSError:
+            continue
+        if folder in command:
+            found.append(f"{pid}: {command}")
+    return found
+
+
+class BatchTest(unittest.TestCase):
+    def setUp(self):
+        self.folder = tempfile.mkdtemp(prefix="ubersim-batch-test-")
+
+    def run(self, result=None):
+        # The temporary folder goes when the test passed, stays (and is named) when not.
+        result = result or self.defaultTestResult()
+        failures = len(result.failures) + len(result.errors)
+        super().run(result)
+        if len(result.failures) + len(result.errors) == failures:
+            shutil.rmtree(self.folder, ignore_errors=True)
+        else:
+            print(f"kept {self.folder} for inspection", file=sys.stderr)
+        return result
+
+    def test_smoke_experiment_runs_four_games_and_writes_results_summary_figure(self):
+        out = os.path.join(self.folder, "smoke")
+        run = run_batch(SMOKE, "--out", out)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        games = rows(out)
+        self.assertEqual(len(games), 4)
+        self.assertEqual(sorted({g["vision.LATENCY"] for g in games}), ["0.035", "0.1"])
+        self.assertEqual([g["seed"] for g in games], ["1", "2", "1", "2"])
+        for g in games:
+            self.assertEqual(g["status"], "ok", g)
+            # 30 s of game time plus the stops, kick-offs and the half-time break.
+            self.assertGreater(float(g["sim_time"]), 30.0)
+            self.assertLess(float(g["sim_time"]), 60.0)
+            self.assertEqual(int(g["score_difference"]),
+                             int(g["yellow_goals"]) - int(g["blue_goals"]))
+            self.assertAlmostEqual(
+                float(g["yellow_possession"]) + float(g["blue_possession"]), 1.0, places=3)
+            self.assertGreater(float(g["speed"]), 0.0)
+            # Each game kept its own event log and the logs of its processes.
+            for log in ("events.jsonl", "physics.log", "referee.log", "yellow.log"):
+                self.assertTrue(os.path.exists(os.path.join(g["log_dir"], log)), log)
+        with open(os.path.join(out, "summary.csv")) as f:
+            summary = list(csv.DictReader(f))
+        self.assertEqual(len(summary), 2)
+        self.assertEqual([s["games"] for s in summary], ["2", "2"])
+        self.assertIn("score_difference_ci95", summary[0])
+        if shutil.which("gnuplot"):
+            self.assertTrue(os.path.exists(os.path.join(out, "score_difference_0.png")))
+        self.assertIn("game seconds per wall second", run.stdout)
+
+    def test_errors_in_the_experiment_file_name_file_and_line(self):
+        cases = [
+            (SHORT + "GAMES_PER_PONT = 3\n", "experiment.cfg:12: unknown key 'GAMES_PER_PONT'"),
+            (SHORT + "SWEEP = vision.LATENCYY 0.1 0.2\n",
+             "experiment.cfg:12: SWEEP: vision/cmdragons02.cfg has no key LATENCYY"),
+            (SHORT.replace("GAME_LENGTH = 4", "GAME_LENGTH = four"),
+             "experiment.cfg:5: GAME_LENGTH: expected a number, got 'four'"),
+            (SHORT + "SWEEP = vision.LATENCY 0.1..0.2:x\n",
+             "experiment.cfg:12: SWEEP: expected FROM..TO:POINTS"),
+            (SHORT.replace("SCENARIO = division_b_6v6\n", ""), "missing key SCENARIO"),
+        ]
+        for text, message in cases:
+            path = experiment(self.folder, text)
+            run = run_batch(path, "--out", os.path.join(self.folder, "out"))
+            self.assertEqual(run.returncode, 2, run.stderr)
+            self.assertIn(message, run.stderr)
+
+    def test_a_crashing_team_program_fails_its_game_with_logs_and_the_batch_goes_on(self):
+        text = SHORT.replace("YELLOW = demo", 'YELLOW = "sh -c \'echo yellow crashes; exit 7\'"')
+        out = os.path.join(self.folder, "out")
+        run = run_batch(experiment(self.folder, text), "--out", out)
+        self.assertEqual(run.returncode, 3, run.stdout + run.stderr)
+        games = rows(out)
+        self.assertEqual(len(games), 2)  # both games were run
+        for g in games:
+            self.assertEqual(g["status"], "failed")
+            self.assertIn("yellow exited with status 7", g["reason"])
+            with open(os.path.join(g["log_dir"], "yellow.log")) as f:
+                self.assertIn("yellow crashes", f.read())
+        self.assertIn("failed", run.stderr)
+        self.assertEqual(ubersim_processes_under(self.folder), [])
+
+    def test_ctrl_c_stops_every_game_and_leaves_nothing_running(self):
+        text = SHORT.replace("GAME_LENGTH = 4", "GAME_LENGTH = 600")
+        out = os.path.join(self.folder, "out")
+        batch = subprocess.Popen([BATCH, "run", experiment(self.folder, text), "--out", out,
+                                  "--build-dir", BUILD, "-q"],
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline:  # wait until both games' referees run
+            if len([p for p in ubersim_processes_under(self.folder)
+                    if "ubersim_referee" in p]) == 2:
+                break
+            time.sleep(0.2)
+        else:
+            batch.kill()
+            self.fail("the games did not start: " + "\n".join(ubersim_processes_under(self.folder)))
+        time.sleep(1)
+        start = time.monotonic()
+        batch.send_signal(signal.SIGINT)
+        _, stderr = batch.communicate(timeout=20)
+        self.assertEqual(batch.returncode, 130, stderr)
+        self.assertLess(time.monotonic() - start, 6.0)
+        self.assertIn("interrupted", stderr)
+        self.assertEqual(ubersim_processes_under(self.folder), [])
+
+
+if __name__ == "__main__":
+    unittest.main(argv=[sys.argv[0], *sys.argv[3:]], verbosity=2)

@@ -1,0 +1,206 @@
+"""An experiment file (config/experiments/*.cfg) and the games it asks for.
+
+The file is in ubersim's config format and is read by the same parser as every
+other config file (ubersim_config_check --dump), so syntax errors, BASE chains
+and quoting behave the same; every error here names the file and the line.
+"""
+import itertools
+import json
+import os
+import subprocess
+
+# Keys of an experiment file: (required, what the value is).
+KEYS = {
+    "SCENARIO": "scenario name (config/scenarios)",
+    "VISION_PROFILE": "vision profile name (config/vision)",
+    "RADIO_PROFILE": "radio profile name (config/radio)",
+    "GAME": "referee game config (config/referee)",
+    "GAME_LENGTH": "s of sim time per game",
+    "GAMES_PER_POINT": "games at each sweep point",
+    "SEED": "seed of the first game of each point; game k runs with SEED + k",
+    "YELLOW": "demo, or the yellow team's command line",
+    "BLUE": "demo, or the blue team's command line",
+    "MODE": "sync (reproducible, as fast as the teams answer) or fast (as fast as possible)",
+    "GAME_TIMEOUT": "s of wall time after which a game counts as failed",
+}
+OPTIONAL = {"SWEEP", "GAME_TIMEOUT", "MODE"}
+DEFAULTS = {"GAME_TIMEOUT": ["900"], "MODE": ["sync"]}
+
+# Short names of the files a sweep key may change: kind folder, experiment key
+# naming the file.
+SHORT_KINDS = {
+    "vision": ("vision", "VISION_PROFILE"),
+    "radio": ("radio", "RADIO_PROFILE"),
+    "game": ("referee", "GAME"),
+    "physics": ("physics", None),
+}
+
+
+class ExperimentError(Exception):
+    """A problem in the experiment file; the message starts with file:line."""
+
+
+def config_dump(bin_dir, path):
+    """Every key of a config file: {KEY: {"where": "file:line", "values": [...]}}."""
+    tool = os.path.join(bin_dir, "ubersim_config_check")
+    if not os.access(tool, os.X_OK):
+        raise ExperimentError(f"{tool} not found: run tools/build.sh")
+    run = subprocess.run([tool, "any", path, "--dump"], capture_output=True, text=True)
+    if run.returncode != 0:
+        raise ExperimentError(run.stderr.strip() or f"{path}: cannot be read")
+    return json.loads(run.stdout)
+
+
+def _number(entry, key, kind=float, minimum=None):
+    values = entry["values"]
+    if len(values) != 1:
+        raise ExperimentError(f"{entry['where']}: {key}: expected one value, got {len(values)}")
+    try:
+        value = kind(values[0])
+    except ValueError:
+        raise ExperimentError(
+            f"{entry['where']}: {key}: expected {'an integer' if kind is int else 'a number'}, "
+            f"got '{values[0]}'") from None
+    if minimum is not None and value < minimum:
+        raise ExperimentError(f"{entry['where']}: {key}: expected at least {minimum}, got {value}")
+    return value
+
+
+def _sweep_values(entry, key, tokens):
+    """'0.035 0.05 0.1' or '0.035..0.1:4' (4 points, ends included)."""
+    if len(tokens) == 1 and ".." in tokens[0]:
+        try:
+            span, _, count = tokens[0].partition(":")
+            low, high = (float(t) for t in span.split(".."))
+            n = int(count) if count else 2
+        except ValueError:
+            raise ExperimentError(
+                f"{entry['where']}: {key}: expected FROM..TO:POINTS, got '{tokens[0]}'") from None
+        if n < 2:
+            raise ExperimentError(f"{entry['where']}: {key}: a range needs at least 2 points")
+        return [repr(round(low + (high - low) * i / (n - 1), 12)) for i in range(n)]
+    return list(tokens)
+
+
+class Sweep:
+    """One swept key: which config file it changes, and its values."""
+
+    def __init__(self, name, kind, file_name, key, values, where):
+        self.name = name          # as written: vision.LATENCY, robots/omni4_ssl.MAX_SPEED
+        self.kind = kind          # config folder: vision, radio, robots, referee, ...
+        self.file_name = file_name
+        self.key = key
+        self.values = values
+        self.where = where
+
+
+class Experiment:
+    def __init__(self, path, bin_dir, config_dir):
+        self.path = path
+        entries = config_dump(bin_dir, path)
+        for key, entry in entries.items():
+            if key not in KEYS and not key.startswith("SWEEP"):
+                raise ExperimentError(
+                    f"{entry['where']}: unknown key '{key}': expected one of "
+                    f"{', '.join(sorted(KEYS))} or SWEEP, SWEEP_<n>")
+        for key in KEYS:
+            if key not in entries and key not in OPTIONAL:
+                raise ExperimentError(f"{path}: missing key {key} ({KEYS[key]})")
+        for key, value in DEFAULTS.items():
+            entries.setdefault(key, {"where": path, "values": value})
+
+        def one(key):
+            entry = entries[key]
+            if len(entry["values"]) != 1:
+                raise ExperimentError(f"{entry['where']}: {key}: expected one value")
+            return entry["values"][0]
+
+        self.scenario = one("SCENARIO")
+        self.vision_profile = one("VISION_PROFILE")
+        self.radio_profile = one("RADIO_PROFILE")
+        self.game = one("GAME")
+        self.game_length = _number(entries["GAME_LENGTH"], "GAME_LENGTH", float, 0.1)
+        self.games_per_point = _number(entries["GAMES_PER_POINT"], "GAMES_PER_POINT", int, 1)
+        self.seed = _number(entries["SEED"], "SEED", int, 0)
+        self.game_timeout = _number(entries["GAME_TIMEOUT"], "GAME_TIMEOUT", float, 1)
+        self.mode = one("MODE")
+        if self.mode not in ("sync", "fast"):
+            raise ExperimentError(f"{entries['MODE']['where']}: MODE: expected sync or fast, "
+                                  f"got '{self.mode}'")
+        self.teams = {}
+        for team in ("YELLOW", "BLUE"):
+            values = entries[team]["values"]
+            self.teams[team.lower()] = " ".join(values)
+        names = {"SCENARIO": ("scenarios", self.scenario),
+                 "VISION_PROFILE": ("vision", self.vision_profile),
+                 "RADIO_PROFILE": ("radio", self.radio_profile),
+                 "GAME": ("referee", self.game)}
+        for key, (kind, name) in names.items():
+            if not os.path.exists(os.path.join(config_dir, kind, name + ".cfg")):
+                raise ExperimentError(f"{entries[key]['where']}: {key}: no file "
+                                      f"{kind}/{name}.cfg in the config folder")
+        self.sweeps = []
+        for key in sorted(k for k in entries if k.startswith("SWEEP")):
+            self.sweeps.append(self._sweep(entries, key, bin_dir, config_dir))
+
+    def _sweep(self, entries, key, bin_dir, config_dir):
+        entry = entries[key]
+        tokens = entry["values"]
+        if len(tokens) < 2:
+            raise ExperimentError(f"{entry['where']}: {key}: expected a key and its values, e.g. "
+                                  f"'vision.LATENCY 0.035 0.1'")
+        name = tokens[0]
+        target, dot, config_key = name.rpartition(".")
+        if not dot or not target or not config_key:
+            raise ExperimentError(f"{entry['where']}: {key}: '{name}': expected FILE.KEY, e.g. "
+                                  f"vision.LATENCY or robots/omni4_ssl.MAX_SPEED")
+        if target in SHORT_KINDS:
+            kind, name_key = SHORT_KINDS[target]
+            file_name = one_value(entries, name_key) if name_key else "default"
+        elif "/" in target:
+            kind, _, file_name = target.partition("/")
+        else:
+            raise ExperimentError(f"{entry['where']}: {key}: '{target}': expected vision, radio, "
+                                  f"game, physics or KIND/NAME (e.g. robots/omni4_ssl)")
+        path = os.path.join(config_dir, kind, file_name + ".cfg")
+        if not os.path.exists(path):
+            raise ExperimentError(f"{entry['where']}: {key}: no config file {kind}/{file_name}.cfg")
+        if config_key not in config_dump(bin_dir, path):
+            raise ExperimentError(f"{entry['where']}: {key}: {kind}/{file_name}.cfg has no key "
+                                  f"{config_key}")
+        values = _sweep_values(entry, key, tokens[1:])
+        return Sweep(name, kind, file_name, config_key, values, entry["where"])
+
+    def points(self):
+        """Every combination of the sweeps' values, as [(Sweep, value), ...]."""
+        if not self.sweeps:
+            return [[]]
+        return [list(zip(self.sweeps, combo))
+                for combo in itertools.product(*(s.values for s in self.sweeps))]
+
+    def games(self):
+        """One spec (a plain dict, JSON-able) per game, in a fixed order."""
+        specs = []
+        for point_index, point in enumerate(self.points()):
+            for k in range(self.games_per_point):
+                specs.append({
+                    "index": len(specs),
+                    "point": point_index,
+                    "seed": self.seed + k,
+                    "parameters": {s.name: v for s, v in point},
+                    "overrides": [[s.kind, s.file_name, s.key, v] for s, v in point],
+                    "scenario": self.scenario,
+                    "vision_profile": self.vision_profile,
+                    "radio_profile": self.radio_profile,
+                    "game": self.game,
+                    "game_length": self.game_length,
+                    "mode": self.mode,
+                    "teams": self.teams,
+                    "timeout": self.game_timeout,
+                })
+        return specs
+
+
+def one_value(entries, key):
+    entry = entries[key]
+    return entry["values"][0]

@@ -1,0 +1,286 @@
+"""One game: an isolated ubersim process set under the automatic referee.
+
+execute_game(spec) is what the local pool and the Dask workers call: it starts
+this module as a driver process of its own (in a network namespace of its own
+when the machine allows one, else on an LCM port of its own), and returns the
+driver's result. run_driver(spec) is that driver: it writes the game's config
+overlay, starts physics, the emulators, both teams and the referee, waits for
+the referee to end the game, stops everything and reads the event log.
+"""
+import json
+import os
+import shlex
+import shutil
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+DEMO = "{bin}/ubersim_demo_team --lcm-url {lcm_url} --config-dir {config_dir} --team {team} {sync}"
+STOP_GRACE = 2.0  # s between SIGTERM and SIGKILL
+
+_running = {}  # driver pid -> Popen, so that Ctrl-C can stop every game
+_running_lock = threading.Lock()
+
+
+def namespaces_available():
+    """True when this user may create a network namespace (unshare -rn)."""
+    if shutil.which("unshare") is None or shutil.which("ip") is None:
+        return False
+    for flags in (["-n"], ["-rn"]):
+        if subprocess.run(["unshare", *flags, "true"], capture_output=True).returncode == 0:
+            return True
+    return False
+
+
+def _unshare_flags():
+    return ["-n"] if subprocess.run(["unshare", "-n", "true"],
+                                    capture_output=True).returncode == 0 else ["-rn"]
+
+
+def execute_game(spec):
+    """Runs one game in a driver process; returns its result dict."""
+    game_dir = spec["game_dir"]
+    os.makedirs(game_dir, exist_ok=True)
+    spec_path = os.path.join(game_dir, "spec.json")
+    with open(spec_path, "w") as f:
+        json.dump(spec, f, indent=1)
+    driver = [sys.executable, os.path.abspath(__file__), spec_path]
+    if spec["isolation"] == "netns":
+        # Loopback up and multicast routed to it: LCM works inside, nothing leaves.
+        driver = ["unshare", *_unshare_flags(), "sh", "-c",
+                  'ip link set lo up && ip route add 224.0.0.0/4 dev lo && exec "$@"',
+                  "game", *driver]
+    with open(os.path.join(game_dir, "driver.log"), "w") as log:
+        process = subprocess.Popen(driver, stdout=log, stderr=subprocess.STDOUT,
+                                   start_new_session=True)
+        with _running_lock:
+            _running[process.pid] = process
+        try:
+            process.wait()
+        finally:
+            with _running_lock:
+                _running.pop(process.pid, None)
+    result_path = os.path.join(game_dir, "result.json")
+    if os.path.exists(result_path):
+        with open(result_path) as f:
+            return json.load(f)
+    return failed(spec, f"driver exited with status {process.returncode} (see driver.log)")
+
+
+def stop_all_games():
+    """Ctrl-C: every driver's process group gets SIGTERM, then SIGKILL."""
+    with _running_lock:
+        processes = list(_running.values())
+    for p in processes:
+        try:
+            os.killpg(p.pid, signal.SIGTERM)
+        except ProcessLookupError:
+            pass
+    deadline = time.monotonic() + STOP_GRACE + 1.0
+    for p in processes:
+        try:
+            p.wait(timeout=max(0.1, deadline - time.monotonic()))
+        except subprocess.TimeoutExpired:
+            try:
+                os.killpg(p.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+
+
+def failed(spec, reason):
+    return {"index": spec["index"], "point": spec["point"], "seed": spec["seed"],
+            "parameters": spec["parameters"], "status": "failed", "reason": reason,
+            "log_dir": spec["game_dir"]}
+
+
+def write_overlay(spec, config_dir):
+    """The game's config folder: the shipped one, with each swept key replaced
+    in a file that starts from the shipped file (BASE) and sets that key."""
+    overlay = os.path.join(spec["game_dir"], "config")
+    if os.path.exists(overlay):
+        shutil.rmtree(overlay)
+    os.makedirs(overlay)
+    changed = {}
+    for kind, name, key, value in spec["overrides"]:
+        changed.setdefault((kind, name), []).append((key, value))
+    kinds = {kind for kind, _ in changed}
+    for entry in sorted(os.listdir(config_dir)):
+        source = os.path.join(config_dir, entry)
+        target = os.path.join(overlay, entry)
+        if entry not in kinds:
+            os.symlink(source, target)
+            continue
+        os.makedirs(target)
+        for file_name in sorted(os.listdir(source)):
+            os.symlink(os.path.join(source, file_name), os.path.join(target, file_name))
+    for (kind, name), keys in changed.items():
+        path = os.path.join(overlay, kind, name + ".cfg")
+        os.remove(path)
+        with open(path, "w") as f:
+            f.write(f"# Written by ubersim_batch for game {spec['index']}: the shipped file with "
+                    f"the swept keys set.\nBASE = {os.path.join(config_dir, kind, name + '.cfg')}\n")
+            for key, value in keys:
+                f.write(f"{key} = {value}\n")
+    return overlay
+
+
+def _team_command(spec, team, config_dir, lcm_url):
+    template = spec["teams"][team]
+    if template == "demo":
+        template = DEMO
+    sync = "--sync" if spec["mode"] == "sync" else ""
+    text = template.format(bin=spec["bin_dir"], lcm_url=lcm_url, team=team,
+                           config_dir=config_dir, sync=sync, seed=spec["seed"])
+    return shlex.split(text)
+
+
+class ProcessSet:
+    """The game's processes; each logs to <game_dir>/<name>.log."""
+
+    def __init__(self, game_dir):
+        self.game_dir = game_dir
+        self.processes = []  # (name, Popen)
+
+    def start(self, name, command):
+        log = open(os.path.join(self.game_dir, name + ".log"), "w")
+        log.write("$ " + " ".join(shlex.quote(c) for c in command) + "\n")
+        log.flush()
+        p = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
+                             stdin=subprocess.DEVNULL)
+        log.close()
+        self.processes.append((name, p))
+        return p
+
+    def first_exit(self):
+        for name, p in self.processes:
+            if p.poll() is not None:
+                return name, p.returncode
+        return None
+
+    def stop(self):
+        for _, p in self.processes:
+            if p.poll() is None:
+                p.terminate()
+        deadline = time.monotonic() + STOP_GRACE
+        for _, p in self.processes:
+            try:
+                p.wait(timeout=max(0.05, deadline - time.monotonic()))
+            except subprocess.TimeoutExpired:
+                p.kill()
+                p.wait()
+
+
+def read_events(path):
+    """The event log: (events by type, fouls by team, result line or None)."""
+    by_type, result = {}, None
+    if not os.path.exists(path):
+        return by_type, result
+    with open(path) as f:
+        for line in f:
+            line = line.strip()
+            if not line:
+                continue
+            record = json.loads(line)
+            if "event" in record:
+                by_type[record["event"]] = by_type.get(record["event"], 0) + 1
+            elif "result" in record:
+                result = record
+    return by_type, result
+
+
+def run_driver(spec):
+    """Runs the game in this process's network (namespace); writes result.json."""
+    game_dir = spec["game_dir"]
+    config_dir = write_overlay(spec, spec["config_dir"])
+    lcm_url = f"udpm://239.255.76.67:{spec['port']}?ttl=0&recv_buf_size=4194304"
+    common = ["--lcm-url", lcm_url, "--config-dir", config_dir, "-q"]
+    bin_dir = spec["bin_dir"]
+    seed = str(spec["seed"])
+    sync = spec["mode"] == "sync"
+    events_path = os.path.join(game_dir, "events.jsonl")
+    processes = ProcessSet(game_dir)
+    stop = {"signal": None}
+
+    def on_signal(number, _frame):
+        stop["signal"] = number
+
+    signal.signal(signal.SIGTERM, on_signal)
+    signal.signal(signal.SIGINT, on_signal)
+
+    # Physics starts paused: the referee resumes it once every process listens,
+    # so the game starts at sim time 0 with everyone there.
+    physics = [f"{bin_dir}/ubersim_physics", *common, "--scenario", spec["scenario"],
+               "--seed", seed, "--paused",
+               "--duration", str(2 * spec["game_length"] + 120)]
+    physics += ["--sync"] if sync else ["--speed", "0"]
+    radio = [f"{bin_dir}/ubersim_radio", *common, "--profile", spec["radio_profile"],
+             "--seed", seed]
+    if sync:
+        radio += ["--sync", "--sync-clients", "2"]
+    wall_start = time.monotonic()
+    reason = None
+    try:
+        processes.start("physics", physics)
+        processes.start("vision", [f"{bin_dir}/ubersim_vision", *common,
+                                   "--profile", spec["vision_profile"], "--seed", seed])
+        processes.start("radio", radio)
+        for team in ("yellow", "blue"):
+            processes.start(team, _team_command(spec, team, config_dir, lcm_url))
+        time.sleep(0.5)  # every listener subscribed before the game starts
+        processes.start("referee", [f"{bin_dir}/ubersim_referee", *common, "--timeout", "20",
+                                    "auto", "--game", spec["game"], "--game-length",
+                                    str(spec["game_length"]), "--events", events_path,
+                                    "--start"])
+        while True:
+            if stop["signal"] is not None:
+                reason = "stopped by a signal"
+                break
+            exited = processes.first_exit()
+            if exited is not None:
+                name, status = exited
+                if name != "referee" or status != 0:
+                    reason = (f"{name} exited with status {status} before the game ended "
+                              f"(see {name}.log)")
+                break
+            if time.monotonic() - wall_start > spec["timeout"]:
+                reason = f"no result within GAME_TIMEOUT = {spec['timeout']} s of wall time"
+                break
+            time.sleep(0.05)
+    finally:
+        processes.stop()
+    wall = time.monotonic() - wall_start
+    by_type, result_line = read_events(events_path)
+    if reason is None and (result_line is None or not result_line.get("game_over")):
+        reason = "the referee ended without a finished game (see referee.log)"
+    if reason is not None:
+        result = failed(spec, reason)
+    else:
+        y, b = result_line["yellow"], result_line["blue"]
+        played = y["possession"] + b["possession"]
+        sim_time = result_line["t"]
+        result = {
+            "index": spec["index"], "point": spec["point"], "seed": spec["seed"],
+            "parameters": spec["parameters"], "status": "ok", "reason": "",
+            "yellow_goals": y["goals"], "blue_goals": b["goals"],
+            "score_difference": y["goals"] - b["goals"],
+            "yellow_shots": y["shots"], "blue_shots": b["shots"],
+            "yellow_possession": round(y["possession"] / played, 4) if played > 0 else 0.5,
+            "blue_possession": round(b["possession"] / played, 4) if played > 0 else 0.5,
+            "yellow_fouls": y["fouls"], "blue_fouls": b["fouls"],
+            "events": sum(by_type.values()),
+            "events_by_type": by_type,
+            "sim_time": sim_time,
+            "wall_time": round(wall, 3),
+            "speed": round(sim_time / wall, 3) if wall > 0 else 0.0,
+            "log_dir": game_dir,
+        }
+    with open(os.path.join(game_dir, "result.json"), "w") as f:
+        json.dump(result, f, indent=1)
+    return result
+
+
+if __name__ == "__main__":
+    with open(sys.argv[1]) as spec_file:
+        run_driver(json.load(spec_file))
