@@ -38,7 +38,10 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
       vision_socket_(UdpSocket::multicast_sender(options_.vision_ttl, options_.vision_interface)),
       control_socket_(UdpSocket::bound(options_.listen_address, options_.control_port)),
       blue_socket_(UdpSocket::bound(options_.listen_address, options_.blue_port)),
-      yellow_socket_(UdpSocket::bound(options_.listen_address, options_.yellow_port)) {
+      yellow_socket_(UdpSocket::bound(options_.listen_address, options_.yellow_port)),
+      referee_socket_(UdpSocket::multicast_sender(options_.referee_ttl, options_.vision_interface)),
+      referee_destination_(make_address(options_.referee_address, options_.referee_port)),
+      referee_translator_("ubersim-" + random_uuid()) {
   if (options_.base_robot_type) {
     options_.sim_control.base_robot_type = &*options_.base_robot_type;
     type_radius_[options_.base_robot_type->config.name] = options_.base_robot_type->config.radius;
@@ -61,6 +64,9 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
       channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 10);
   bus_.subscribe<sim_control_ack_t>(channels_(Channel::SimControlAck),
                                     [this](const sim_control_ack_t& a) { on_ack(a); });
+  bus_.subscribe<referee_t>(channels_.referee(), [this](const referee_t& r) { on_referee(r); });
+  spdlog::info("referee messages from {} to {}:{} (ttl {})", channels_.referee(),
+               options_.referee_address, options_.referee_port, options_.referee_ttl);
   for (Team team : kTeams) {
     bus_.subscribe<radio_feedback_t>(
         channels_.radio_feedback(team),
@@ -97,6 +103,20 @@ void SslBridge::on_state(const sim_state_t& state) {
     } else {
       bad_input_.warn("tracked_send", "could not send a tracked packet");
     }
+  }
+}
+
+void SslBridge::on_referee(const referee_t& referee) {
+  const auto now_us = std::chrono::duration_cast<std::chrono::microseconds>(
+                          std::chrono::system_clock::now().time_since_epoch())
+                          .count();
+  std::string bytes;
+  referee_translator_.translate(referee, static_cast<std::uint64_t>(now_us))
+      .SerializeToString(&bytes);
+  if (referee_socket_.send_to(bytes, referee_destination_)) {
+    ++counters_["referee packets sent"];
+  } else {
+    bad_input_.warn("referee_send", "could not send a referee packet");
   }
 }
 

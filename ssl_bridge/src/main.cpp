@@ -92,6 +92,12 @@ int parse_and_run(int argc, char** argv) {
                  "seconds to wait for physics' acknowledgement before answering with an error")
       ->capture_default_str()
       ->check(CLI::Range(0.01, 60.0));
+  app.add_option("--referee-address", b.referee_address,
+                 "where REFEREE goes as SSL Referee messages (multicast group)")
+      ->capture_default_str();
+  app.add_option("--referee-port", b.referee_port, "referee messages port")->capture_default_str();
+  app.add_option("--referee-ttl", b.referee_ttl, "referee multicast TTL (0: this host only)")
+      ->capture_default_str();
   app.add_flag("--tracked", b.tracked,
                "also send SSL tracked frames (TrackerWrapperPacket) built from ground truth");
   app.add_option("--tracked-address", b.tracked_address, "tracked frames multicast group")

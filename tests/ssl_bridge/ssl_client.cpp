@@ -49,12 +49,14 @@ TestPorts TestPorts::from_environment() {
   ports.blue = lcm_port + 2;
   ports.yellow = lcm_port + 3;
   ports.vision = lcm_port + 4;
+  ports.referee = lcm_port + 5;
   return ports;
 }
 
 std::vector<std::string> TestPorts::bridge_options() const {
   return {"--vision-port", std::to_string(vision), "--control-port", std::to_string(control),
-          "--blue-port",   std::to_string(blue),   "--yellow-port",  std::to_string(yellow)};
+          "--blue-port",   std::to_string(blue),   "--yellow-port",  std::to_string(yellow),
+          "--referee-port", std::to_string(referee)};
 }
 
 VisionReceiver::VisionReceiver(const std::string& group, int port) {

@@ -22,7 +22,8 @@ struct TestPorts {
   int control = 10300;
   int blue = 10301;
   int yellow = 10302;
-  static TestPorts from_environment();              // LCM port + 1 .. + 4
+  int referee = 10003;
+  static TestPorts from_environment();              // LCM port + 1 .. + 5
   std::vector<std::string> bridge_options() const;  // --vision-port ... for the bridge
 };
 

@@ -3,6 +3,7 @@
 // written against the published SSL protocols (generated protobuf classes,
 // raw UDP on loopback). ISOLATED: its own network namespace, default ports.
 #include <gtest/gtest.h>
+#include <ssl_gc_referee_message.pb.h>
 
 #include <chrono>
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <thread>
 #include <ubersim/radio_feedback_t.hpp>
 #include <ubersim/radio_packet_t.hpp>
+#include <ubersim/referee_t.hpp>
 #include <ubersim/robot_command_t.hpp>
 #include <ubersim/team_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
@@ -339,9 +341,48 @@ TEST(SslBridgeOptions, DefaultsAreTheLeagueConventions) {
   ChildProcess help({UBERSIM_SSL_BRIDGE_EXE, "--help"}, ::testing::TempDir() + "ssl_help.log");
   EXPECT_EQ(help.wait(10), 0);
   const std::string text = help.log();
-  for (const char* expected : {"224.5.23.2", "10020", "10300", "10301", "10302", "127.0.0.1"}) {
+  for (const char* expected :
+       {"224.5.23.2", "10020", "10300", "10301", "10302", "127.0.0.1", "224.5.23.1", "10003"}) {
     EXPECT_NE(text.find(expected), std::string::npos) << expected << " missing in\n" << text;
   }
+}
+
+TEST_F(SslBridgeProcess, RefereeGoesOutAsTheGameControllersMessage) {
+  ssl_test::VisionReceiver referee_receiver("224.5.23.1", ports_.referee);
+  ubersim::referee_t r{};
+  r.stage = ubersim::referee_t::STAGE_FIRST_HALF;
+  r.command = ubersim::referee_t::DIRECT_FREE_YELLOW;
+  r.command_counter = 5;
+  r.yellow_score = 3;
+  r.stage_time_left = 100.5;
+  ubersim::referee_event_t goal{};
+  goal.type = ubersim::referee_event_t::GOAL;
+  goal.has_team = true;
+  goal.team = ubersim::team_t::BLUE;
+  goal.robot_id = 1;
+  r.events.push_back(goal);
+  r.num_events = 1;
+  std::optional<Referee> seen;
+  for (int attempt = 0; attempt < 50 && !seen; ++attempt) {
+    bus_.publish("REFEREE", r);
+    if (auto bytes = referee_receiver.receive_bytes(0.2)) {
+      Referee m;
+      ASSERT_TRUE(m.ParseFromString(*bytes));
+      seen = m;
+    }
+  }
+  ASSERT_TRUE(seen) << bridge_->log();
+  EXPECT_EQ(seen->command(), Referee::DIRECT_FREE_YELLOW);
+  EXPECT_EQ(seen->stage(), Referee::NORMAL_FIRST_HALF);
+  EXPECT_EQ(seen->command_counter(), 5u);
+  EXPECT_EQ(seen->yellow().score(), 3u);
+  EXPECT_EQ(seen->stage_time_left(), 100'500'000);
+  ASSERT_EQ(seen->game_events_size(), 1);
+  EXPECT_EQ(seen->game_events(0).goal().by_team(), ::BLUE);
+  const auto now_us = std::chrono::duration_cast<std::chrono::microseconds>(
+                          std::chrono::system_clock::now().time_since_epoch())
+                          .count();
+  EXPECT_NEAR(static_cast<double>(seen->packet_timestamp()), static_cast<double>(now_us), 5e6);
 }
 
 TEST_F(SslBridgeProcess, ExitsZeroOnSigint) {

@@ -22,6 +22,11 @@ T95 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.
        2.060, 2.056, 2.052, 2.048, 2.045, 2.042]
 
 
+def read_results(out_dir):
+    with open(os.path.join(out_dir, "results.csv")) as f:
+        return list(csv.DictReader(f))
+
+
 def mean_and_ci(values):
     """Mean and half width of its 95 % confidence interval (nan with one value)."""
     n = len(values)

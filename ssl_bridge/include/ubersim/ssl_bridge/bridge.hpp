@@ -10,6 +10,7 @@
 #include <string>
 #include <ubersim/sim_control_ack_t.hpp>
 
+#include "ubersim/ssl_bridge/referee_translation.hpp"
 #include "ubersim/ssl_bridge/robot_control_translation.hpp"
 #include "ubersim/ssl_bridge/sim_control_translation.hpp"
 #include "ubersim/ssl_bridge/tracked_frames.hpp"
@@ -41,6 +42,11 @@ struct BridgeOptions {
   int tracked_port = 10010;
   int tracked_ttl = 0;
   double tracked_rate = 60;  // Hz of sim time
+  // Referee messages (from REFEREE, the automatic referee), where the SSL game
+  // controller sends them.
+  std::string referee_address = "224.5.23.1";
+  int referee_port = 10003;
+  int referee_ttl = 0;
   // What robot specs start from (the --robot-type file); unset: specs are refused.
   std::optional<BaseRobotType> base_robot_type;
 };
@@ -64,6 +70,7 @@ class SslBridge {
   void on_geometry(const vision_geometry_t& geometry);
   void on_ack(const sim_control_ack_t& ack);
   void on_state(const sim_state_t& state);
+  void on_referee(const referee_t& referee);
   void handle_control_datagram(const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void handle_robot_datagram(Team team, const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void send_vision(const SSL_WrapperPacket& packet);
@@ -84,6 +91,9 @@ class SslBridge {
   std::map<Team, radio_feedback_t> feedback_;
   std::map<std::string, double> type_radius_;      // m, robot type name -> radius
   std::optional<field_geometry_t> current_field_;  // from the latest VISION_GEOMETRY
+  UdpSocket referee_socket_;
+  sockaddr_in referee_destination_{};
+  RefereeTranslator referee_translator_;
   std::optional<TrackedFrames> tracked_;
   std::optional<UdpSocket> tracked_socket_;
   sockaddr_in tracked_destination_{};
