@@ -31,9 +31,10 @@ def free_port():
 
 
 def has_sync(build):
+    """Sync mode with the referee holding physics: games reproducible."""
     out = subprocess.run([os.path.join(build, "bin", "ubersim_physics"), "--help"],
                          capture_output=True, text=True).stdout
-    return "--sync" in out
+    return "--sync-referee" in out
 
 
 def read(out_dir):
