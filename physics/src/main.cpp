@@ -36,6 +36,10 @@ int run(int argc, char** argv) {
   app.add_flag("--sync", sync,
                "sync mode: as fast as possible, but never past the horizon the radio emulator "
                "announces (--sync there too; docs/sync.md)");
+  bool sync_referee = false;
+  app.add_flag("--sync-referee", sync_referee,
+               "with --sync: also wait for the automatic referee's horizon (ubersim_referee auto "
+               "--sync), so its placements apply at a fixed step (docs/autoref.md)");
   app.add_flag("--paused", paused, "start paused (RESUME or STEP to advance)");
   app.add_option("--seed", seed, "seed of the solver's randomness")->capture_default_str();
   app.add_option("--duration", duration, "exit after this many seconds of sim time (0 = never)")
@@ -52,7 +56,8 @@ int run(int argc, char** argv) {
   options.speed = lockstep ? -1.0 : speed;
   options.paused = paused;
   options.duration = duration;
-  options.sync = sync;
+  options.sync = sync || sync_referee;
+  options.sync_referee = sync_referee;
   ubersim::MessageBus bus(ubersim::with_receive_buffer(common.lcm_url));
   ubersim::ShutdownSignal shutdown;
   ubersim::physics::PhysicsServer server(std::move(setup), bus, common.channels(), options);

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include <limits>
+#include <ubersim/referee_t.hpp>
 #include <ubersim/vision_schedule_t.hpp>
 
 #include "ubersim/shutdown.hpp"
@@ -64,7 +66,15 @@ PhysicsServer::PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNam
              world_.setup().physics.max_pacing_lag),
       paused_(options_.paused),
       next_state_time_(first_state_time()),
-      sync_(options_.sync) {
+      sync_(options_.sync),
+      referee_horizon_(options_.sync_referee ? 0.0 : std::numeric_limits<double>::infinity()) {
+  if (options_.sync_referee) {
+    // The referee has judged the state at r.sim_time: the step starting there may go.
+    bus_.subscribe<referee_t>(channels.referee(), [this](const referee_t& r) {
+      referee_horizon_ = r.game_over ? std::numeric_limits<double>::infinity()
+                                     : r.sim_time + world_.dt() / 2;
+    });
+  }
   bus_.subscribe<sync_horizon_t>(channels.extra(kSyncHorizonChannel),
                                  [this](const sync_horizon_t& h) {
                                    if (std::isnan(h.horizon)) return;
@@ -184,7 +194,7 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
 void PhysicsServer::wait_at_horizon(const ShutdownSignal* shutdown) {
   // What is already waiting may move the horizon: no system call to sleep then.
   if (bus_.handle_pending() > 0) return;
-  const std::string bound = horizon_bound_;
+  const std::string bound = referee_horizon_ < horizon_ ? "referee" : horizon_bound_;
   const auto start = Clock::now();
   wait_until(start + std::chrono::milliseconds(100), shutdown);
   stats_.sync_wait_seconds[bound] += seconds_between(start, Clock::now());
@@ -227,7 +237,7 @@ void PhysicsServer::step_and_publish(bool publish_every_step) {
   world_.step();
   ++stats_.steps;
   const double rate = world_.setup().physics.state_publish_rate;
-  if (publish_every_step || rate <= 0) {
+  if (publish_every_step || rate <= 0 || options_.sync_referee) {
     publish_state();
   } else if (world_.time() >= next_state_time_ - world_.dt() / 2) {
     publish_state();

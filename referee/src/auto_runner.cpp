@@ -54,9 +54,9 @@ class Runner {
                                           spdlog::warn("physics refused a placement: {}",
                                                        ack.message);
                                       });
-    spdlog::info("automatic referee: field {}, game {} s in {} half(s), publishing on {}",
+    spdlog::info("automatic referee: field {}, game {} s in {} half(s), publishing on {}{}",
                  field_.name, options_.game.game_length, options_.game.halves,
-                 channels_.referee());
+                 channels_.referee(), options_.sync ? " after every state (sync)" : "");
     while (!shutdown_.requested() && !(over_ && options_.exit_at_end)) {
       bus_.wait_and_handle(100, &shutdown_);
     }
@@ -112,7 +112,7 @@ class Runner {
                    stage_name(s.stage), s.yellow.goals, s.blue.goals);
       write(command_line(s, state.sim_time));
     }
-    if (decision.command_changed || !decision.events.empty() ||
+    if (options_.sync || decision.command_changed || !decision.events.empty() ||
         state.sim_time - last_publish_ >= kPublishPeriod || state.sim_time < last_publish_) {
       bus_.publish(channels_.referee(),
                    to_message(s, options_.game, options_.sides, state.sim_time));

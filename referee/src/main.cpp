@@ -51,6 +51,7 @@ struct Options {
   std::string events_file;
   bool keep_running = false;
   bool start_physics = false;
+  bool sync = false;
 };
 
 // `auto`: the automatic referee runs the game until it is over.
@@ -64,6 +65,7 @@ int run_auto(const Options& o) {
   a.timeout_s = o.timeout_s;
   a.exit_at_end = !o.keep_running;
   a.start_physics = o.start_physics;
+  a.sync = o.sync;
   ShutdownSignal shutdown;
   return run_auto_referee(a, shutdown);
 }
@@ -417,6 +419,9 @@ int main(int argc, char** argv) {
   automatic->add_flag("--keep-running", o.keep_running, "do not exit when the game is over");
   automatic->add_flag("--start", o.start_physics,
                       "resume physics once listening (start physics with --paused)");
+  automatic->add_flag("--sync", o.sync,
+                      "REFEREE after every state: a physics started with --sync-referee waits "
+                      "for it, placements apply at a fixed step, games are reproducible");
 
   CLI11_PARSE(app, argc, argv);
   const bool is_auto = app.got_subcommand("auto");

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+
 namespace ubersim::referee {
 
 SimLink::SimLink(MessageBus& bus, ChannelNames channels, std::string sender)
@@ -56,12 +58,25 @@ sim_state_t SimLink::state(std::chrono::milliseconds timeout) {
 }
 
 field_geometry_t SimLink::geometry(std::chrono::milliseconds timeout) {
-  if (!geometry_) {
+  // Asked again every half second: a physics server still starting up (the
+  // automatic referee may start alongside it) has not subscribed yet and
+  // loses the request; it also publishes the geometry by itself now and then.
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!geometry_) {
     sim_control_t ask{};
     ask.action = sim_control_t::REQUEST_GEOMETRY;
-    request(ask, timeout);
-    wait_until([this] { return geometry_.has_value(); }, timeout,
-               "waiting on " + channels_(Channel::SimGeometry));
+    ask.request_id = next_request_id_++;
+    ask.sender = sender_;
+    bus_.publish(channels_(Channel::SimControl), ask);
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    try {
+      wait_until([this] { return geometry_.has_value(); },
+                 std::min(left, std::chrono::milliseconds(500)),
+                 "waiting on " + channels_(Channel::SimGeometry));
+    } catch (const NoAnswer&) {
+      if (std::chrono::steady_clock::now() >= deadline) throw;
+    }
   }
   return *geometry_;
 }

@@ -172,6 +172,21 @@ class ProcessSet:
                 p.wait()
 
 
+def _wait_for_line(processes, name, text, timeout):
+    """None once `name`'s log has `text`; the reason it failed otherwise."""
+    path = os.path.join(processes.game_dir, name + ".log")
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        with open(path, errors="replace") as f:
+            if text in f.read():
+                return None
+        exited = processes.first_exit()
+        if exited is not None:
+            return f"{exited[0]} exited with status {exited[1]} at the start (see {exited[0]}.log)"
+        time.sleep(0.05)
+    return f"{name} did not start within {timeout} s (see {name}.log)"
+
+
 def read_events(path):
     """The event log: (events by type, fouls by team, result line or None)."""
     by_type, result = {}, None
@@ -209,16 +224,22 @@ def run_driver(spec):
     signal.signal(signal.SIGTERM, on_signal)
     signal.signal(signal.SIGINT, on_signal)
 
-    # Physics starts paused: the referee resumes it once every process listens,
-    # so the game starts at sim time 0 with everyone there.
+    # Fast mode: physics starts paused and the referee resumes it once every
+    # process listens. Sync mode: physics holds at sim time 0 until both teams
+    # registered, and then steps only past states the referee has judged
+    # (--sync-referee), so the referee is started, and listening, first.
     physics = [f"{bin_dir}/ubersim_physics", *common, "--scenario", spec["scenario"],
-               "--seed", seed, "--paused",
-               "--duration", str(2 * spec["game_length"] + 120)]
-    physics += ["--sync"] if sync else ["--speed", "0"]
+               "--seed", seed, "--duration", str(2 * spec["game_length"] + 120)]
+    physics += ["--sync-referee"] if sync else ["--speed", "0", "--paused"]
     radio = [f"{bin_dir}/ubersim_radio", *common, "--profile", spec["radio_profile"],
              "--seed", seed]
     if sync:
         radio += ["--sync", "--sync-clients", "2"]
+    # The referee logs its game at info level (its log is the game's story).
+    referee = [f"{bin_dir}/ubersim_referee", "--lcm-url", lcm_url, "--config-dir", config_dir,
+               "--timeout", "20", "auto", "--game", spec["game"], "--game-length",
+               str(spec["game_length"]), "--events", events_path]
+    referee += ["--sync"] if sync else ["--start"]
     wall_start = time.monotonic()
     reason = None
     try:
@@ -226,14 +247,16 @@ def run_driver(spec):
         processes.start("vision", [f"{bin_dir}/ubersim_vision", *common,
                                    "--profile", spec["vision_profile"], "--seed", seed])
         processes.start("radio", radio)
-        for team in ("yellow", "blue"):
-            processes.start(team, _team_command(spec, team, config_dir, lcm_url))
-        time.sleep(0.5)  # every listener subscribed before the game starts
-        processes.start("referee", [f"{bin_dir}/ubersim_referee", *common, "--timeout", "20",
-                                    "auto", "--game", spec["game"], "--game-length",
-                                    str(spec["game_length"]), "--events", events_path,
-                                    "--start"])
-        while True:
+        if sync:
+            processes.start("referee", referee)
+            reason = _wait_for_line(processes, "referee", "automatic referee:", 30)
+        if reason is None:
+            for team in ("yellow", "blue"):
+                processes.start(team, _team_command(spec, team, config_dir, lcm_url))
+        if reason is None and not sync:
+            time.sleep(0.5)  # every listener subscribed before the game starts
+            processes.start("referee", referee)
+        while reason is None:
             if stop["signal"] is not None:
                 reason = "stopped by a signal"
                 break

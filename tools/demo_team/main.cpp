@@ -112,11 +112,7 @@ int main(int argc, char** argv) {
                                                 team.field_width = g.field.field_width;
                                               });
     bus.subscribe<ubersim::referee_t>(channels.referee(),
-                                      [&](const ubersim::referee_t& r) {
-                                        referee.update(r);
-                                        team.keeper_id =
-                                            yellow ? r.yellow_goalkeeper : r.blue_goalkeeper;
-                                      });
+                                      [&](const ubersim::referee_t& r) { referee.update(r); });
     bus.subscribe<ubersim::vision_frame_t>(
         channels(ubersim::Channel::Vision), [&](const ubersim::vision_frame_t& frame) {
           if (frame.t_capture + 1.0 < world.now()) {  // the simulation was reset
@@ -124,6 +120,8 @@ int main(int argc, char** argv) {
             last_sent = -1e9;
           }
           world.update(frame);
+          referee.advance_to(frame.t_sent);
+          team.keeper_id = referee.goalkeeper();
           if (world.now() - last_sent < 1.0 / rate - 1e-9) {
             if (sync) answer_nothing(frame);
             return;

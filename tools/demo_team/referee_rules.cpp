@@ -13,6 +13,24 @@ constexpr double kStopSpeed = 1.0;     // m/s (rule: 1.5 m/s)
 }  // namespace
 
 void RefereeFollower::update(const referee_t& referee) {
+  constexpr std::size_t kMaxWaiting = 1000;  // bounded: a flood of messages costs nothing
+  if (waiting_.size() >= kMaxWaiting) waiting_.pop_front();
+  waiting_.push_back(referee);
+}
+
+void RefereeFollower::advance_to(double t) {
+  while (!waiting_.empty() && waiting_.front().sim_time < t) {
+    apply(waiting_.front());
+    waiting_.pop_front();
+  }
+}
+
+int RefereeFollower::goalkeeper() const {
+  if (!last_) return -1;
+  return yellow_ ? last_->yellow_goalkeeper : last_->blue_goalkeeper;
+}
+
+void RefereeFollower::apply(const referee_t& referee) {
   switch (referee.command) {
     case referee_t::PREPARE_KICKOFF_YELLOW:
     case referee_t::PREPARE_PENALTY_YELLOW: prepared_by_us_ = yellow_; break;

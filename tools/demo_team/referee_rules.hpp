@@ -4,6 +4,7 @@
 // prepared is held where the referee placed everyone, and a restart belongs to
 // the team it names until the ball is in play; the other team waits for it.
 // Without any referee message the team just plays.
+#include <deque>
 #include <optional>
 #include <ubersim/referee_t.hpp>
 #include <ubersim/robot_command_t.hpp>
@@ -18,11 +19,19 @@ enum class GameMode { Play, Halt, Stop, Hold };
 class RefereeFollower {
  public:
   explicit RefereeFollower(bool yellow) : yellow_(yellow) {}
+  // A REFEREE message arrived; it takes effect at the first frame sent after
+  // its sim time (advance_to), so that which frame first sees a command does
+  // not depend on how the two messages raced (sync mode stays reproducible).
   void update(const ubersim::referee_t& referee);
+  // Applies, in order, every message judged before sim time t (a frame's t_sent).
+  void advance_to(double t);
   GameMode mode() const;
+  int goalkeeper() const;  // the referee's goalkeeper id for us, -1 before any message
 
  private:
   bool yellow_;
+  void apply(const ubersim::referee_t& referee);
+  std::deque<ubersim::referee_t> waiting_;
   std::optional<ubersim::referee_t> last_;
   std::optional<bool> prepared_by_us_;  // the last PREPARE_* named us
 };

@@ -9,6 +9,7 @@
 //              SIM_GEOMETRY (field_geometry_t): at start, every GEOMETRY_PUBLISH_PERIOD
 //                                             of wall time, and on request
 //              SIM_CONTROL_ACK (sim_control_ack_t): one per SIM_CONTROL
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -37,6 +38,11 @@ struct ServerOptions {
   bool paused = false;
   double duration = 0;  // s of sim time after which run() returns, 0 = never
   bool sync = false;    // sync mode (docs/sync.md): step up to the radio emulator's horizon
+  // Sync mode with the automatic referee: also never past the state the referee
+  // judged last (its REFEREE message carries that state's sim time), so each
+  // placement it sends applies at the step after that state; SIM_STATE then
+  // goes out after every step. Physics holds while no referee speaks.
+  bool sync_referee = false;
 };
 
 struct ServerStats {
@@ -76,7 +82,9 @@ class PhysicsServer {
   bool idle() const { return paused_ || (!sync_ && pacer_.lockstep()); }
   // Sync mode: whether the step starting now may run: no command can still
   // come that applies at its start (docs/sync.md).
-  bool below_horizon() const { return world_.time() + world_.dt() * 1e-6 < horizon_; }
+  bool below_horizon() const {
+    return world_.time() + world_.dt() * 1e-6 < std::min(horizon_, referee_horizon_);
+  }
   void wait_at_horizon(const ShutdownSignal* shutdown);
   void log_sync_waits() const;
   // Waits until `deadline` or a message or a signal; handles messages.
@@ -99,6 +107,7 @@ class PhysicsServer {
   ThrottledLog log_;
   bool sync_ = false;
   double horizon_ = 0;  // s, from SIM_SYNC_HORIZON
+  double referee_horizon_;  // s, from REFEREE (+inf without --sync-referee)
   std::string horizon_bound_ = "the radio emulator (no SIM_SYNC_HORIZON yet)";
   // Sync mode publishes its first state only once the vision emulator listens
   // and the radio emulator has every client it expects (both have spoken), so

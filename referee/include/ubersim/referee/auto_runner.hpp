@@ -23,6 +23,9 @@ struct AutoOptions {
   double timeout_s = 2.0;      // for the field geometry at the start
   bool exit_at_end = true;     // return once the game is over
   bool start_physics = false;  // send RESUME once listening (physics started --paused)
+  // Sync mode: REFEREE after every state judged; a physics started with
+  // --sync-referee steps only past states the referee has judged.
+  bool sync = false;
 };
 
 // Returns 0 after a finished game (or a clean stop), 1 on an error.
