@@ -21,6 +21,9 @@ usage: tools/launch.sh [options]
                        runs reproducible (docs/sync.md); the demo teams answer every frame
   --sync-strict        in sync mode, a client that misses the timeout fails the run
   --sync-clients N     clients physics waits for at the start (default: the demo teams started)
+  --referee            start the automatic referee (ubersim_referee auto, docs/autoref.md): it runs
+                       the game and everything stops when it is over; with --sync, reproducibly
+  --game-length S      the refereed game's length in s of sim time (default: config/referee)
   --seed N             seed for physics and both emulators
   --duration S         stop everything after S seconds of sim time
   --lcm-url URL        LCM URL for every process (default \$LCM_DEFAULT_URL or LCM's)
@@ -41,6 +44,7 @@ USAGE
 
 scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix=""
+referee=0 game_length=""
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port=8080 ssl_bridge=0
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -52,6 +56,8 @@ while [ $# -gt 0 ]; do
     --sync) sync=1; shift ;;
     --sync-strict) sync=1; sync_strict=1; shift ;;
     --sync-clients) sync_clients=$2; shift 2 ;;
+    --referee) referee=1; shift ;;
+    --game-length) game_length=$2; shift 2 ;;
     --seed) seed=$2; shift 2 ;;
     --duration) duration=$2; shift 2 ;;
     --lcm-url) lcm_url=$2; shift 2 ;;
@@ -132,9 +138,22 @@ if [ "$sync" = 1 ]; then
   demo_args+=(--sync)
 fi
 [ -n "$duration" ] && physics_args+=(--duration "$duration")
+referee_args=(auto --events "$log_dir/events.jsonl")
+[ -n "$game_length" ] && referee_args+=(--game-length "$game_length")
+if [ "$referee" = 1 ] && [ "$sync" = 1 ]; then
+  # Physics steps only past states the referee judged (docs/autoref.md).
+  physics_args+=(--sync-referee)
+  referee_args+=(--sync)
+fi
 start physics "$bin_dir/ubersim_physics" "${common[@]}" "${physics_args[@]}" "${seed_args[@]}"
 [ "$vision" = 1 ] && start vision "$bin_dir/ubersim_vision" "${common[@]}" --profile "$profile" "${seed_args[@]}"
 [ "$radio" = 1 ] && start radio "$bin_dir/ubersim_radio" "${common[@]}" --profile "$profile" "${seed_args[@]}" "${radio_args[@]}"
+if [ "$referee" = 1 ]; then
+  start referee "$bin_dir/ubersim_referee" --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} "${referee_args[@]}"
+  # In sync mode the referee must hear the first state: the teams (whose
+  # registration lets physics start) come once it listens (at most 20 s).
+  for _ in $(seq 200); do grep -q "automatic referee:" "$log_dir/referee.log" 2>/dev/null && break; sleep 0.1; done
+fi
 for team in yellow blue; do
   if [ "$demo" = "$team" ] || [ "$demo" = both ]; then
     start "demo_$team" "$bin_dir/ubersim_demo_team" "${common[@]}" --team "$team" --mode "$demo_mode" "${demo_args[@]}"
@@ -146,6 +165,7 @@ physics_pid=${pids[1]:-}
 [ -n "$log_file" ] || physics_pid=${pids[0]}
 echo "channels: ${prefix}VISION ${prefix}VISION_GEOMETRY ${prefix}RADIO_YELLOW ${prefix}RADIO_BLUE ${prefix}RADIO_FEEDBACK_YELLOW ${prefix}RADIO_FEEDBACK_BLUE ${prefix}SIM_STATE ${prefix}SIM_CONTROL"
 echo "watch:    tools/lcm-spy.sh -l '$lcm_url'      control: build/bin/ubersim_referee --help"
+[ "$referee" = 1 ] && echo "referee:  automatic, on ${prefix}REFEREE; event log $log_dir/events.jsonl"
 [ "$ssl_bridge" = 1 ] && echo "ssl:      SSL-Vision 224.5.23.2:10020, simulation control 127.0.0.1:10300, robot control 10301 (blue) / 10302 (yellow)"
 [ "$viewer" = 1 ] && echo "viewer:   http://127.0.0.1:$viewer_port/   (open it in a browser)"
 [ "$vision" = 0 ] && echo "vision:   not started: a real vision server must publish ${prefix}VISION"
@@ -211,6 +231,8 @@ while :; do
     pids=("${pids[@]}") names=("${names[@]}")
     if [ "$finished" = "$physics_pid" ] && [ "$status" = 0 ] && [ -n "$duration" ]; then
       echo "launch: physics finished its $duration s of sim time: stopping the rest"
+    elif [ "$name" = referee ] && [ "$status" = 0 ]; then
+      echo "launch: the game is over ($(grep '^result' "$log_dir/referee.log" | tail -1)): stopping the rest"
     else
       echo "launch: $name exited with status $status: stopping the rest (see $log_dir/$name.log)" >&2
       failed=1
