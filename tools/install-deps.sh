@@ -24,6 +24,8 @@ packages=(
   python3 python3-distributed
   # browser viewer: HTTP/WebSocket server and JSON; headless chromium for its end-to-end test
   libwebsocketpp-dev libasio-dev nlohmann-json3-dev chromium
+  # fuzz targets (fuzz/, tools/fuzz.sh): clang with libFuzzer and the sanitizers
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -83,7 +83,22 @@ std::optional<bool> parse_boolean(std::string token) {
   return std::nullopt;
 }
 
+// Config files are a few kB; a file of more than this is not one (and a BASE
+// naming /dev/zero or a FIFO must not read forever).
+constexpr std::uintmax_t kMaxConfigBytes = std::uintmax_t{1} << 20;
+
 std::string read_file(const std::filesystem::path& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    throw ConfigError(path.string(), 0,
+                      std::filesystem::exists(path, error)
+                          ? "not a regular file: expected a config file"
+                          : "cannot open config file");
+  }
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  if (error || size > kMaxConfigBytes) {
+    throw ConfigError(path.string(), 0, "larger than 1 MiB: not a config file");
+  }
   std::ifstream in(path);
   if (!in) throw ConfigError(path.string(), 0, "cannot open config file");
   std::ostringstream text;

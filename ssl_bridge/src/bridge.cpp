@@ -1,6 +1,7 @@
 #include "ubersim/ssl_bridge/bridge.hpp"
 
-#include <google/protobuf/unknown_field_set.h>
+#include "ubersim/ssl_bridge/datagram_decoding.hpp"
+
 #include <poll.h>
 
 #include <algorithm>
@@ -12,21 +13,14 @@ namespace {
 
 constexpr const char* kSender = "ubersim_ssl_bridge";
 
-// Decodes a datagram; false when it does not decode. Fields we do not know
-// (a newer protocol, or bytes that happen to decode) become an error too.
-bool decode(const std::vector<uint8_t>& bytes, google::protobuf::Message& message, Errors& errors) {
-  if (!message.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()))) {
-    add_error(errors, kErrorMalformed,
-              "datagram does not decode as " + message.GetTypeName() + " (" +
-                  std::to_string(bytes.size()) + " bytes)");
-    return false;
-  }
-  if (!message.GetReflection()->GetUnknownFields(message).empty()) {
-    add_error(errors, kErrorUnknownFields,
-              message.GetTypeName() + " carries fields ubersim does not know; they were ignored");
-  }
-  return true;
-}
+// Datagrams taken from each socket per wakeup: a flood on one port cannot
+// starve LCM, the other ports or the shutdown signal.
+constexpr int kDatagramsPerWakeup = 64;
+// SIM_CONTROL requests waiting for physics at once; a command arriving beyond
+// that is answered at once with an error, so a flood of commands costs neither
+// memory nor physics' time. (One command is a few requests; robot specs for
+// every robot of a team are the most, ~2 per spec.)
+constexpr std::size_t kMaxPendingRequests = 256;
 
 }  // namespace
 
@@ -179,6 +173,23 @@ void SslBridge::expire_pending() {
   }
 }
 
+bool SslBridge::decoded(const std::vector<uint8_t>& bytes, google::protobuf::Message& message,
+                        Errors& errors, const std::string& port) {
+  const DecodedDatagram result = decode_datagram(bytes.data(), bytes.size(), message, errors);
+  if (!result.ok) {
+    ++counters_[port + " datagrams dropped (malformed or too large)"];
+    bad_input_.warn(port, "dropped a datagram on the " + port + " port: " +
+                              (errors.empty() ? std::string() : errors.back().message()));
+    return false;
+  }
+  if (result.unknown_fields > 0) {
+    counters_[port + " unknown fields dropped"] += result.unknown_fields;
+    bad_input_.warn(port + "_unknown",
+                    "dropped fields ubersim does not know on the " + port + " port");
+  }
+  return true;
+}
+
 void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
                                         const sockaddr_in& from) {
   ++counters_["control datagrams"];
@@ -186,7 +197,13 @@ void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
   pending->client = from;
   Errors errors;
   SimulatorCommand command;
-  if (decode(bytes, command, errors)) {
+  if (pending_by_request_.size() >= kMaxPendingRequests) {
+    ++counters_["control datagrams refused (busy)"];
+    bad_input_.warn("control_busy", "simulation control commands arrive faster than physics answers");
+    add_error(errors, kErrorBusy,
+              std::to_string(pending_by_request_.size()) +
+                  " requests already wait for physics; this command was not applied");
+  } else if (decoded(bytes, command, errors, "control")) {
     options_.sim_control.current_field = current_field_ ? &*current_field_ : nullptr;
     SimControlTranslation translation =
         translate_simulator_command(command, state_ ? &*state_ : nullptr, options_.sim_control);
@@ -213,9 +230,6 @@ void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
       pending_by_request_[request.request_id] = pending;
       bus_.publish(channels_(Channel::SimControl), request);
     }
-  } else {
-    ++counters_["control datagrams malformed"];
-    bad_input_.warn("control", "malformed datagram on the simulation control port");
   }
   for (const SimulatorError& error : errors) *pending->response.add_errors() = error;
   pending->deadline = std::chrono::steady_clock::now() +
@@ -231,7 +245,7 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
   RobotControlResponse response;
   Errors errors;
   RobotControl control;
-  if (decode(bytes, control, errors)) {
+  if (decoded(bytes, control, errors, name + " robot control")) {
     RobotControlTranslation translation = translate_robot_control(control, team, options_.wheels);
     errors.insert(errors.end(), translation.errors.begin(), translation.errors.end());
     if (translation.packet.num_commands > 0) {  // nothing to say: no packet on the radio
@@ -239,9 +253,6 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
       translation.packet.t_sent = state_ ? state_->sim_time : 0.0;
       bus_.publish(channels_.radio(team), translation.packet);
     }
-  } else {
-    ++counters_[name + " robot control datagrams malformed"];
-    bad_input_.warn("robot_" + name, "malformed datagram on the " + name + " robot control port");
   }
   for (const SimulatorError& error : errors) *response.add_errors() = error;
   const auto feedback = feedback_.find(team);
@@ -271,10 +282,14 @@ void SslBridge::run(const ShutdownSignal& shutdown) {
     ::poll(fds.data(), fds.size(), 50);
     bus_.handle_pending();
     sockaddr_in from{};
-    while (auto bytes = control_socket_.receive(from)) handle_control_datagram(*bytes, from);
-    while (auto bytes = blue_socket_.receive(from)) handle_robot_datagram(Team::Blue, *bytes, from);
-    while (auto bytes = yellow_socket_.receive(from)) {
-      handle_robot_datagram(Team::Yellow, *bytes, from);
+    for (int i = 0; i < kDatagramsPerWakeup; ++i) {
+      auto control = control_socket_.receive(from);
+      if (control) handle_control_datagram(*control, from);
+      auto blue = blue_socket_.receive(from);
+      if (blue) handle_robot_datagram(Team::Blue, *blue, from);
+      auto yellow = yellow_socket_.receive(from);
+      if (yellow) handle_robot_datagram(Team::Yellow, *yellow, from);
+      if (!control && !blue && !yellow) break;
     }
     expire_pending();
   }

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <ubersim/team_t.hpp>
 
+#include "ubersim/viewer/request_policy.hpp"
+
 namespace ubersim::viewer {
 namespace {
 
@@ -159,6 +161,9 @@ json encode_ack(const sim_control_ack_t& ack) {
 
 ParsedControl parse_control_request(const std::string& text, std::int64_t request_id,
                                     const std::string& sender) {
+  if (!json_depth_within(text, kMaxJsonDepth)) {
+    return {std::nullopt, "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels"};
+  }
   const json request = json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (request.is_discarded() || !request.is_object()) return {std::nullopt, "not a JSON object"};
   const auto action_it = request.find("action");

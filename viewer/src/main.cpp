@@ -37,6 +37,8 @@ struct Options {
   int port = 8080;
   double display_rate = 60;
   std::string web_dir = UBERSIM_VIEWER_WEB_DIR;
+  std::vector<std::string> allowed_origins;
+  int max_pages = static_cast<int>(ubersim::viewer::kDefaultMaxPages);
 };
 
 // Requests from pages arrive on the server's thread; LCM is used by the main
@@ -101,6 +103,8 @@ int run(const Options& options) {
   server_options.bind_address = options.bind;
   server_options.port = static_cast<std::uint16_t>(options.port);
   server_options.web_dir = options.web_dir;
+  server_options.allowed_origins = options.allowed_origins;
+  server_options.max_pages = static_cast<std::size_t>(options.max_pages);
   viewer::WebServer server(server_options, [&](const std::string& text) {
     if (!inbox.push(text)) inbox_full.warn("inbox", "page requests arrive faster than handled");
   });
@@ -141,6 +145,7 @@ int run(const Options& options) {
     if (next_frame < now) next_frame = now + frame_period;  // fell behind: do not catch up
     const auto stats = server.stats();
     const nlohmann::json server_info = {{"clients", stats.clients},
+                                        {"pages_refused", stats.pages_refused},
                                         {"display_rate", options.display_rate},
                                         {"frames_skipped", stats.frames_skipped},
                                         {"malformed", bus.malformed_count()}};
@@ -151,9 +156,10 @@ int run(const Options& options) {
   const auto stats = server.stats();
   spdlog::info(
       "frames sent {} (mean {} bytes), skipped for slow pages {}, replaced before sending {}; "
-      "malformed LCM messages dropped {}",
+      "pages refused {}; page requests ignored {}; malformed LCM messages dropped {}",
       stats.frames_sent, stats.frames_sent > 0 ? stats.bytes_sent / stats.frames_sent : 0,
-      stats.frames_skipped, stats.frames_replaced, bus.malformed_count());
+      stats.frames_skipped, stats.frames_replaced, stats.pages_refused,
+      bad_request.total() + inbox_full.total(), bus.malformed_count());
   return 0;
 }
 
@@ -172,6 +178,12 @@ int parse_and_run(int argc, char** argv) {
       ->check(CLI::Range(1.0, 240.0))
       ->capture_default_str();
   app.add_option("--web-dir", options.web_dir, "folder of the page's files")->capture_default_str();
+  app.add_option("--allow-origin", options.allowed_origins,
+                 "let pages of this other origin (e.g. http://example.org:8000, or * for any) open "
+                 "the WebSocket and send control requests; by default only the viewer's own page may");
+  app.add_option("--max-pages", options.max_pages, "pages (WebSocket connections) open at once")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   ubersim::setup_logging("viewer", options.common.verbosity());

@@ -71,6 +71,9 @@ class SslBridge {
   void on_ack(const sim_control_ack_t& ack);
   void on_state(const sim_state_t& state);
   void on_referee(const referee_t& referee);
+  // decode_datagram, counting and logging (once per second) what it drops.
+  bool decoded(const std::vector<uint8_t>& bytes, google::protobuf::Message& message,
+               Errors& errors, const std::string& port);
   void handle_control_datagram(const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void handle_robot_datagram(Team team, const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void send_vision(const SSL_WrapperPacket& packet);

@@ -10,6 +10,9 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
+
+#include "ubersim/viewer/request_policy.hpp"
 
 namespace ubersim::viewer {
 
@@ -18,6 +21,8 @@ struct WebServerOptions {
   std::uint16_t port = 8080;  // 0 = any free port (see WebServer::port())
   std::string web_dir;        // the page's files
   std::size_t max_buffered_bytes = std::size_t{64} * 1024;  // ~7 frames of 22 robots
+  std::size_t max_pages = kDefaultMaxPages;                 // open pages at once
+  std::vector<std::string> allowed_origins;  // other sites' pages let in ("*": any)
 };
 
 struct WebServerStats {
@@ -26,6 +31,7 @@ struct WebServerStats {
   std::uint64_t bytes_sent = 0;       // their payload bytes
   std::uint64_t frames_skipped = 0;   // frames a page was too far behind to take
   std::uint64_t frames_replaced = 0;  // frames replaced by a newer one before any send
+  std::uint64_t pages_refused = 0;    // handshakes refused: other origin, too many pages
 };
 
 class WebServer {
@@ -48,11 +54,5 @@ class WebServer {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-// Content type for a served file name ("index.html" -> "text/html; charset=utf-8").
-std::string content_type_for(const std::string& file_name);
-// The file a request path names inside the web folder, or "" when it names none
-// we serve ("/" -> "index.html"; no folders, no "..", query strings ignored).
-std::string served_file_name(const std::string& request_path);
 
 }  // namespace ubersim::viewer

@@ -1,0 +1,24 @@
+#pragma once
+// What the fuzz targets share.
+#include <spdlog/spdlog.h>
+
+#include <cstdlib>
+#include <string>
+
+namespace ubersim::fuzz {
+
+// The code under test logs bad input (throttled); at a million inputs a
+// second that is only noise in the fuzzer's output.
+inline void quiet_logging() { spdlog::set_level(spdlog::level::off); }
+
+// An LCM message the code under test built must encode to the size it
+// announces (its counts match its arrays; with ASan a count larger than its
+// array is a read out of bounds); anything else aborts, a finding.
+template <class Msg>
+void must_encode(const Msg& message) {
+  const int size = message.getEncodedSize();
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  if (message.encode(bytes.data(), 0, size) != size) std::abort();
+}
+
+}  // namespace ubersim::fuzz

@@ -1,0 +1,86 @@
+#include "ubersim/ssl_bridge/datagram_decoding.hpp"
+
+#include <google/protobuf/descriptor.h>
+#include <google/protobuf/io/coded_stream.h>
+#include <google/protobuf/unknown_field_set.h>
+
+#include <string>
+#include <vector>
+
+namespace ubersim::ssl {
+namespace {
+
+using google::protobuf::FieldDescriptor;
+using google::protobuf::Message;
+using google::protobuf::Reflection;
+
+// Walks every message inside `message` (bounded: the decode already limited
+// depth and size). Counts unknown fields and names the first over-long
+// repeated field; false when one was found.
+bool check_message(const Message& message, std::size_t& unknown, std::string& too_long) {
+  const Reflection* reflection = message.GetReflection();
+  unknown += static_cast<std::size_t>(reflection->GetUnknownFields(message).field_count());
+  std::vector<const FieldDescriptor*> fields;
+  reflection->ListFields(message, &fields);
+  for (const FieldDescriptor* field : fields) {
+    if (field->is_repeated()) {
+      const int count = reflection->FieldSize(message, field);
+      if (count > kMaxRepeatedElements) {
+        too_long = field->full_name() + " holds " + std::to_string(count) + " elements";
+        return false;
+      }
+      if (field->cpp_type() != FieldDescriptor::CPPTYPE_MESSAGE) continue;
+      for (int i = 0; i < count; ++i) {
+        if (!check_message(reflection->GetRepeatedMessage(message, field, i), unknown, too_long)) {
+          return false;
+        }
+      }
+    } else if (field->cpp_type() == FieldDescriptor::CPPTYPE_MESSAGE) {
+      if (!check_message(reflection->GetMessage(message, field), unknown, too_long)) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+DecodedDatagram decode_datagram(const std::uint8_t* data, std::size_t size, Message& message,
+                                Errors& errors) {
+  DecodedDatagram result;
+  message.Clear();
+  const std::string type = message.GetTypeName();
+  if (size > kMaxDatagramBytes) {
+    add_error(errors, kErrorTooLarge,
+              "datagram of " + std::to_string(size) + " bytes: at most " +
+                  std::to_string(kMaxDatagramBytes) + " fit in one UDP datagram");
+    return result;
+  }
+  google::protobuf::io::CodedInputStream input(data, static_cast<int>(size));
+  input.SetRecursionLimit(kDecodeRecursionLimit);
+  if (!message.ParseFromCodedStream(&input) || !input.ConsumedEntireMessage()) {
+    message.Clear();
+    add_error(errors, kErrorMalformed,
+              "datagram does not decode as " + type + " (" + std::to_string(size) +
+                  " bytes: cut short, a required field missing, or nested deeper than " +
+                  std::to_string(kDecodeRecursionLimit) + ")");
+    return result;
+  }
+  std::string too_long;
+  if (!check_message(message, result.unknown_fields, too_long)) {
+    message.Clear();
+    add_error(errors, kErrorTooLarge,
+              type + ": " + too_long + "; at most " + std::to_string(kMaxRepeatedElements) +
+                  " are taken (datagram dropped)");
+    return result;
+  }
+  if (result.unknown_fields > 0) {
+    message.DiscardUnknownFields();
+    add_error(errors, kErrorUnknownFields,
+              type + " carries " + std::to_string(result.unknown_fields) +
+                  " field(s) ubersim does not know; they were dropped");
+  }
+  result.ok = true;
+  return result;
+}
+
+}  // namespace ubersim::ssl
