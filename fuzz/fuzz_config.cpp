@@ -1,5 +1,6 @@
 // Fuzz target: the config reader (ConfigFile) and the typed loaders that read
-// robot, field and scenario files out of it. The contract under test: any text
+// robot, field and scenario files out of it, and the same reader where its
+// text comes from the bus (field changes, robot types defined at run time). The contract under test: any text
 // either loads or throws ConfigError (file:line: what was expected); any other
 // exception, a crash, a hang or a large allocation is a finding.
 #include <cstddef>
@@ -8,13 +9,25 @@
 
 #include "fuzz_support.hpp"
 #include "ubersim/config.hpp"
+#include "ubersim/field_change.hpp"
 #include "ubersim/field_config.hpp"
 #include "ubersim/robot_config.hpp"
 #include "ubersim/robot_type_definition.hpp"
 #include "ubersim/scenario_config.hpp"
 
+namespace {
+
+const ubersim::FieldConfig& division_b() {
+  static const ubersim::FieldConfig field =
+      ubersim::load_field_config(UBERSIM_FUZZ_CONFIG_DIR, "division_b");
+  return field;
+}
+
+}  // namespace
+
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   ubersim::fuzz::quiet_logging();
+  division_b();
   return 0;
 }
 
@@ -38,6 +51,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       (void)ubersim::load_scenario_config(config, "fuzz_input");
     } catch (const ubersim::ConfigError&) {
     }
+  } catch (const ubersim::ConfigError&) {
+  }
+  // The same text as a field change (SIM_CONTROL SET_FIELD from the bus).
+  try {
+    (void)ubersim::change_field(division_b(), text);
   } catch (const ubersim::ConfigError&) {
   }
   // The same text as a robot type defined at run time (SIM_CONTROL from the

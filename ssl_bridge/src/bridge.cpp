@@ -2,6 +2,7 @@
 
 #include "ubersim/ssl_bridge/datagram_decoding.hpp"
 
+#include <google/protobuf/stubs/logging.h>
 #include <poll.h>
 
 #include <algorithm>
@@ -36,6 +37,9 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
       referee_socket_(UdpSocket::multicast_sender(options_.referee_ttl, options_.vision_interface)),
       referee_destination_(make_address(options_.referee_address, options_.referee_port)),
       referee_translator_("ubersim-" + random_uuid()) {
+  // protobuf logs every datagram that misses a required field to stderr, one
+  // line each, at any rate; decoded() counts and logs them throttled instead.
+  google::protobuf::SetLogHandler(nullptr);
   if (options_.base_robot_type) {
     options_.sim_control.base_robot_type = &*options_.base_robot_type;
     type_radius_[options_.base_robot_type->config.name] = options_.base_robot_type->config.radius;

@@ -15,10 +15,10 @@ namespace ubersim::ssl {
 
 // Largest UDP payload over IPv4; a larger "datagram" cannot come from a socket.
 inline constexpr std::size_t kMaxDatagramBytes = 65507;
-// Our messages nest at most 6 deep (SimulatorCommand > config > geometry >
-// field > field_lines > p1); the slack covers future protocol versions. An
-// unknown group field nested deeper is refused instead of recursed into.
-inline constexpr int kDecodeRecursionLimit = 16;
+// Nesting protobuf's parser takes (its default for every parse; ours nest at
+// most 6 deep: SimulatorCommand > config > geometry > field > field_lines > p1).
+// An unknown group field nested deeper is refused, not recursed into.
+inline constexpr int kDecodeRecursionLimit = 100;
 // Elements of any one repeated field: a team has at most 16 robot ids, a field
 // a few dozen lines, a vision system a few cameras. More is refused as a whole,
 // so a 64 KB datagram of empty elements cannot become 30,000 radio commands.
