@@ -169,7 +169,7 @@ TEST_F(ViewerHostile, OtherSitesPagesAreRefusedUnlessAllowed) {
   ASSERT_TRUE(opened(allowed.response_head()));
   allowed.send(text_frame(R"({"action":"pause"})"));
   ASSERT_TRUE(wait_for_controls(1));
-  EXPECT_EQ(controls_[0].action, ubersim::sim_control_t::PAUSE);
+  EXPECT_EQ(controls_[0].action, +ubersim::sim_control_t::PAUSE);
   stop_within_a_second();
 }
 
@@ -184,7 +184,7 @@ TEST_F(ViewerHostile, FramesAtTheLimitPassAboveItCloseTheConnection) {
   ASSERT_TRUE(opened(page.response_head()));
   ASSERT_TRUE(page.send(text_frame(at_limit)));
   ASSERT_TRUE(wait_for_controls(1));
-  EXPECT_EQ(controls_[0].action, ubersim::sim_control_t::RESUME);
+  EXPECT_EQ(controls_[0].action, +ubersim::sim_control_t::RESUME);
   // One byte more: the connection is closed (1009, message too big), nothing published.
   ASSERT_TRUE(page.send(text_frame(at_limit + " ")));
   const std::string closing = page.until_closed();
@@ -217,7 +217,7 @@ TEST_F(ViewerHostile, FramesAtTheLimitPassAboveItCloseTheConnection) {
   ASSERT_TRUE(bomber.send(text_frame(R"({"action":"speed","factor":2})")));
   ASSERT_TRUE(wait_for_controls(2));
   EXPECT_EQ(controls_.size(), 2u) << "only the flat requests";
-  EXPECT_EQ(controls_[1].action, ubersim::sim_control_t::SET_SPEED);
+  EXPECT_EQ(controls_[1].action, +ubersim::sim_control_t::SET_SPEED);
   const long rss_after = resident_kilobytes(viewer_->pid());
   std::printf("viewer resident memory: %ld kB before, %ld kB after ~6 MB of hostile frames\n",
               rss_before, rss_after);
