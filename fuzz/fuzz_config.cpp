@@ -63,7 +63,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     (void)ubersim::parse_robot_type_definition("fuzz_type", text);
   } catch (const ubersim::ConfigError& error) {
-    if (std::string(error.what()).find("BASE file '") != std::string::npos) __builtin_trap();
+    // "fuzz_type:LINE: BASE file '...'" is the reader opening the file; the
+    // same words elsewhere are the input's own text quoted in another error.
+    const std::string what = error.what();
+    const std::size_t separator = what.find(": ");
+    if (separator != std::string::npos && what.compare(separator, 13, ": BASE file '") == 0) {
+      __builtin_trap();
+    }
   }
   return 0;
 }
