@@ -26,8 +26,9 @@ mkdir -p "$corpus"
 # 64 MB for any one allocation: no input of ours (at most a 64 KB datagram)
 # has a reason to ask for more, so a larger one is the bug the issue is about
 # (and, unlike a timeout, it is found the same on a loaded machine). Not
-# lower: protobuf 3.21 reserves up to 50 MB (untouched) for a nested field
-# whose claimed length the datagram does not hold (docs/fuzzing.md). 30 s per
+# lower: protobuf 3.21 reserves up to 50 MB for a field longer than its input,
+# and the SSL bridge's Any payloads (ER-Force realism, robot specs) are still
+# parsed by protobuf alone (docs/fuzzing.md). 30 s per
 # input: a busy machine at nice 19 stalls for seconds; real hangs are forever.
 "$fuzzer" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 -malloc_limit_mb=64 \
   -print_final_stats=1 -artifact_prefix="$work/" "$@" "$corpus" "${seeds[@]}" \

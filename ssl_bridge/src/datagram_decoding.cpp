@@ -41,6 +41,74 @@ bool check_message(const Message& message, std::size_t& unknown, std::string& to
   return true;
 }
 
+bool read_varint(const std::uint8_t*& p, const std::uint8_t* end, std::uint64_t& value) {
+  value = 0;
+  for (int shift = 0; shift < 64 && p < end; shift += 7) {
+    const std::uint8_t byte = *p++;
+    value |= static_cast<std::uint64_t>(byte & 0x7f) << shift;
+    if ((byte & 0x80) == 0) return true;
+  }
+  return false;
+}
+
+// Walks the wire format of one message of type `type` (null: an unknown
+// group or field) in [p, end) before protobuf parses it: every length must fit
+// in the bytes left of its enclosing message, at every depth. protobuf 3.21
+// checks a nested field's length only after reserving min(length, 50 MB) for
+// it, so 454 bytes could reserve 50 MB (found by fuzz_ssl_control).
+// `group` is the field number whose end-group tag ends this message (0: none).
+bool lengths_fit(const std::uint8_t*& p, const std::uint8_t* end,
+                 const google::protobuf::Descriptor* type, int depth, std::uint64_t group) {
+  if (depth > kDecodeRecursionLimit) return false;
+  while (p < end) {
+    std::uint64_t tag = 0;
+    if (!read_varint(p, end, tag)) return false;
+    const std::uint64_t number = tag >> 3;
+    const FieldDescriptor* field =
+        type != nullptr && number <= 0x1fffffff
+            ? type->FindFieldByNumber(static_cast<int>(number))
+            : nullptr;
+    std::uint64_t value = 0;
+    switch (tag & 7) {
+      case 0:
+        if (!read_varint(p, end, value)) return false;
+        break;
+      case 1:
+        if (end - p < 8) return false;
+        p += 8;
+        break;
+      case 5:
+        if (end - p < 4) return false;
+        p += 4;
+        break;
+      case 2: {
+        if (!read_varint(p, end, value) || value > static_cast<std::uint64_t>(end - p)) {
+          return false;
+        }
+        const std::uint8_t* inner = p;
+        p += value;
+        if (field != nullptr && field->type() == FieldDescriptor::TYPE_MESSAGE &&
+            !lengths_fit(inner, p, field->message_type(), depth + 1, 0)) {
+          return false;
+        }
+        break;
+      }
+      case 3: {
+        const bool known = field != nullptr && field->type() == FieldDescriptor::TYPE_GROUP;
+        if (!lengths_fit(p, end, known ? field->message_type() : nullptr, depth + 1, number)) {
+          return false;
+        }
+        break;
+      }
+      case 4:
+        return group != 0 && number == group;
+      default:
+        return false;
+    }
+  }
+  return group == 0;
+}
+
 }  // namespace
 
 DecodedDatagram decode_datagram(const std::uint8_t* data, std::size_t size, Message& message,
@@ -58,7 +126,9 @@ DecodedDatagram decode_datagram(const std::uint8_t* data, std::size_t size, Mess
   // a flat-array parse knows the input ends here, and caps what a string or
   // unknown field's claimed length reserves by it. Over a stream, 115 bytes
   // claiming a 64 MB field reserved 50 MB (found by fuzz_ssl_robot_control).
-  if (!message.ParseFromArray(data, static_cast<int>(size))) {
+  const std::uint8_t* walk = data;
+  if (!lengths_fit(walk, data + size, message.GetDescriptor(), 0, 0) ||
+      !message.ParseFromArray(data, static_cast<int>(size))) {
     message.Clear();
     add_error(errors, kErrorMalformed,
               "datagram does not decode as " + type + " (" + std::to_string(size) +
