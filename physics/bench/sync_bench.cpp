@@ -39,11 +39,12 @@ fs::path own_dir() {
 double physics_alone(const std::string& scenario, const std::string& model, double seconds,
                      const fs::path& work) {
   const fs::path out = work / ("alone_" + scenario + ".txt");
-  ubersim::ChildProcess bench({(own_dir() / "ubersim_physics_bench").string(), "--scenarios",
-                               scenario, "--models", model, "--only", "server", "--repeat", "1",
-                               "--seconds", std::to_string(seconds)},
-                              out.string());
-  if (bench.wait(600) != 0) throw std::runtime_error("ubersim_physics_bench failed: " + bench.log());
+  ubersim::ChildProcess bench(
+      {(own_dir() / "ubersim_physics_bench").string(), "--scenarios", scenario, "--models", model,
+       "--only", "server", "--repeat", "1", "--seconds", std::to_string(seconds)},
+      out.string());
+  if (bench.wait(600) != 0)
+    throw std::runtime_error("ubersim_physics_bench failed: " + bench.log());
   std::smatch match;
   const std::string text = read_file(out);
   const std::regex row(scenario + R"(\s+\S+\s+\S+\s+([0-9.]+))");
@@ -57,29 +58,43 @@ struct SyncRun {
 };
 
 SyncRun sync_run(const std::string& source_dir, const std::string& scenario,
-                 const std::string& profile, double seconds, const std::string& url,
+                 const std::string& profile, bool on_demand, double seconds, const std::string& url,
                  const fs::path& work) {
-  const fs::path logs = work / ("sync_" + scenario + "_" + profile);
+  const fs::path logs =
+      work / ("sync_" + scenario + "_" + profile + (on_demand ? "_on_demand" : ""));
   ::setenv("UBERSIM_BUILD_DIR", own_dir().parent_path().c_str(), 1);
-  ubersim::ChildProcess launch(
-      {"/bin/bash", source_dir + "/tools/launch.sh", "--sync", "--demo", "both", "--scenario",
-       scenario, "--profile", profile, "--duration", std::to_string(seconds), "--lcm-url", url,
-       "--log-dir", logs.string(), "--quiet"},
-      (work / "launch.out").string());
+  std::vector<std::string> argv{"/bin/bash",
+                                source_dir + "/tools/launch.sh",
+                                "--sync",
+                                "--demo",
+                                "both",
+                                "--scenario",
+                                scenario,
+                                "--profile",
+                                profile,
+                                "--duration",
+                                std::to_string(seconds),
+                                "--lcm-url",
+                                url,
+                                "--log-dir",
+                                logs.string()};
+  if (on_demand) argv.push_back("--truth-on-demand");
+  ubersim::ChildProcess launch(argv, (work / "launch.out").string());
   if (launch.wait(600) != 0) throw std::runtime_error("launch.sh failed: " + launch.log());
   const std::string log = read_file(logs / "physics.log");
   SyncRun run;
   std::smatch match;
   if (!std::regex_search(
           log, match,
-          std::regex(R"(sync: ([0-9.]+) s of sim time in ([0-9.]+) s of wall time from the first)"))) {
+          std::regex(
+              R"(sync: ([0-9.]+) s of sim time in ([0-9.]+) s of wall time from the first)"))) {
     throw std::runtime_error("no sync figure in physics.log:\n" + log);
   }
   run.sim = std::stod(match[1]);
   run.wall = std::stod(match[2]);
   const std::regex waited(R"(sync: waited ([0-9.]+) s for (\S+) \()");
-  for (auto it = std::sregex_iterator(log.begin(), log.end(), waited);
-       it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(log.begin(), log.end(), waited); it != std::sregex_iterator();
+       ++it) {
     run.waited[(*it)[2]] += std::stod((*it)[1]);
   }
   return run;
@@ -100,6 +115,7 @@ int run(int argc, char** argv) {
   std::vector<std::string> scenarios{"division_a_11v11", "division_a_11v11_planar",
                                      "division_b_6v6"};
   std::vector<std::string> profiles{"cmdragons02", "ideal"};
+  std::vector<std::string> truth{"every-step", "on-demand"};
   app.add_option("--source-dir", source_dir, "the ubersim checkout (for tools/launch.sh)")
       ->capture_default_str();
   app.add_option("--seconds", seconds, "sim seconds per run")->capture_default_str();
@@ -107,6 +123,9 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--scenarios", scenarios, "scenarios")->capture_default_str();
   app.add_option("--profiles", profiles, "vision and radio profiles")->capture_default_str();
+  app.add_option("--truth", truth,
+                 "SIM_STATE every step, or only on demand (physics --truth-on-demand)")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   char pattern[] = "/tmp/ubersim_sync_bench_XXXXXX";
@@ -118,30 +137,35 @@ int run(int argc, char** argv) {
       "Targets: at least 70 %% of the physics alone with cmdragons02, 40 %% with ideal.\n"
       "Load average at start: %s (the machine is shared: figures vary with load).\n\n",
       seconds, load_average().c_str());
-  std::printf("%-24s %-12s %10s %10s %7s  %s\n", "scenario", "profile", "alone [x]", "sync [x]",
-              "ratio", "physics waited for (s of wall time)");
+  std::printf("%-24s %-12s %-11s %10s %10s %7s  %s\n", "scenario", "profile", "SIM_STATE",
+              "alone [x]", "sync [x]", "ratio", "physics waited for (s of wall time)");
   for (const std::string& scenario : scenarios) {
-    const std::string model =
-        scenario.find("planar") != std::string::npos ? "planar" : "jointed";
+    const std::string model = scenario.find("planar") != std::string::npos ? "planar" : "jointed";
     // The bench sets the drive model itself: run its scenario with the jointed robots.
     const std::string alone_scenario = std::regex_replace(scenario, std::regex("_planar$"), "");
     const double alone = physics_alone(alone_scenario, model, seconds, work);
     for (const std::string& profile : profiles) {
-      const SyncRun run = sync_run(source_dir, scenario, profile, seconds, url, work);
-      const double speed = run.sim / run.wall;
-      std::string waited;
-      for (const auto& [name, s] : run.waited) {
-        char item[96];
-        std::snprintf(item, sizeof item, "%s%s %.3f", waited.empty() ? "" : ", ", name.c_str(), s);
-        waited += item;
+      for (const std::string& mode : truth) {
+        const SyncRun run =
+            sync_run(source_dir, scenario, profile, mode == "on-demand", seconds, url, work);
+        const double speed = run.sim / run.wall;
+        std::string waited;
+        for (const auto& [name, s] : run.waited) {
+          char item[96];
+          std::snprintf(item, sizeof item, "%s%s %.3f", waited.empty() ? "" : ", ", name.c_str(),
+                        s);
+          waited += item;
+        }
+        std::printf("%-24s %-12s %-11s %10.1f %10.1f %6.0f%%  %s\n", scenario.c_str(),
+                    profile.c_str(), mode.c_str(), alone, speed, 100 * speed / alone,
+                    waited.c_str());
+        std::fflush(stdout);
       }
-      std::printf("%-24s %-12s %10.1f %10.1f %6.0f%%  %s\n", scenario.c_str(), profile.c_str(),
-                  alone, speed, 100 * speed / alone, waited.c_str());
-      std::fflush(stdout);
     }
   }
   std::printf(
-      "\nsync [x]: sim seconds per wall second from physics' first state to the end (start-up "
+      "\nSIM_STATE: every step, or on demand (only the states vision, radio and viewer ask for).\n"
+      "sync [x]: sim seconds per wall second from physics' first state to the end (start-up "
       "left out);\nratio: sync over alone. Waits: wall time physics spent at the horizon, by "
       "what bounded it\n(a client's name, or vision when the next frame was not published yet).\n");
   fs::remove_all(work);

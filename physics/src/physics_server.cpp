@@ -3,9 +3,9 @@
 #include <poll.h>
 
 #include <cmath>
-
 #include <limits>
 #include <ubersim/referee_t.hpp>
+#include <ubersim/truth_demand_t.hpp>
 #include <ubersim/vision_schedule_t.hpp>
 
 #include "ubersim/shutdown.hpp"
@@ -71,8 +71,8 @@ PhysicsServer::PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNam
   if (options_.sync_referee) {
     // The referee has judged the state at r.sim_time: the step starting there may go.
     bus_.subscribe<referee_t>(channels.referee(), [this](const referee_t& r) {
-      referee_horizon_ = r.game_over ? std::numeric_limits<double>::infinity()
-                                     : r.sim_time + world_.dt() / 2;
+      referee_horizon_ =
+          r.game_over ? std::numeric_limits<double>::infinity() : r.sim_time + world_.dt() / 2;
     });
   }
   bus_.subscribe<sync_horizon_t>(channels.extra(kSyncHorizonChannel),
@@ -83,6 +83,14 @@ PhysicsServer::PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNam
                                    radio_ready_ = h.waiting_for != "registration";
                                    horizon_bound_ = h.waiting_for.empty() ? "?" : h.waiting_for;
                                  });
+  if (options_.truth_on_demand) {
+    bus_.subscribe<truth_demand_t>(
+        channels.extra(kTruthDemandChannel), [this](const truth_demand_t& d) {
+          const std::string problem =
+              demand_.on_demand(d, world_.time(), world_.dt(), Clock::now());
+          if (!problem.empty()) log_.warn("demand", "ignored a SIM_TRUTH_DEMAND: " + problem);
+        });
+  }
   bus_.subscribe<vision_schedule_t>(channels.extra(kVisionScheduleChannel),
                                     [this](const vision_schedule_t&) { vision_heard_ = true; });
   bus_.subscribe<sim_commands_t>(channels(Channel::SimCommands), [this](const sim_commands_t& p) {
@@ -123,6 +131,9 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
     auto now = Clock::now();
     if (now >= next_geometry) {
       publish_geometry();
+      for (const std::string& gone : demand_.expire(now, std::chrono::seconds(3))) {
+        spdlog::info("truth demand of '{}' forgotten: not heard for 3 s", gone);
+      }
       if (idle()) publish_state();  // late joiners learn the time while nothing moves
       next_geometry = now + geometry_period;
     }
@@ -177,6 +188,12 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
   }
   const auto end = Clock::now();
   stats_.wall_seconds = seconds_between(start, end);
+  stats_.demand_late = demand_.late();
+  if (options_.truth_on_demand) {
+    spdlog::info(
+        "truth on demand: {} states published for {} steps; {} demanded instants came late",
+        stats_.states_published, stats_.steps, demand_.late());
+  }
   stats_.drift = pacer_.paced() && !paused_ && !sync_ ? pacer_.drift(end, world_.step_index()) : 0;
   if (options_.sync && first_state_sent_) {
     stats_.sync_run_seconds = seconds_between(first_state_wall_, end);
@@ -186,8 +203,9 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
   if (sync_ || !stats_.sync_waits.empty()) log_sync_waits();
   spdlog::info("physics stopping: {} steps, {:.3f} s of sim time in {:.3f} s of wall time{}",
                stats_.steps, world_.time(), stats_.wall_seconds,
-               pacer_.paced() && !sync_ ? fmt::format(", {:+.1f} ms from the schedule", stats_.drift * 1e3)
-                              : std::string());
+               pacer_.paced() && !sync_
+                   ? fmt::format(", {:+.1f} ms from the schedule", stats_.drift * 1e3)
+                   : std::string());
   return 0;
 }
 
@@ -237,6 +255,12 @@ void PhysicsServer::step_and_publish(bool publish_every_step) {
   world_.step();
   ++stats_.steps;
   const double rate = world_.setup().physics.state_publish_rate;
+  if (options_.truth_on_demand && !publish_every_step && !options_.sync_referee &&
+      !demand_.empty()) {
+    // Only what someone asked for: ground truth costs only its consumers.
+    if (demand_.wanted(world_.time(), world_.dt())) publish_state();
+    return;
+  }
   if (publish_every_step || rate <= 0 || options_.sync_referee) {
     publish_state();
   } else if (world_.time() >= next_state_time_ - world_.dt() / 2) {
@@ -256,6 +280,7 @@ void PhysicsServer::publish_state() {
   state_.encode(state_buffer_.data(), 0, static_cast<int>(size));
   bus_.lcm().publish(state_channel_, state_buffer_.data(), static_cast<unsigned int>(size));
   ++stats_.states_published;
+  demand_.published(world_.time());
 }
 
 void PhysicsServer::publish_geometry() {
@@ -303,6 +328,7 @@ void PhysicsServer::on_control(const sim_control_t& request) {
       return;
     case sim_control_t::RESET:
       world_.reset();
+      demand_.reset();
       next_state_time_ = first_state_time();
       pacer_.restart(now, world_.step_index());
       publish_state();

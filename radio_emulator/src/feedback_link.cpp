@@ -29,12 +29,17 @@ std::vector<radio_feedback_t> FeedbackLink::on_sim_state(const sim_state_t& stat
   }
   std::vector<radio_feedback_t> due;
   for (auto& [release_time, feedback] : in_flight_.pop_due(now + kTimeEpsilon)) {
-    (void)release_time;
-    feedback.t_sent = now;
+    // The delivery time itself, not the state's that noticed it: the same
+    // whichever states physics publishes (it may publish only some on demand).
+    feedback.t_sent = release_time;
     ++stats_.delivered;
     due.push_back(std::move(feedback));
   }
   return due;
+}
+
+double FeedbackLink::next_sample() const {
+  return next_sample_ == kLongAgo ? 0.0 : next_sample_;
 }
 
 void FeedbackLink::sample(const sim_state_t& state) {

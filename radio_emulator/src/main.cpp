@@ -8,6 +8,8 @@
 #include <optional>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/sim_state_t.hpp>
+#include <ubersim/truth_demand_t.hpp>
+#include <vector>
 
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
@@ -93,9 +95,28 @@ int run(const Options& options) {
   }
   spdlog::info("sim time from {}; LCM {}", channels(Channel::SimState), options.common.lcm_url);
 
+  // What ground truth this emulator needs, for physics --truth-on-demand:
+  // said whenever it changes and once a second, and first before any horizon
+  // (physics in sync mode sends its first state after both).
+  const std::string demand_channel = channels.extra(kTruthDemandChannel);
+  std::vector<std::uint8_t> last_demand;
+  auto last_demand_wall = std::chrono::steady_clock::time_point{};
+  const auto announce_demand = [&] {
+    const truth_demand_t demand = emulator.truth_demand();
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(demand.getEncodedSize()));
+    demand.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    const auto now = std::chrono::steady_clock::now();
+    if (bytes == last_demand && now - last_demand_wall < std::chrono::seconds(1)) return;
+    bus.publish(demand_channel, demand);
+    last_demand = std::move(bytes);
+    last_demand_wall = now;
+  };
+
   int status = 0;
   while (!shutdown.requested()) {
+    announce_demand();
     bus.wait_and_handle(sync ? 50 : 200, &shutdown);
+    announce_demand();
     if (sync && !sync->tick()) {
       status = 1;
       break;

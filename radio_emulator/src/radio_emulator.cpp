@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <cmath>
 #include <ubersim/team_t.hpp>
 
 namespace ubersim::radio {
@@ -40,6 +42,9 @@ void RadioEmulator::on_sim_state(const sim_state_t& state) {
       break;
   }
 
+  last_state_wall_ = std::chrono::steady_clock::now();
+  speed_factor_ = state.paused || !(state.dt > 0) ? 0.0 : state.speed_factor;
+  step_ = state.dt;
   for (auto& team_link : links_) team_link.robots.clear();
   for (const auto& robot : state.robots) {
     if (robot.team != team_t::YELLOW && robot.team != team_t::BLUE) continue;
@@ -66,7 +71,18 @@ void RadioEmulator::on_radio_packet(Team channel_team, const radio_packet_t& pac
       validate_packet(packet, channel_team, team_link.profile.limits, team_link.robots);
   for (const auto& finding : validated.findings) record(channel_team, finding);
   if (!validated.packet_ok || validated.packet.commands.empty()) return;
-  publish_commands(team_link.commands.offer(std::move(validated.packet), clock_.now()));
+  publish_commands(team_link.commands.offer(std::move(validated.packet), arrival_time()));
+}
+
+double RadioEmulator::arrival_time() const {
+  if (speed_factor_ <= 0) return clock_.now();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - last_state_wall_).count();
+  // In whole physics steps, as with a state every step (so the same packets
+  // get the same stamps whichever states physics sends); at most 0.1 s: beyond
+  // that physics has stopped or fell behind.
+  const double steps = std::floor(wall * speed_factor_ / step_);
+  return clock_.now() + std::min(0.1, steps * step_);
 }
 
 void RadioEmulator::on_answer(Team channel_team, const radio_packet_t& packet, double t_arrival) {
@@ -98,6 +114,23 @@ void RadioEmulator::record(Team team, const Finding& finding) {
   if (finding.robot_id >= 0) message += " (robot " + std::to_string(finding.robot_id) + ")";
   if (!finding.detail.empty()) message += ": " + finding.detail;
   warnings_.warn(std::string(team_name(team)) + ":" + problem_name(finding.problem), message);
+}
+
+truth_demand_t RadioEmulator::truth_demand() const {
+  truth_demand_t demand{};
+  demand.consumer = "radio";
+  for (const auto& team_link : links_) {
+    if (team_link.feedback.rate() > 0) {
+      demand.period.push_back(1.0 / team_link.feedback.rate());
+      demand.phase.push_back(team_link.feedback.next_sample());
+    }
+    if (!sync_ && team_link.commands.has_waiting_packet()) {
+      demand.instants.push_back(team_link.commands.busy_until());
+    }
+  }
+  demand.num_periodic = static_cast<std::int32_t>(demand.period.size());
+  demand.num_instants = static_cast<std::int32_t>(demand.instants.size());
+  return demand;
 }
 
 TeamReport RadioEmulator::report(Team team) const {

@@ -13,6 +13,7 @@
 #include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
+#include <ubersim/truth_demand_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
 #include <ubersim/vision_geometry_t.hpp>
 
@@ -125,6 +126,13 @@ int run(const Options& options) {
   const auto frame_period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(1.0 / options.display_rate));
   auto next_frame = Clock::now();
+  truth_demand_t demand{};
+  demand.consumer = "viewer";
+  demand.num_periodic = 1;
+  demand.period = {1.0 / options.display_rate};
+  demand.phase = {0.0};
+  const std::string demand_channel = channels.extra(kTruthDemandChannel);
+  auto next_demand = Clock::now();
   while (!shutdown.requested()) {
     const auto wait =
         std::chrono::duration_cast<std::chrono::milliseconds>(next_frame - Clock::now());
@@ -140,6 +148,12 @@ int run(const Options& options) {
       bus.publish(channels(Channel::SimControl), *parsed.request);
     }
     const auto now = Clock::now();
+    if (now >= next_demand) {
+      // Ground truth at the display rate is all a page can show (physics
+      // --truth-on-demand publishes no more for the viewer's sake).
+      bus.publish(demand_channel, demand);
+      next_demand = now + std::chrono::seconds(1);
+    }
     if (now < next_frame) continue;
     next_frame += frame_period;
     if (next_frame < now) next_frame = now + frame_period;  // fell behind: do not catch up

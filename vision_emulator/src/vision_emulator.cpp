@@ -109,6 +109,23 @@ double VisionEmulator::next_capture() const {
   return next;
 }
 
+truth_demand_t VisionEmulator::truth_demand() const {
+  truth_demand_t demand{};
+  demand.consumer = "vision";
+  for (const Camera& camera : cameras_) {
+    demand.period.push_back(1.0 / camera.timing.frame_rate);
+    demand.phase.push_back(camera.timing.phase);
+    for (double t : camera.pending.release_times()) demand.instants.push_back(t);
+    // Before the first state the first capture is at the phase (a run starts at 0).
+    const double next =
+        camera.schedule.started() ? camera.schedule.next_instant() : camera.schedule.instant(0);
+    demand.instants.push_back(next + latency_of(camera));
+  }
+  demand.num_periodic = static_cast<std::int32_t>(demand.period.size());
+  demand.num_instants = static_cast<std::int32_t>(demand.instants.size());
+  return demand;
+}
+
 double VisionEmulator::next_publication() const {
   double next = std::numeric_limits<double>::infinity();
   for (const Camera& camera : cameras_) {

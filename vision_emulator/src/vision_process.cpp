@@ -75,6 +75,7 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
   // listener (the radio emulator in sync mode) knows when a frame was
   // published before any answer to it can reach it.
   const std::string schedule_channel = options.channels.extra(kVisionScheduleChannel);
+  const std::string demand_channel = options.channels.extra(kTruthDemandChannel);
   vision_schedule_t schedule{};
   // Until the first state: "listening, no state yet" (step -1), which is what
   // physics in sync mode waits for before its first state.
@@ -87,6 +88,9 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
                               bool always) {
     const double next = emulator.next_publication();
     if (!always && frames.empty() && next == announced_next) return;
+    // What ground truth it needs next, before the schedule (physics in sync
+    // mode starts on the schedule, and must know the demand by then).
+    bus.publish(demand_channel, emulator.truth_demand());
     announced_next = next;
     schedule.t_state = state.sim_time;
     schedule.step = state.step;
@@ -113,6 +117,7 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
     schedule.camera_id.clear();
     schedule.frame_number.clear();
     schedule.t_capture.clear();
+    bus.publish(demand_channel, emulator.truth_demand());
     bus.publish(schedule_channel, schedule);
     last_schedule = Clock::now();
   };

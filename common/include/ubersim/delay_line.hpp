@@ -29,6 +29,11 @@ class DelayLine {
   }
 
   void clear() { items_.clear(); }
+  std::vector<double> release_times() const {
+    std::vector<double> times;
+    for (const auto& item : items_) times.push_back(item.first);
+    return times;
+  }
   // Release time of the oldest item (the line must not be empty).
   double front_release() const { return items_.front().first; }
   bool empty() const { return items_.empty(); }

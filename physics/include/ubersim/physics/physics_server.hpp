@@ -24,6 +24,7 @@
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/physics/pacer.hpp"
+#include "ubersim/physics/truth_demand.hpp"
 #include "ubersim/physics/world.hpp"
 
 namespace ubersim {
@@ -43,11 +44,15 @@ struct ServerOptions {
   // placement it sends applies at the step after that state; SIM_STATE then
   // goes out after every step. Physics holds while no referee speaks.
   bool sync_referee = false;
+  // SIM_STATE only at the instants consumers ask for on SIM_TRUTH_DEMAND
+  // (every step while nobody has asked): docs/sync.md, "Ground truth on demand".
+  bool truth_on_demand = false;
 };
 
 struct ServerStats {
   std::int64_t steps = 0;
   std::int64_t states_published = 0;
+  std::uint64_t demand_late = 0;  // demanded instants physics had passed when the demand came
   std::int64_t controls_handled = 0;
   std::int64_t packets_received = 0;
   std::int64_t schedule_restarts = 0;  // times real time could not be kept
@@ -106,7 +111,8 @@ class PhysicsServer {
   ServerStats stats_;
   ThrottledLog log_;
   bool sync_ = false;
-  double horizon_ = 0;  // s, from SIM_SYNC_HORIZON
+  TruthDemand demand_;
+  double horizon_ = 0;      // s, from SIM_SYNC_HORIZON
   double referee_horizon_;  // s, from REFEREE (+inf without --sync-referee)
   std::string horizon_bound_ = "the radio emulator (no SIM_SYNC_HORIZON yet)";
   // Sync mode publishes its first state only once the vision emulator listens

@@ -56,6 +56,7 @@ class CommandLink {
   double earliest_apply(double earliest_arrival) const;
 
   bool has_waiting_packet() const { return waiting_.has_value(); }
+  double busy_until() const { return busy_until_; }
   const CommandLinkStats& stats() const { return stats_; }
 
  private:

@@ -6,9 +6,8 @@
 // FEEDBACK_LATENCY (+ jitter, order kept) later.
 //
 // Unlike commands (which physics holds until t_apply), feedback is published by
-// this emulator itself, on the first SIM_STATE at or after its delivery time:
-// t_sent is that SIM_STATE's time, so it lies within one physics step after
-// t_measured + latency.
+// this emulator itself, on the first SIM_STATE at or after its delivery time;
+// t_sent is the delivery time, t_measured + latency (+ jitter).
 #include <cstdint>
 #include <ubersim/radio_feedback_t.hpp>
 #include <ubersim/sim_state_t.hpp>
@@ -42,6 +41,10 @@ class FeedbackLink {
   void set_profile(const RadioProfile& profile) { profile_ = profile; }
 
   const FeedbackLinkStats& stats() const { return stats_; }
+  // Sim time of the next sample (0 before the first state); samples follow at
+  // 1 / FEEDBACK_RATE, so physics on demand is asked for states at those instants.
+  double next_sample() const;
+  double rate() const { return profile_.feedback_rate; }
 
  private:
   void sample(const sim_state_t& state);

@@ -7,6 +7,7 @@
 // with physics paced in real time the arrival time has a granularity of one
 // physics step (4.2 ms at 240 Hz).
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -16,6 +17,7 @@
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/sim_commands_t.hpp>
 #include <ubersim/sim_state_t.hpp>
+#include <ubersim/truth_demand_t.hpp>
 
 #include "ubersim/logging.hpp"
 #include "ubersim/radio/command_link.hpp"
@@ -69,6 +71,11 @@ class RadioEmulator {
   std::string apply_realism(const emulator_realism_t& realism);
   const RadioProfile& profile(Team team) const { return link(team).profile; }
 
+  // The ground truth this emulator needs (SIM_TRUTH_DEMAND): each team's
+  // feedback samples and, outside sync mode, the moment a waiting packet's
+  // link frees (sync mode transmits it without a state).
+  truth_demand_t truth_demand() const;
+
   TeamReport report(Team team) const;
   std::string summary(Team team) const;  // one line for the log
   std::uint64_t rejected_sim_states() const { return rejected_sim_states_; }
@@ -101,6 +108,13 @@ class RadioEmulator {
   std::uint64_t rejected_sim_states_ = 0;
   std::uint64_t resets_ = 0;
   bool sync_ = false;
+  // Physics may publish only some states (on demand): between two, a packet's
+  // arrival is the last state's time plus the wall time since, times the speed
+  // (paced modes only; as fast as possible there is no better guess).
+  double arrival_time() const;
+  std::chrono::steady_clock::time_point last_state_wall_{};
+  double speed_factor_ = 0;
+  double step_ = 1;  // s, physics' dt
 };
 
 }  // namespace ubersim::radio

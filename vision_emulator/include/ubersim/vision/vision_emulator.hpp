@@ -15,6 +15,7 @@
 #include <ubersim/emulator_realism_t.hpp>
 #include <ubersim/field_geometry_t.hpp>
 #include <ubersim/sim_state_t.hpp>
+#include <ubersim/truth_demand_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
 #include <ubersim/vision_geometry_t.hpp>
 #include <vector>
@@ -81,6 +82,10 @@ class VisionEmulator {
   double next_publication() const;
   // Next capture instant of any camera (+inf before the first state).
   double next_capture() const;
+  // The ground truth this emulator needs (SIM_TRUTH_DEMAND, for physics
+  // --truth-on-demand): each camera's capture instants, the publication
+  // times of the frames waiting, and that of each camera's next frame.
+  truth_demand_t truth_demand() const;
 
   const VisionProfile& profile() const { return profile_; }
   const VisionStats& stats() const { return stats_; }

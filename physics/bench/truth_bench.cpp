@@ -1,0 +1,258 @@
+// ubersim_truth_bench: what ground truth costs (docs/sync.md, "Ground truth on
+// demand"), every figure against a baseline measured in the same run:
+//   1. real time, physics + vision + radio (demo teams on both sides drive the
+//      robots; their CPU is not counted): CPU share of one core, SIM_STATE every
+//      step and on demand, against the World stepped alone in real time;
+//   2. as fast as possible, physics + vision + radio (no teams): sim seconds per
+//      wall second against the physics alone (ubersim_physics_bench's server);
+//   3. what each extra idle listener on the group adds to physics' CPU share.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <regex>
+#include <sstream>
+#include <thread>
+
+#include "ubersim/child_process.hpp"
+#include "ubersim/config_paths.hpp"
+#include "ubersim/physics/world.hpp"
+#include "ubersim/process_main.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using ubersim::ChildProcess;
+
+fs::path own_dir() {
+  return fs::read_symlink("/proc/self/exe").parent_path();
+}
+std::string program(const char* name) {
+  return (own_dir() / name).string();
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// CPU seconds (user + system) of a process, from /proc/<pid>/stat.
+double cpu_seconds(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text;
+  std::getline(in, text);
+  std::istringstream fields(text.substr(text.rfind(')') + 2));
+  std::string field;
+  unsigned long long utime = 0, stime = 0;
+  for (int i = 3; i <= 15 && fields >> field; ++i) {
+    if (i == 14) utime = std::stoull(field);
+    if (i == 15) stime = std::stoull(field);
+  }
+  return static_cast<double>(utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
+}
+
+double thread_cpu_seconds() {
+  timespec t{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// The World alone, stepped in real time for `seconds`: its share of one core.
+double stepping_alone(const std::string& scenario, double seconds) {
+  ubersim::physics::World world(ubersim::physics::load_world_setup(
+      ubersim::default_config_dir().string(), scenario, "default"));
+  const auto start = Clock::now();
+  const double cpu0 = thread_cpu_seconds();
+  std::int64_t step = 0;
+  const auto dt = std::chrono::duration<double>(world.dt());
+  while (Clock::now() - start < std::chrono::duration<double>(seconds)) {
+    world.step();
+    ++step;
+    std::this_thread::sleep_until(
+        start + std::chrono::duration_cast<Clock::duration>(dt * static_cast<double>(step)));
+  }
+  return (thread_cpu_seconds() - cpu0) /
+         std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+struct SetOptions {
+  std::string scenario;
+  std::string url;
+  bool on_demand = false;
+  bool real_time = true;
+  bool teams = true;
+  int idle_listeners = 0;
+  double seconds = 10;
+};
+
+struct SetResult {
+  double physics = 0, vision = 0, radio = 0;  // shares of one core
+  double speed = 0;                           // sim s per wall s (as fast as possible)
+  double total() const { return physics + vision + radio; }
+};
+
+SetResult run_set(const SetOptions& o, const fs::path& work) {
+  const std::string url = "--lcm-url=" + o.url;
+  std::vector<std::string> physics_argv{
+      program("ubersim_physics"), url, "--scenario", o.scenario, "--speed",
+      o.real_time ? "1" : "0"};
+  if (o.on_demand) physics_argv.push_back("--truth-on-demand");
+  if (!o.real_time)
+    physics_argv.insert(physics_argv.end(), {"--duration", std::to_string(o.seconds)});
+  std::vector<std::unique_ptr<ChildProcess>> others;
+  others.push_back(std::make_unique<ChildProcess>(
+      std::vector<std::string>{program("ubersim_vision"), url}, (work / "vision.log").string()));
+  others.push_back(std::make_unique<ChildProcess>(
+      std::vector<std::string>{program("ubersim_radio"), url}, (work / "radio.log").string()));
+  if (o.teams) {
+    for (const char* team : {"yellow", "blue"}) {
+      others.push_back(std::make_unique<ChildProcess>(
+          std::vector<std::string>{program("ubersim_demo_team"), url, "--team", team}, ""));
+    }
+  }
+  for (int i = 0; i < o.idle_listeners; ++i) {
+    // Joins the group and reads every datagram, records none: an idle listener.
+    others.push_back(std::make_unique<ChildProcess>(
+        std::vector<std::string>{program("ubersim_logger"), url, "--channels", "^NONE$",
+                                 "/dev/null"},
+        ""));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ChildProcess physics(physics_argv, (work / "physics.log").string());
+  SetResult r;
+  if (!o.real_time) {
+    if (physics.wait(600) != 0) throw std::runtime_error("physics failed: " + physics.log());
+    std::smatch m;
+    const std::string log = read_file(work / "physics.log");
+    if (!std::regex_search(log, m,
+                           std::regex(R"(([0-9.]+) s of sim time in ([0-9.]+) s of wall time)"))) {
+      throw std::runtime_error("no figure in physics.log: " + log);
+    }
+    r.speed = std::stod(m[1]) / std::stod(m[2]);
+    return r;
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(2));  // warm-up
+  const pid_t pids[3] = {physics.pid(), others[0]->pid(), others[1]->pid()};
+  double before[3], after[3];
+  for (int i = 0; i < 3; ++i) before[i] = cpu_seconds(pids[i]);
+  const auto start = Clock::now();
+  std::this_thread::sleep_for(std::chrono::duration<double>(o.seconds));
+  for (int i = 0; i < 3; ++i) after[i] = cpu_seconds(pids[i]);
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+  r.physics = (after[0] - before[0]) / wall;
+  r.vision = (after[1] - before[1]) / wall;
+  r.radio = (after[2] - before[2]) / wall;
+  return r;
+}
+
+double physics_alone(const std::string& scenario, const std::string& model, double seconds,
+                     const fs::path& work) {
+  const fs::path out = work / "alone.txt";
+  ChildProcess bench({program("ubersim_physics_bench"), "--scenarios", scenario, "--models", model,
+                      "--only", "server", "--repeat", "1", "--seconds", std::to_string(seconds)},
+                     out.string());
+  if (bench.wait(600) != 0) throw std::runtime_error("ubersim_physics_bench failed");
+  std::smatch m;
+  const std::string text = read_file(out);
+  if (!std::regex_search(text, m, std::regex(scenario + R"(\s+\S+\s+\S+\s+([0-9.]+))"))) {
+    throw std::runtime_error("no figure in: " + text);
+  }
+  return std::stod(m[1]);
+}
+
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string one, five, fifteen;
+  in >> one >> five >> fifteen;
+  return one + " " + five + " " + fifteen;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"ubersim truth benchmark: what ground truth costs, against baselines of this run"};
+  double seconds = 10;
+  std::string url = "udpm://239.255.76.67:7793?ttl=0";
+  std::vector<std::string> scenarios{"division_a_11v11", "division_a_11v11_planar"};
+  int listeners = 4;
+  app.add_option("--seconds", seconds, "measuring window / sim seconds per run")
+      ->capture_default_str();
+  app.add_option("--lcm-url", url, "LCM URL of the runs (a port of their own)")
+      ->capture_default_str();
+  app.add_option("--scenarios", scenarios, "scenarios")->capture_default_str();
+  app.add_option("--listeners", listeners, "idle listeners added for figure 3")
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  char pattern[] = "/tmp/ubersim_truth_bench_XXXXXX";
+  if (::mkdtemp(pattern) == nullptr) throw std::runtime_error("mkdtemp failed");
+  const fs::path work = pattern;
+  std::printf("ubersim truth benchmark, %g s per figure; load average at start %s\n\n", seconds,
+              load_average().c_str());
+  for (const std::string& scenario : scenarios) {
+    const bool planar = scenario.find("planar") != std::string::npos;
+    std::printf("== %s\n", scenario.c_str());
+    const double alone = stepping_alone(scenario, seconds);
+    std::printf("1. real time, CPU share of one core (demo teams drive, not counted):\n");
+    std::printf("   stepping the World alone            %6.2f %%\n", 100 * alone);
+    for (bool on_demand : {false, true}) {
+      SetOptions o;
+      o.scenario = scenario;
+      o.url = url;
+      o.on_demand = on_demand;
+      o.seconds = seconds;
+      const SetResult r = run_set(o, work);
+      std::printf(
+          "   physics+vision+radio, %-10s     %6.2f %% (physics %.2f, vision %.2f, radio %.2f) "
+          "= %.2f x stepping alone\n",
+          on_demand ? "on demand" : "every step", 100 * r.total(), 100 * r.physics, 100 * r.vision,
+          100 * r.radio, r.total() / alone);
+    }
+    const std::string alone_scenario = std::regex_replace(scenario, std::regex("_planar$"), "");
+    const double alone_speed =
+        physics_alone(alone_scenario, planar ? "planar" : "jointed", 2 * seconds, work);
+    std::printf("2. as fast as possible, sim s per wall s (no teams):\n");
+    std::printf("   physics alone (in-process bus)      %6.1f x\n", alone_speed);
+    for (bool on_demand : {false, true}) {
+      SetOptions o;
+      o.scenario = scenario;
+      o.url = url;
+      o.on_demand = on_demand;
+      o.real_time = false;
+      o.teams = false;
+      o.seconds = 2 * seconds;
+      const SetResult r = run_set(o, work);
+      std::printf("   physics+vision+radio, %-10s     %6.1f x = %3.0f %% of the physics alone\n",
+                  on_demand ? "on demand" : "every step", r.speed, 100 * r.speed / alone_speed);
+    }
+    std::printf("3. each extra idle listener on the group, added to physics' CPU share:\n");
+    for (bool on_demand : {false, true}) {
+      SetOptions o;
+      o.scenario = scenario;
+      o.url = url;
+      o.on_demand = on_demand;
+      o.seconds = seconds;
+      const SetResult without = run_set(o, work);
+      o.idle_listeners = listeners;
+      const SetResult with = run_set(o, work);
+      std::printf("   %-10s  physics %.2f %% -> %.2f %% with %d listeners: %+.3f %% each\n",
+                  on_demand ? "on demand" : "every step", 100 * without.physics, 100 * with.physics,
+                  listeners, 100 * (with.physics - without.physics) / listeners);
+    }
+    std::printf("\n");
+    std::fflush(stdout);
+  }
+  fs::remove_all(work);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ubersim::run_main("ubersim_truth_bench", [&] { return run(argc, argv); });
+}
