@@ -20,7 +20,16 @@ function(ubersim_generate_lcm_types)
     DEPENDS ${lcm_paths}
     COMMENT "lcm-gen: C++ message types"
     VERBATIM)
-  add_custom_target(${ARG_TARGET}_gen DEPENDS ${headers})
+  # The bounds every decode checks first (see gen_encoded_bounds.py for why).
+  set(bounds_header ${cpp_dir}/ubersim/encoded_bounds.hpp)
+  set(bounds_generator ${CMAKE_CURRENT_SOURCE_DIR}/gen_encoded_bounds.py)
+  add_custom_command(
+    OUTPUT ${bounds_header}
+    COMMAND ${Python3_EXECUTABLE} ${bounds_generator} ${bounds_header} ${lcm_paths}
+    DEPENDS ${lcm_paths} ${bounds_generator} ${headers}
+    COMMENT "encoded bounds of the LCM message types"
+    VERBATIM)
+  add_custom_target(${ARG_TARGET}_gen DEPENDS ${headers} ${bounds_header})
   add_library(${ARG_TARGET} INTERFACE)
   add_dependencies(${ARG_TARGET} ${ARG_TARGET}_gen)
   target_include_directories(${ARG_TARGET} SYSTEM INTERFACE ${cpp_dir})

@@ -25,6 +25,8 @@ add_library(ubersim::ode INTERFACE IMPORTED)
 target_link_libraries(ubersim::ode INTERFACE PkgConfig::ODE)
 
 # --- header/library packages with CMake configs --------------------------------
+# lcmtypes/gen_encoded_bounds.py writes the decode bounds at build time.
+find_package(Python3 COMPONENTS Interpreter REQUIRED)
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(spdlog REQUIRED)
 find_package(CLI11 REQUIRED)

@@ -45,4 +45,13 @@ std::uint64_t ThrottledLog::count(const std::string& key) const {
   return found == entries_.end() ? 0 : found->second.count;
 }
 
+std::string ThrottledLog::counts() const {
+  std::string text;
+  for (const auto& [key, entry] : entries_) {
+    if (!text.empty()) text += ' ';
+    text += key + "=" + std::to_string(entry.count);
+  }
+  return text.empty() ? "none" : text;
+}
+
 }  // namespace ubersim

@@ -30,6 +30,7 @@
 #include "child_process.hpp"
 #include "dds_test_support.hpp"
 #include "sample_messages.hpp"
+#include "ubersim/bounded_decode.hpp"
 #include "ubersim/channels.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/dds_bridge/convert_radio.hpp"
@@ -346,7 +347,7 @@ int run(const Options& options) {
   std::size_t sink = 0;
   for (int i = 0; i < kRounds; ++i) {
     ubersim::sim_state_t decoded;
-    decoded.decode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    ubersim::decode_bounded(bytes.data(), bytes.size(), decoded);  // what the bridge pays
     sink += decoded.robots.size();
   }
   const double decode_us = 1e6 * std::chrono::duration<double>(Clock::now() - t0).count() / kRounds;

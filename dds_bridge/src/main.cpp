@@ -58,16 +58,9 @@ int run(const Options& options) {
   if (geometry != nullptr && dds::carries_lcm_to_dds(geometry->direction))
     bridge.request_sim_geometry();
 
-  while (!shutdown.requested()) {
-    pollfd fds[3] = {{bus.lcm().getFileno(), POLLIN, 0},
-                     {bridge.wake_fd(), POLLIN, 0},
-                     {shutdown.fd(), POLLIN, 0}};
-    if (poll(fds, 3, 500) < 0 && errno != EINTR)
-      throw std::runtime_error(std::string("poll: ") + std::strerror(errno));
-    // DDS first: its samples waited in Cyclone's reader cache, LCM's in a socket.
-    bridge.take_dds();
-    bus.handle_pending();
-  }
+  // DDS's samples wait in Cyclone's reader cache; its listener signals wake_fd.
+  bus.watch(bridge.wake_fd(), [&bridge] { bridge.take_dds(); });
+  while (!shutdown.requested()) bus.wait_and_handle(500, &shutdown);
 
   for (const std::string& line : bridge.summary()) spdlog::info("{}", line);
   spdlog::info("malformed LCM messages dropped: {}", bus.malformed_count());

@@ -55,13 +55,14 @@ WorldSetup setup_for(const std::string& config_dir, const std::string& scenario,
 // Feeds SIM_COMMANDS from inside the bus, every kStepsPerCommand states,
 // without decoding the states (a consumer's cost is not the server's).
 struct CommandFeeder {
-  lcm::LCM* lcm = nullptr;
+  MessageBus* bus = nullptr;
   std::string commands_channel;
   std::vector<std::pair<Team, int>> robots;
   std::int64_t states = 0;
   double dt = 0;
 
-  static void on_state(const lcm::ReceiveBuffer*, const std::string&, CommandFeeder* self) {
+  void on_state() {
+    CommandFeeder* self = this;
     if (self->states++ % kStepsPerCommand != 0) return;
     const double t = static_cast<double>(self->states - 1) * self->dt;
     for (Team team : kTeams) {
@@ -82,7 +83,7 @@ struct CommandFeeder {
         packet.commands.push_back(c);
       }
       packet.num_commands = static_cast<int32_t>(packet.commands.size());
-      self->lcm->publish(self->commands_channel, &packet);
+      self->bus->publish(self->commands_channel, packet);
     }
   }
 };
@@ -97,11 +98,12 @@ double run_server(const WorldSetup& setup, const std::string& url, double sim_se
   options.duration = sim_seconds;
   PhysicsServer server(setup, bus, channels, options);
   CommandFeeder feeder;
-  feeder.lcm = &bus.lcm();
+  feeder.bus = &bus;
   feeder.commands_channel = channels(Channel::SimCommands);
   feeder.dt = server.world().dt();
   for (const auto& r : server.world().robots()) feeder.robots.emplace_back(r->team(), r->id());
-  bus.lcm().subscribeFunction(channels(Channel::SimState), &CommandFeeder::on_state, &feeder);
+  bus.subscribe_raw(channels(Channel::SimState),
+                    [&feeder](const void*, std::size_t) { feeder.on_state(); });
   server.run(nullptr);
   if (stats_out != nullptr) *stats_out = server.stats();
   return sim_seconds / server.stats().wall_seconds;

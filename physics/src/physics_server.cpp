@@ -1,7 +1,5 @@
 #include "ubersim/physics/physics_server.hpp"
 
-#include <poll.h>
-
 #include <cmath>
 #include <limits>
 #include <ubersim/referee_t.hpp>
@@ -230,19 +228,7 @@ void PhysicsServer::log_sync_waits() const {
 }
 
 void PhysicsServer::wait_until(Clock::time_point deadline, const ShutdownSignal* shutdown) {
-  const auto now = Clock::now();
-  const auto wait = deadline > now ? deadline - now : Clock::duration::zero();
-  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(wait).count();
-  timespec timeout{static_cast<time_t>(ns / 1000000000), static_cast<long>(ns % 1000000000)};
-  pollfd fds[2] = {{bus_.lcm().getFileno(), POLLIN, 0}, {-1, POLLIN, 0}};
-  nfds_t count = 1;
-  if (shutdown != nullptr) {
-    fds[1].fd = shutdown->fd();
-    count = 2;
-  }
-  if (::ppoll(fds, count, &timeout, nullptr) > 0 && (fds[0].revents & POLLIN)) {
-    bus_.handle_pending();
-  }
+  bus_.wait_until_and_handle(deadline, shutdown);
 }
 
 double PhysicsServer::first_state_time() const {
@@ -278,7 +264,7 @@ void PhysicsServer::publish_state() {
   const auto size = static_cast<std::size_t>(state_.getEncodedSize());
   if (state_buffer_.size() < size) state_buffer_.resize(size);
   state_.encode(state_buffer_.data(), 0, static_cast<int>(size));
-  bus_.lcm().publish(state_channel_, state_buffer_.data(), static_cast<unsigned int>(size));
+  bus_.publish_encoded(state_channel_, state_buffer_.data(), size);
   ++stats_.states_published;
   demand_.published(world_.time());
 }
@@ -374,7 +360,10 @@ void PhysicsServer::on_control(const sim_control_t& request) {
       acknowledge(request, true, "geometry published");
       return;
     case sim_control_t::PING:
-      acknowledge(request, true, "pong");
+      // The status reply: what this process dropped, per kind and channel.
+      acknowledge(request, true,
+                  "pong; malformed messages dropped: " + bus_.bad_input().counts() +
+                      "; other warnings (rejected contents, pacing): " + log_.counts());
       return;
     case sim_control_t::DEFINE_ROBOT_TYPE:
       try {

@@ -3,7 +3,6 @@
 #include "ubersim/ssl_bridge/datagram_decoding.hpp"
 
 #include <google/protobuf/stubs/logging.h>
-#include <poll.h>
 
 #include <algorithm>
 #include <array>
@@ -13,10 +12,20 @@ namespace ubersim::ssl {
 namespace {
 
 constexpr const char* kSender = "ubersim_ssl_bridge";
-
 // Datagrams taken from each socket per wakeup: a flood on one port cannot
 // starve LCM, the other ports or the shutdown signal.
 constexpr int kDatagramsPerWakeup = 64;
+
+template <class Handle>
+void drain(UdpSocket& socket, const Handle& handle) {
+  sockaddr_in from{};
+  for (int i = 0; i < kDatagramsPerWakeup; ++i) {
+    auto bytes = socket.receive(from);
+    if (!bytes) break;
+    handle(*bytes, from);
+  }
+}
+
 // SIM_CONTROL requests waiting for physics at once; a command arriving beyond
 // that is answered at once with an error, so a flood of commands costs neither
 // memory nor physics' time. (One command is a few requests; robot specs for
@@ -277,24 +286,26 @@ void SslBridge::run(const ShutdownSignal& shutdown) {
     spdlog::info("tracked frames to {}:{} (ttl {}, {} Hz)", options_.tracked_address,
                  options_.tracked_port, options_.tracked_ttl, options_.tracked_rate);
   }
+  if (!watching_sockets_) {
+    watching_sockets_ = true;
+    bus_.watch(control_socket_.fd(), [this] {
+      drain(control_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
+        handle_control_datagram(bytes, from);
+      });
+    });
+    bus_.watch(blue_socket_.fd(), [this] {
+      drain(blue_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
+        handle_robot_datagram(Team::Blue, bytes, from);
+      });
+    });
+    bus_.watch(yellow_socket_.fd(), [this] {
+      drain(yellow_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
+        handle_robot_datagram(Team::Yellow, bytes, from);
+      });
+    });
+  }
   while (!shutdown.requested()) {
-    std::array<pollfd, 5> fds{{{bus_.lcm().getFileno(), POLLIN, 0},
-                               {control_socket_.fd(), POLLIN, 0},
-                               {blue_socket_.fd(), POLLIN, 0},
-                               {yellow_socket_.fd(), POLLIN, 0},
-                               {shutdown.fd(), POLLIN, 0}}};
-    ::poll(fds.data(), fds.size(), 50);
-    bus_.handle_pending();
-    sockaddr_in from{};
-    for (int i = 0; i < kDatagramsPerWakeup; ++i) {
-      auto control = control_socket_.receive(from);
-      if (control) handle_control_datagram(*control, from);
-      auto blue = blue_socket_.receive(from);
-      if (blue) handle_robot_datagram(Team::Blue, *blue, from);
-      auto yellow = yellow_socket_.receive(from);
-      if (yellow) handle_robot_datagram(Team::Yellow, *yellow, from);
-      if (!control && !blue && !yellow) break;
-    }
+    bus_.wait_and_handle(50, &shutdown);
     expire_pending();
   }
 }

@@ -13,6 +13,7 @@
 #include <ubersim/sim_state_t.hpp>
 #include <ubersim/team_t.hpp>
 
+#include "ubersim/bounded_decode.hpp"
 #include "ubersim/cli.hpp"
 
 namespace e2e {
@@ -34,7 +35,10 @@ std::vector<RecordedPacket> read_packets(const std::string& log_path, double unt
   while (const lcm::LogEvent* event = log.readNextEvent()) {
     if (event->channel != "RADIO_YELLOW" && event->channel != "RADIO_BLUE") continue;
     RecordedPacket recorded;
-    if (recorded.packet.decode(event->data, 0, static_cast<int>(event->datalen)) < 0) continue;
+    if (!ubersim::decode_bounded(event->data, static_cast<std::size_t>(event->datalen),
+                                 recorded.packet)) {
+      continue;
+    }
     recorded.channel = event->channel;
     recorded.publish_time = recorded.packet.t_sent + kReactionTime;
     if (recorded.publish_time < until) packets.push_back(recorded);

@@ -39,7 +39,7 @@ void RadioDriver::send(int team, const ubersim::radio_packet_t& p) {
 }
 
 void RadioDriver::publish_raw(const std::string& channel, const std::vector<std::uint8_t>& bytes) {
-  bus_.lcm().publish(channel, bytes.data(), static_cast<unsigned>(bytes.size()));
+  bus_.publish_encoded(channel, bytes.data(), bytes.size());
 }
 
 bool RadioDriver::wait_for_ping(std::int64_t id, int timeout_ms) {

@@ -28,7 +28,7 @@ TEST(MessageBus, MalformedMessagesAreCountedAndDropped) {
   bus.subscribe<ubersim::radio_packet_t>("RADIO_BLUE",
                                          [&](const ubersim::radio_packet_t&) { ++delivered; });
   const uint8_t garbage[] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
-  for (int i = 0; i < 3; ++i) bus.lcm().publish("RADIO_BLUE", garbage, sizeof garbage);
+  for (int i = 0; i < 3; ++i) bus.publish_encoded("RADIO_BLUE", garbage, sizeof garbage);
   ubersim::radio_packet_t good{};
   bus.publish("RADIO_BLUE", good);
   bus.handle_pending();

@@ -186,8 +186,7 @@ void SimDriver::publish_state(const ubersim::sim_state_t& state) {
 }
 
 void SimDriver::publish_raw_state(const std::vector<std::uint8_t>& bytes) {
-  bus_.lcm().publish(channels_(ubersim::Channel::SimState), bytes.data(),
-                     static_cast<unsigned int>(bytes.size()));
+  bus_.publish_encoded(channels_(ubersim::Channel::SimState), bytes.data(), bytes.size());
 }
 
 void SimDriver::publish_geometry(const ubersim::field_geometry_t& geometry) {

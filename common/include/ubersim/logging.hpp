@@ -22,6 +22,9 @@ class ThrottledLog {
   bool warn(const std::string& key, const std::string& message);
   std::uint64_t count(const std::string& key) const;
   std::uint64_t total() const { return total_; }
+  // "none", or every key with its count: "decode:SIM_COMMANDS=12 nan:robot=1",
+  // for status replies that show what was dropped.
+  std::string counts() const;
 
  private:
   struct Entry {

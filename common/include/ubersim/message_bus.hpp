@@ -1,8 +1,20 @@
 #pragma once
-// Typed publish/subscribe over one LCM instance. LCM 1.3.1 has no lambda
-// subscribe and prints-and-drops undecodable messages on its own; here every
-// subscription decodes itself, so a malformed message is counted, logged
-// (throttled) and dropped, and a handler is any callable.
+// The one door to LCM. Typed publish/subscribe over one LCM instance, and the
+// one wait of a process's loop: LCM's socket, the shutdown signal and any other
+// file descriptor the process watches (a bridge's sockets, a wake pipe).
+//
+// Hostile input: every subscription decodes through decode_bounded (the
+// schema's bounds first, so no datagram can make decode allocate more than it
+// could hold); a malformed message is counted, logged (throttled) and dropped.
+// One wakeup handles at most kMaxMessagesPerWakeup messages, so a flood on the
+// bus cannot keep a loop from stepping, answering or seeing its shutdown; LCM
+// bounds what waits (its receive ring buffer and each subscription's queue,
+// where a flooded channel drops its own newest messages, not other channels').
+#include <poll.h>
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
@@ -10,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "ubersim/bounded_decode.hpp"
 #include "ubersim/logging.hpp"
 
 namespace ubersim {
@@ -18,6 +31,9 @@ class ShutdownSignal;
 
 class MessageBus {
  public:
+  static constexpr int kMaxMessagesPerWakeup = 1000;
+  using Clock = std::chrono::steady_clock;
+
   // Throws std::runtime_error when LCM cannot open the URL.
   explicit MessageBus(const std::string& url);
   MessageBus(const MessageBus&) = delete;
@@ -26,6 +42,11 @@ class MessageBus {
   template <class Msg>
   void subscribe(const std::string& channel, std::function<void(const Msg&)> handler,
                  int queue_capacity = 1000);
+  // Every message on channel as bytes, not decoded: for relays and recorders,
+  // which pass bytes on, and for consumers that must not pay for a decode.
+  void subscribe_raw(const std::string& channel,
+                     std::function<void(const void* data, std::size_t size)> handler,
+                     int queue_capacity = 1000);
 
   // Every message on the channels `channel_regex` matches, undecoded (for
   // recorders): channel, bytes, size, receive time (us since the epoch).
@@ -38,16 +59,25 @@ class MessageBus {
   void publish(const std::string& channel, const Msg& message) {
     lcm_.publish(channel, &message);
   }
+  // Bytes already encoded (a buffer kept across publishes, or a relayed message).
+  void publish_encoded(const std::string& channel, const void* data, std::size_t size);
 
-  // Handles every message already waiting; returns how many.
+  // Watches fd in every wait; on_readable runs once per wakeup in which fd is
+  // readable and should do a bounded amount of work (read a bounded number of
+  // datagrams), so that no door starves the others.
+  void watch(int fd, std::function<void()> on_readable);
+
+  // Handles up to kMaxMessagesPerWakeup messages already waiting; returns how many.
   int handle_pending();
-  // Waits up to timeout_ms for a message (or the shutdown signal), then handles
-  // what is waiting. Returns how many messages were handled.
+  // Waits up to timeout_ms (or until the deadline) for a message, a watched fd
+  // or the shutdown signal, then handles what is waiting. Returns how many LCM
+  // messages were handled.
   int wait_and_handle(int timeout_ms, const ShutdownSignal* shutdown = nullptr);
+  int wait_until_and_handle(Clock::time_point deadline, const ShutdownSignal* shutdown = nullptr);
 
   std::uint64_t malformed_count() const { return bad_input_.total(); }
   ThrottledLog& bad_input() { return bad_input_; }
-  lcm::LCM& lcm() { return lcm_; }
+  const ThrottledLog& bad_input() const { return bad_input_; }
 
  private:
   struct Subscription {
@@ -59,23 +89,29 @@ class MessageBus {
     std::function<void(const Msg&)> handler;
     void on_message(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
       Msg message;
-      int used = -1;
-      try {
-        used = message.decode(buffer->data, 0, static_cast<int>(buffer->data_size));
-      } catch (const std::exception&) {
-        // lcm-gen's decode resizes arrays to the length the bytes claim before
-        // reading them: a negative or huge length throws length_error/bad_alloc.
-        used = -1;
-      }
-      if (used < 0 || static_cast<uint32_t>(used) != buffer->data_size) {
-        bus->bad_input_.warn(
-            "decode:" + channel,
-            "dropped a message on " + channel + " that does not decode as " + Msg::getTypeName());
+      if (!decode_bounded(buffer->data, buffer->data_size, message)) {
+        bus->bad_input_.warn("decode:" + channel, "dropped a message on " + channel + " (" +
+                                                      std::to_string(buffer->data_size) +
+                                                      " bytes) that does not " + "decode as " +
+                                                      Msg::getTypeName());
         return;
       }
       handler(message);
     }
   };
+  struct RawSubscription : Subscription {
+    std::function<void(const void*, std::size_t)> handler;
+    void on_message(const lcm::ReceiveBuffer* buffer, const std::string&) {
+      handler(buffer->data, buffer->data_size);
+    }
+  };
+  struct Watch {
+    int fd;
+    std::function<void()> on_readable;
+  };
+
+  void add_subscription(lcm::Subscription* raw, const std::string& channel, int queue_capacity);
+  int wait(const timespec* timeout, const ShutdownSignal* shutdown);
 
   struct RawSubscription : Subscription {
     RawHandler handler;
@@ -87,6 +123,8 @@ class MessageBus {
   lcm::LCM lcm_;
   ThrottledLog bad_input_;
   std::vector<std::unique_ptr<Subscription>> subscriptions_;
+  std::vector<Watch> watches_;
+  std::vector<pollfd> poll_fds_;  // LCM, then one per watch, then the shutdown signal
 };
 
 template <class Msg>
@@ -95,10 +133,8 @@ void MessageBus::subscribe(const std::string& channel, std::function<void(const 
   auto subscription = std::make_unique<TypedSubscription<Msg>>();
   subscription->bus = this;
   subscription->handler = std::move(handler);
-  lcm::Subscription* raw =
-      lcm_.subscribe(channel, &TypedSubscription<Msg>::on_message, subscription.get());
-  if (raw == nullptr) throw std::runtime_error("cannot subscribe to " + channel);
-  raw->setQueueCapacity(queue_capacity);
+  add_subscription(lcm_.subscribe(channel, &TypedSubscription<Msg>::on_message, subscription.get()),
+                   channel, queue_capacity);
   subscriptions_.push_back(std::move(subscription));
 }
 

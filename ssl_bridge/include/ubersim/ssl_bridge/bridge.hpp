@@ -90,6 +90,7 @@ class SslBridge {
   UdpSocket control_socket_;
   UdpSocket blue_socket_;
   UdpSocket yellow_socket_;
+  bool watching_sockets_ = false;  // run() registers the sockets with the bus once
   std::optional<sim_state_t> state_;
   std::map<Team, radio_feedback_t> feedback_;
   std::map<std::string, double> type_radius_;      // m, robot type name -> radius
