@@ -16,6 +16,7 @@
 #include <ubersim/vision_frame_t.hpp>
 
 #include "e2e_support.hpp"
+#include "ubersim/bounded_decode.hpp"
 #include "sync_logs.hpp"
 
 using namespace e2e;
@@ -34,7 +35,7 @@ ChannelLog team_only(const ChannelLog& log, int team) {
   ChannelLog out;
   for (const auto& bytes : log) {
     ubersim::sim_commands_t m;
-    if (m.decode(bytes.data(), 0, static_cast<int>(bytes.size())) > 0 && m.team == team) {
+    if (ubersim::decode_bounded(bytes.data(), bytes.size(), m) && m.team == team) {
       out.push_back(bytes);
     }
   }
@@ -74,7 +75,7 @@ std::vector<Msg> decode_all(const ChannelLog& log) {
   std::vector<Msg> out;
   for (const auto& bytes : log) {
     Msg m;
-    if (m.decode(bytes.data(), 0, static_cast<int>(bytes.size())) > 0) out.push_back(m);
+    if (ubersim::decode_bounded(bytes.data(), bytes.size(), m)) out.push_back(m);
   }
   return out;
 }
