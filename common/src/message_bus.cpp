@@ -20,16 +20,6 @@ void MessageBus::add_subscription(lcm::Subscription* raw, const std::string& cha
   raw->setQueueCapacity(queue_capacity);
 }
 
-void MessageBus::subscribe_raw(const std::string& channel,
-                               std::function<void(const void*, std::size_t)> handler,
-                               int queue_capacity) {
-  auto subscription = std::make_unique<RawSubscription>();
-  subscription->handler = std::move(handler);
-  add_subscription(lcm_.subscribe(channel, &RawSubscription::on_message, subscription.get()),
-                   channel, queue_capacity);
-  subscriptions_.push_back(std::move(subscription));
-}
-
 void MessageBus::publish_encoded(const std::string& channel, const void* data, std::size_t size) {
   lcm_.publish(channel, data, static_cast<unsigned int>(size));
 }
@@ -43,10 +33,8 @@ void MessageBus::subscribe_raw(const std::string& channel_regex, RawHandler hand
                                int queue_capacity) {
   auto subscription = std::make_unique<RawSubscription>();
   subscription->handler = std::move(handler);
-  lcm::Subscription* raw =
-      lcm_.subscribe(channel_regex, &RawSubscription::on_message, subscription.get());
-  if (raw == nullptr) throw std::runtime_error("cannot subscribe to " + channel_regex);
-  raw->setQueueCapacity(queue_capacity);
+  add_subscription(lcm_.subscribe(channel_regex, &RawSubscription::on_message, subscription.get()),
+                   channel_regex, queue_capacity);
   subscriptions_.push_back(std::move(subscription));
 }
 

@@ -102,8 +102,9 @@ double run_server(const WorldSetup& setup, const std::string& url, double sim_se
   feeder.commands_channel = channels(Channel::SimCommands);
   feeder.dt = server.world().dt();
   for (const auto& r : server.world().robots()) feeder.robots.emplace_back(r->team(), r->id());
-  bus.subscribe_raw(channels(Channel::SimState),
-                    [&feeder](const void*, std::size_t) { feeder.on_state(); });
+  bus.subscribe_raw(
+      channels(Channel::SimState),
+      [&feeder](const std::string&, const void*, std::size_t, std::int64_t) { feeder.on_state(); });
   server.run(nullptr);
   if (stats_out != nullptr) *stats_out = server.stats();
   return sim_seconds / server.stats().wall_seconds;

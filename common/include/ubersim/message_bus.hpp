@@ -42,14 +42,10 @@ class MessageBus {
   template <class Msg>
   void subscribe(const std::string& channel, std::function<void(const Msg&)> handler,
                  int queue_capacity = 1000);
-  // Every message on channel as bytes, not decoded: for relays and recorders,
-  // which pass bytes on, and for consumers that must not pay for a decode.
-  void subscribe_raw(const std::string& channel,
-                     std::function<void(const void* data, std::size_t size)> handler,
-                     int queue_capacity = 1000);
 
-  // Every message on the channels `channel_regex` matches, undecoded (for
-  // recorders): channel, bytes, size, receive time (us since the epoch).
+  // Every message on the channels `channel_regex` matches, undecoded: for
+  // recorders and relays, which pass bytes on, and for consumers that must not
+  // pay for a decode: channel, bytes, size, receive time (us since the epoch).
   using RawHandler =
       std::function<void(const std::string&, const void*, std::size_t, std::int64_t)>;
   void subscribe_raw(const std::string& channel_regex, RawHandler handler,
@@ -97,12 +93,6 @@ class MessageBus {
         return;
       }
       handler(message);
-    }
-  };
-  struct RawSubscription : Subscription {
-    std::function<void(const void*, std::size_t)> handler;
-    void on_message(const lcm::ReceiveBuffer* buffer, const std::string&) {
-      handler(buffer->data, buffer->data_size);
     }
   };
   struct Watch {
