@@ -15,7 +15,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <lcm/lcm-cpp.hpp>
 #include <ubersim/sim_commands_t.hpp>
 
 #include "bare_ode_scene.hpp"
