@@ -4,27 +4,13 @@
 #include <sstream>
 #include <ubersim/team_t.hpp>
 
+#include "ubersim/json_string.hpp"
+
 namespace ubersim::referee {
 namespace {
 
-int8_t wire(Team team) { return team == Team::Blue ? team_t::BLUE : team_t::YELLOW; }
-
-// JSON string literal: quotes, backslashes and control characters escaped.
-std::string quoted(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buffer[8];
-      std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
-      out += buffer;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
+int8_t wire(Team team) {
+  return team == Team::Blue ? team_t::BLUE : team_t::YELLOW;
 }
 
 // Fixed precision: the log of two identical games is byte for byte the same.
@@ -91,25 +77,25 @@ referee_t to_message(const RefereeState& state, const GameConfig& config, FieldS
 
 std::string event_line(const GameEvent& e) {
   std::ostringstream out;
-  out << "{\"t\": " << number(e.sim_time) << ", \"event\": " << quoted(event_name(e.type))
-      << ", \"team\": " << (e.team ? quoted(team_name(*e.team)) : "null")
+  out << "{\"t\": " << number(e.sim_time) << ", \"event\": " << json_string(event_name(e.type))
+      << ", \"team\": " << (e.team ? json_string(team_name(*e.team)) : "null")
       << ", \"robot\": " << e.robot << ", \"x\": " << number(e.x) << ", \"y\": " << number(e.y)
       << ", \"value\": " << number(e.value) << ", \"foul\": " << (e.foul ? "true" : "false")
-      << ", \"description\": " << quoted(e.description) << "}";
+      << ", \"description\": " << json_string(e.description) << "}";
   return out.str();
 }
 
 std::string command_line(const RefereeState& s, double sim_time) {
   std::ostringstream out;
-  out << "{\"t\": " << number(sim_time) << ", \"command\": " << quoted(command_name(s.command))
-      << ", \"stage\": " << quoted(stage_name(s.stage))
-      << ", \"score\": [" << s.yellow.goals << ", " << s.blue.goals << "]}";
+  out << "{\"t\": " << number(sim_time) << ", \"command\": " << json_string(command_name(s.command))
+      << ", \"stage\": " << json_string(stage_name(s.stage)) << ", \"score\": [" << s.yellow.goals
+      << ", " << s.blue.goals << "]}";
   return out.str();
 }
 
 std::string result_line(const RefereeState& s, double sim_time, double wall_time) {
   std::ostringstream out;
-  out << "{\"t\": " << number(sim_time) << ", \"result\": " << quoted(stage_name(s.stage))
+  out << "{\"t\": " << number(sim_time) << ", \"result\": " << json_string(stage_name(s.stage))
       << ", \"game_over\": " << (s.game_over ? "true" : "false")
       << ", \"yellow\": " << team_figures(s.yellow) << ", \"blue\": " << team_figures(s.blue)
       << ", \"wall_time\": " << number(wall_time) << "}";

@@ -8,27 +8,13 @@
 #include "ubersim/config.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/field_config.hpp"
+#include "ubersim/json_string.hpp"
 #include "ubersim/robot_config.hpp"
 #include "ubersim/scenario_config.hpp"
 
 namespace {
 
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buffer[8];
-      std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
-      out += buffer;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
+using ubersim::json_string;
 
 // --dump: every key with where it is defined and its values, as one JSON
 // object, so that tools in other languages (the batch runner) read our format
