@@ -20,7 +20,8 @@ usage: tools/launch.sh [options]
   --sync               sync mode: as fast as the demo teams' answers allow, latency exact and
                        runs reproducible (docs/sync.md); the demo teams answer every frame
   --sync-strict        in sync mode, a client that misses the timeout fails the run
-  --sync-clients N     clients physics waits for at the start (default: the demo teams started)
+  --sync-clients N     clients physics waits for at the start (default: the demo teams started;
+                       with --ssl-bridge, 2: each colour no demo team plays is an SSL team's)
   --referee            start the automatic referee (ubersim_referee auto, docs/autoref.md): it runs
                        the game and everything stops when it is over; with --sync, reproducibly
   --game-length S      the refereed game's length in s of sim time (default: config/referee)
@@ -39,7 +40,8 @@ usage: tools/launch.sh [options]
   --viewer             start the browser viewer (ubersim_viewer) and print its address
   --viewer-port P      the viewer's port on 127.0.0.1 (default 8080)
   --ssl-bridge         start the SSL protocol bridge (SSL-Vision on 224.5.23.2:10020, simulation
-                       control on 10300, robot control on 10301 blue / 10302 yellow)
+                       control on 10300, robot control on 10301 blue / 10302 yellow); with --sync
+                       an SSL team answers every detection packet with one RobotControl
   --quiet              less process log output
 USAGE
 }
@@ -130,16 +132,20 @@ fi
 physics_args=(--scenario "$scenario" --speed "$speed")
 [ "$lockstep" = 1 ] && physics_args+=(--lockstep)
 [ "$truth_on_demand" = 1 ] && physics_args+=(--truth-on-demand)
-radio_args=() demo_args=()
+radio_args=() demo_args=() bridge_args=()
 if [ "$sync" = 1 ]; then
   # Physics holds at sim time 0 until every demo team has registered, so
   # that two runs start alike; a client of your own counts too (docs/sync.md).
+  # With the SSL bridge, each colour no demo team plays is an SSL team's:
+  # the bridge registers it when the team first speaks on its port.
   clients=0
   case "$demo" in yellow|blue) clients=1 ;; both) clients=2 ;; esac
+  [ "$ssl_bridge" = 1 ] && clients=2
   physics_args+=(--sync)
   radio_args+=(--sync --sync-clients "${sync_clients:-$clients}")
   [ "$sync_strict" = 1 ] && radio_args+=(--sync-strict)
   demo_args+=(--sync)
+  bridge_args+=(--sync)
 fi
 [ -n "$duration" ] && physics_args+=(--duration "$duration")
 referee_args=(auto --events "$log_dir/events.jsonl")
@@ -163,7 +169,7 @@ for team in yellow blue; do
     start "demo_$team" "$bin_dir/ubersim_demo_team" "${common[@]}" --team "$team" --mode "$demo_mode" "${demo_args[@]}"
   fi
 done
-[ "$ssl_bridge" = 1 ] && start ssl_bridge "$bin_dir/ubersim_ssl_bridge" "${common[@]}"
+[ "$ssl_bridge" = 1 ] && start ssl_bridge "$bin_dir/ubersim_ssl_bridge" "${common[@]}" "${bridge_args[@]}"
 [ "$viewer" = 1 ] && start viewer "$bin_dir/ubersim_viewer" "${common[@]}" --port "$viewer_port"
 physics_pid=${pids[1]:-}
 [ -n "$log_file" ] || physics_pid=${pids[0]}

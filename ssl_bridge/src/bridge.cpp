@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <ubersim/sim_control_ack_t.hpp>
+#include <ubersim/sync_client_t.hpp>
+#include <ubersim/team_t.hpp>
 
 namespace ubersim::ssl {
 namespace {
@@ -32,6 +34,10 @@ void drain(UdpSocket& socket, const Handle& handle) {
 // every robot of a team are the most, ~2 per spec.)
 constexpr std::size_t kMaxPendingRequests = 256;
 
+int8_t team_code(Team team) {
+  return team == Team::Yellow ? int8_t{team_t::YELLOW} : int8_t{team_t::BLUE};
+}
+
 }  // namespace
 
 SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOptions options)
@@ -45,7 +51,8 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
       yellow_socket_(UdpSocket::bound(options_.listen_address, options_.yellow_port)),
       referee_socket_(UdpSocket::multicast_sender(options_.referee_ttl, options_.vision_interface)),
       referee_destination_(make_address(options_.referee_address, options_.referee_port)),
-      referee_translator_("ubersim-" + random_uuid()) {
+      referee_translator_("ubersim-" + random_uuid()),
+      sync_{{SyncAnswers(options_.sync_timeout), SyncAnswers(options_.sync_timeout)}} {
   // protobuf logs every datagram that misses a required field to stderr, one
   // line each, at any rate; decoded() counts and logs them throttled instead.
   google::protobuf::SetLogHandler(nullptr);
@@ -93,6 +100,15 @@ void SslBridge::send_vision(const SSL_WrapperPacket& packet) {
 
 void SslBridge::on_vision(const vision_frame_t& frame) {
   send_vision(detection_packet(frame));
+  // Owed before the team can answer: the answer comes back through our own poll loop.
+  if (options_.sync) {
+    const auto now = std::chrono::steady_clock::now();
+    for (Team team : kTeams) {
+      if (sync_[static_cast<int>(team)].on_frame(frame.t_capture, now)) {
+        drop_sync_client(team, "owes " + std::to_string(SyncAnswers::kMaxOwed) + " frames");
+      }
+    }
+  }
   // Tracked frames wait as long as this frame did: capture -> now (sim time).
   if (tracked_ && state_ && state_->sim_time >= frame.t_capture) {
     tracked_->set_latency(std::min(1.0, state_->sim_time - frame.t_capture));
@@ -255,17 +271,26 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
                                       const sockaddr_in& from) {
   const std::string name = team_name(team);
   ++counters_[name + " robot control datagrams"];
+  // Sync mode: every datagram answers a frame (or is a hello or an extra one),
+  // whatever it holds, so a malformed one still counts as "nothing to send".
+  const std::optional<double> answers = options_.sync ? sync_datagram(team) : std::nullopt;
   RobotControlResponse response;
   Errors errors;
   RobotControl control;
+  radio_packet_t packet{};
+  packet.team = team_code(team);
   if (decoded(bytes, control, errors, name + " robot control")) {
     RobotControlTranslation translation = translate_robot_control(control, team, options_.wheels);
     errors.insert(errors.end(), translation.errors.begin(), translation.errors.end());
-    if (translation.packet.num_commands > 0) {  // nothing to say: no packet on the radio
-      translation.packet.sequence = ++radio_sequence_;
-      translation.packet.t_sent = state_ ? state_->sim_time : 0.0;
-      bus_.publish(channels_.radio(team), translation.packet);
-    }
+    packet = std::move(translation.packet);
+  }
+  // Outside sync mode nothing to say means no packet on the radio; in sync
+  // mode the empty packet is the answer "nothing to send" (docs/sync.md).
+  const bool publish = options_.sync ? answers.has_value() : packet.num_commands > 0;
+  if (publish) {
+    packet.sequence = ++radio_sequence_[static_cast<int>(team)];
+    packet.t_sent = answers ? *answers : (state_ ? state_->sim_time : 0.0);
+    bus_.publish(channels_.radio(team), packet);
   }
   for (const SimulatorError& error : errors) *response.add_errors() = error;
   const auto feedback = feedback_.find(team);
@@ -273,6 +298,66 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
   std::string out;
   response.SerializeToString(&out);
   (team == Team::Blue ? blue_socket_ : yellow_socket_).send_to(out, from);
+}
+
+void SslBridge::say_sync_client(Team team, bool leaving) {
+  sync_client_t message{};
+  message.team = team_code(team);
+  message.name = std::string("ssl_bridge_") + team_name(team);
+  message.leaving = leaving;
+  bus_.publish(channels_.extra(kSyncClientChannel), message);
+}
+
+std::optional<double> SslBridge::sync_datagram(Team team) {
+  const std::string name = team_name(team);
+  const SyncAnswers::Datagram datagram = sync_[static_cast<int>(team)].on_datagram();
+  switch (datagram.kind) {
+    case SyncAnswers::Kind::Registered:
+      spdlog::info("sync: the {} team spoke on its port: registered as sync client ssl_bridge_{}",
+                   name, name);
+      say_sync_client(team, false);
+      return std::nullopt;
+    case SyncAnswers::Kind::Extra:
+      ++counters_[name + " robot control datagrams answering no frame (ignored)"];
+      bad_input_.warn(name + "_sync_extra",
+                      "ignored a " + name +
+                          " RobotControl: every detection frame sent had its answer already "
+                          "(sync mode: one RobotControl per detection packet)");
+      return std::nullopt;
+    case SyncAnswers::Kind::Answer: break;
+  }
+  return datagram.t_capture;
+}
+
+void SslBridge::sync_tick() {
+  const auto now = std::chrono::steady_clock::now();
+  for (Team team : kTeams) {
+    if (sync_[static_cast<int>(team)].expire(now)) {
+      drop_sync_client(team, "did not answer a detection frame within " +
+                                 std::to_string(options_.sync_timeout) + " s of wall time");
+    }
+  }
+  // Said again every second, for a radio emulator that starts later.
+  if (now < next_sync_hello_) return;
+  next_sync_hello_ = now + std::chrono::seconds(1);
+  for (Team team : kTeams) {
+    if (sync_[static_cast<int>(team)].registered()) say_sync_client(team, false);
+  }
+}
+
+void SslBridge::drop_sync_client(Team team, const std::string& why) {
+  spdlog::warn("sync: the {} team {}: dropped (its next RobotControl registers it again)",
+               team_name(team), why);
+  say_sync_client(team, true);
+}
+
+void SslBridge::sync_leave() {
+  for (Team team : kTeams) {
+    SyncAnswers& answers = sync_[static_cast<int>(team)];
+    if (!answers.registered()) continue;
+    answers.leave();
+    say_sync_client(team, true);
+  }
 }
 
 void SslBridge::run(const ShutdownSignal& shutdown) {
@@ -304,15 +389,30 @@ void SslBridge::run(const ShutdownSignal& shutdown) {
       });
     });
   }
+  if (options_.sync) {
+    spdlog::info(
+        "sync mode: a team's first RobotControl registers it; then each RobotControl answers "
+        "the oldest detection packet it has not answered (docs/sync.md)");
+  }
   while (!shutdown.requested()) {
     bus_.wait_and_handle(50, &shutdown);
     expire_pending();
+    if (options_.sync) sync_tick();
   }
+  if (options_.sync) sync_leave();
 }
 
 void SslBridge::log_summary() const {
   std::string text;
   for (const auto& [name, count] : counters_) text += " " + name + "=" + std::to_string(count);
+  if (options_.sync) {
+    for (Team team : kTeams) {
+      const SyncAnswerStats& s = sync_[static_cast<int>(team)].stats();
+      text += std::string(" sync ") + team_name(team) + ": frames=" + std::to_string(s.frames) +
+              " answers=" + std::to_string(s.answers) + " extra=" + std::to_string(s.extra) +
+              " timeouts=" + std::to_string(s.timeouts + s.overflows);
+    }
+  }
   spdlog::info("summary:{}; LCM messages dropped as malformed={}", text.empty() ? " nothing" : text,
                bus_.malformed_count());
 }

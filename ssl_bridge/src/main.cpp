@@ -111,6 +111,15 @@ int parse_and_run(int argc, char** argv) {
   app.add_option("--tracked-rate", b.tracked_rate, "tracked frames per second of sim time")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 1000.0));
+  app.add_flag("--sync", b.sync,
+               "sync mode: each team's first RobotControl registers it as a sync client, then "
+               "each RobotControl answers the oldest detection packet not answered yet "
+               "(docs/sync.md)");
+  app.add_option("--sync-timeout", b.sync_timeout,
+                 "sync mode: s of wall time a team may take to answer a detection packet before "
+                 "it is dropped")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 600.0));
   app.add_option("--robot-type", options.robot_type,
                  "robot config for robots added with present = true, and for wheel_velocity")
       ->capture_default_str();

@@ -2,6 +2,9 @@
 
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
+#include <ubersim/sim_commands_t.hpp>
+
+#include "ubersim/bounded_decode.hpp"
 
 namespace e2e {
 
@@ -24,6 +27,24 @@ std::string compare_channel(const ChannelLog& a, const ChannelLog& b) {
     return std::to_string(a.size()) + " against " + std::to_string(b.size()) + " messages";
   }
   return "";
+}
+
+const std::vector<std::string>& reproducible_channels() {
+  static const std::vector<std::string> channels{
+      "VISION",   "RADIO_YELLOW", "RADIO_BLUE", "RADIO_FEEDBACK_YELLOW", "RADIO_FEEDBACK_BLUE",
+      "SIM_STATE"};
+  return channels;
+}
+
+ChannelLog team_only(const ChannelLog& sim_commands, int team) {
+  ChannelLog out;
+  for (const auto& bytes : sim_commands) {
+    ubersim::sim_commands_t m;
+    if (ubersim::decode_bounded(bytes.data(), bytes.size(), m) && m.team == team) {
+      out.push_back(bytes);
+    }
+  }
+  return out;
 }
 
 }  // namespace e2e

@@ -17,4 +17,11 @@ std::map<std::string, ChannelLog> read_log_by_channel(const std::string& path);
 // "" when equal, else where the two first differ.
 std::string compare_channel(const ChannelLog& a, const ChannelLog& b);
 
+// The channels whose content sync mode makes reproducible.
+const std::vector<std::string>& reproducible_channels();
+
+// SIM_COMMANDS carries both teams, interleaved as their answers came in: each
+// team's own sequence (team 0 yellow, 1 blue) is what is reproducible.
+ChannelLog team_only(const ChannelLog& sim_commands, int team);
+
 }  // namespace e2e

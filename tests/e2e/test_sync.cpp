@@ -24,24 +24,6 @@ using ubersim::test::ChildProcess;
 
 namespace {
 
-// The channels whose content sync mode makes reproducible.
-const char* const kReproducible[] = {
-    "VISION",   "RADIO_YELLOW", "RADIO_BLUE", "RADIO_FEEDBACK_YELLOW", "RADIO_FEEDBACK_BLUE",
-    "SIM_STATE"};
-
-// SIM_COMMANDS carries both teams, interleaved as their answers came in: each
-// team's own sequence is what is reproducible.
-ChannelLog team_only(const ChannelLog& log, int team) {
-  ChannelLog out;
-  for (const auto& bytes : log) {
-    ubersim::sim_commands_t m;
-    if (ubersim::decode_bounded(bytes.data(), bytes.size(), m) && m.team == team) {
-      out.push_back(bytes);
-    }
-  }
-  return out;
-}
-
 struct GameRun {
   int status = -1;
   std::string output;
@@ -81,7 +63,7 @@ std::vector<Msg> decode_all(const ChannelLog& log) {
 }
 
 void expect_same_channels(const GameRun& a, const GameRun& b) {
-  for (const char* channel : kReproducible) {
+  for (const std::string& channel : reproducible_channels()) {
     ASSERT_TRUE(a.log.count(channel)) << channel << " was not recorded";
     ASSERT_TRUE(b.log.count(channel)) << channel << " was not recorded";
     EXPECT_GT(a.log.at(channel).size(), 10u) << channel;
@@ -243,8 +225,8 @@ TEST(Sync, TruthOnDemandSendsFewerStatesAndChangesNothingElse) {
   ASSERT_EQ(quiet.status, 0) << quiet.output;
   ASSERT_EQ(loaded.status, 0) << loaded.output;
   expect_same_channels(quiet, loaded);
-  for (const char* channel : kReproducible) {
-    if (std::string(channel) == "SIM_STATE") continue;
+  for (const std::string& channel : reproducible_channels()) {
+    if (channel == "SIM_STATE") continue;
     EXPECT_EQ(compare_channel(every_step.log.at(channel), quiet.log.at(channel)), "")
         << channel << " changed with ground truth on demand";
   }

@@ -3,6 +3,7 @@
 // other, one thread, one poll loop.
 #include <netinet/in.h>
 
+#include <array>
 #include <chrono>
 #include <map>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "ubersim/ssl_bridge/referee_translation.hpp"
 #include "ubersim/ssl_bridge/robot_control_translation.hpp"
 #include "ubersim/ssl_bridge/sim_control_translation.hpp"
+#include "ubersim/ssl_bridge/sync_answers.hpp"
 #include "ubersim/ssl_bridge/tracked_frames.hpp"
 #include "ubersim/ssl_bridge/udp_socket.hpp"
 #include "ubersim/ssl_bridge/vision_translation.hpp"
@@ -49,6 +51,11 @@ struct BridgeOptions {
   int referee_ttl = 0;
   // What robot specs start from (the --robot-type file); unset: specs are refused.
   std::optional<BaseRobotType> base_robot_type;
+  // Sync mode (--sync, docs/sync.md): each team that speaks to its robot
+  // control port becomes a sync client, and each of its RobotControl
+  // datagrams answers the oldest detection frame it has not answered yet.
+  bool sync = false;
+  double sync_timeout = 1.0;  // s of wall time a team may take to answer a frame
 };
 
 class SslBridge {
@@ -77,6 +84,14 @@ class SslBridge {
   void handle_control_datagram(const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void handle_robot_datagram(Team team, const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void send_vision(const SSL_WrapperPacket& packet);
+  // Sync mode: registration and goodbye on SYNC_CLIENT, and the team's frame
+  // bookkeeping; sync_datagram() says what a robot control datagram answers
+  // (nullopt: it answers no frame and goes nowhere).
+  void say_sync_client(Team team, bool leaving);
+  std::optional<double> sync_datagram(Team team);
+  void sync_tick();
+  void drop_sync_client(Team team, const std::string& why);
+  void sync_leave();
   // Largest radius of the robots on the field (their types' radii), else the configured one.
   double max_robot_radius() const;
   void answer(PendingResponse& pending);
@@ -103,7 +118,9 @@ class SslBridge {
   sockaddr_in tracked_destination_{};
   std::map<int64_t, std::shared_ptr<PendingResponse>> pending_by_request_;
   int64_t next_request_id_ = 1;
-  int64_t radio_sequence_ = 0;
+  std::array<int64_t, 2> radio_sequence_{};  // per team: each RADIO_<TEAM> on its own
+  std::array<SyncAnswers, 2> sync_;           // by Team
+  std::chrono::steady_clock::time_point next_sync_hello_{};
   ThrottledLog bad_input_;
   std::map<std::string, uint64_t> counters_;
 };
