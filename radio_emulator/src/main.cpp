@@ -49,23 +49,25 @@ int run(const Options& options) {
   const std::string commands_channel = channels(Channel::SimCommands);
   const std::array<std::string, 2> feedback_channels{channels.radio_feedback(Team::Yellow),
                                                      channels.radio_feedback(Team::Blue)};
-  radio::RadioEmulator emulator(
-      profiles, options.seed,
-      {[&](const sim_commands_t& message) { bus.publish(commands_channel, message); },
-       [&](Team team, const radio_feedback_t& message) {
-         bus.publish(feedback_channels[static_cast<int>(team)], message);
-       }});
+  radio::RadioEmulator emulator(profiles, options.seed);
+  const auto publish = [&](const radio::RadioEmulator::Output& out) {
+    for (const sim_commands_t& message : out.commands) bus.publish(commands_channel, message);
+    for (const auto& [team, message] : out.feedback) {
+      bus.publish(feedback_channels[static_cast<int>(team)], message);
+    }
+  };
 
-  bus.subscribe<sim_state_t>(channels(Channel::SimState),
-                             [&](const sim_state_t& state) { emulator.on_sim_state(state); });
+  bus.subscribe<sim_state_t>(channels(Channel::SimState), [&](const sim_state_t& state) {
+    publish(emulator.on_sim_state(state));
+  });
   std::optional<radio::SyncDriver> sync;
-  if (options.sync) sync.emplace(bus, channels, emulator, options.sync_options);
+  if (options.sync) sync.emplace(bus, channels, emulator, options.sync_options, publish);
   for (Team team : kTeams) {
     bus.subscribe<radio_packet_t>(channels.radio(team), [&, team](const radio_packet_t& p) {
       if (sync) {
         sync->on_packet(team, p);
       } else {
-        emulator.on_radio_packet(team, p);
+        publish(emulator.on_radio_packet(team, p));
       }
     });
   }

@@ -16,19 +16,19 @@ std::uint64_t seed_of(const RadioProfile& profile, std::optional<std::uint64_t> 
 }  // namespace
 
 RadioEmulator::RadioEmulator(const std::array<RadioProfile, 2>& profiles,
-                             std::optional<std::uint64_t> seed_override, Sinks sinks)
+                             std::optional<std::uint64_t> seed_override)
     : links_{TeamLink(profiles[0], Team::Yellow, seed_of(profiles[0], seed_override)),
-             TeamLink(profiles[1], Team::Blue, seed_of(profiles[1], seed_override))},
-      sinks_(std::move(sinks)) {}
+             TeamLink(profiles[1], Team::Blue, seed_of(profiles[1], seed_override))} {}
 
-void RadioEmulator::on_sim_state(const sim_state_t& state) {
+RadioEmulator::Output RadioEmulator::on_sim_state(const sim_state_t& state) {
+  Output out;
   switch (clock_.update(state.sim_time, state.step)) {
     case SimClock::Update::Rejected:
       ++rejected_sim_states_;
       warnings_.warn("sim_state",
                      "ignored a SIM_STATE that goes back in time or is not finite (t=" +
                          std::to_string(state.sim_time) + " s)");
-      return;
+      return out;
     case SimClock::Update::Reset:
       ++resets_;
       spdlog::info("sim time went back to {:.3f} s: world reset, radio links start afresh",
@@ -53,25 +53,29 @@ void RadioEmulator::on_sim_state(const sim_state_t& state) {
 
   for (Team team : kTeams) {
     TeamLink& team_link = link(team);
-    if (!sync_) publish_commands(team_link.commands.poll(clock_.now()));
-    for (const auto& feedback : team_link.feedback.on_sim_state(state)) {
-      if (sinks_.feedback) sinks_.feedback(team, feedback);
+    if (!sync_) add(out, team_link.commands.poll(clock_.now()));
+    for (auto& feedback : team_link.feedback.on_sim_state(state)) {
+      out.feedback.emplace_back(team, std::move(feedback));
     }
   }
+  return out;
 }
 
-void RadioEmulator::on_radio_packet(Team channel_team, const radio_packet_t& packet) {
+RadioEmulator::Output RadioEmulator::on_radio_packet(Team channel_team,
+                                                     const radio_packet_t& packet) {
+  Output out;
   TeamLink& team_link = link(channel_team);
   ++team_link.packets_received;
   if (!clock_.started()) {
     record(channel_team, {Problem::NoSimTime, -1, "no SIM_STATE yet: is physics running?"});
-    return;
+    return out;
   }
   Validated validated =
       validate_packet(packet, channel_team, team_link.profile.limits, team_link.robots);
   for (const auto& finding : validated.findings) record(channel_team, finding);
-  if (!validated.packet_ok || validated.packet.commands.empty()) return;
-  publish_commands(team_link.commands.offer(std::move(validated.packet), arrival_time()));
+  if (!validated.packet_ok || validated.packet.commands.empty()) return out;
+  add(out, team_link.commands.offer(std::move(validated.packet), arrival_time()));
+  return out;
 }
 
 double RadioEmulator::arrival_time() const {
@@ -85,26 +89,30 @@ double RadioEmulator::arrival_time() const {
   return clock_.now() + std::min(0.1, steps * step_);
 }
 
-void RadioEmulator::on_answer(Team channel_team, const radio_packet_t& packet, double t_arrival) {
+RadioEmulator::Output RadioEmulator::on_answer(Team channel_team, const radio_packet_t& packet,
+                                               double t_arrival) {
   TeamLink& team_link = link(channel_team);
   ++team_link.packets_received;
-  sync_poll(channel_team, t_arrival);
-  if (packet.num_commands == 0 && packet.commands.empty()) return;  // "nothing to send"
+  Output out = sync_poll(channel_team, t_arrival);
+  if (packet.num_commands == 0 && packet.commands.empty()) return out;  // "nothing to send"
   Validated validated =
       validate_packet(packet, channel_team, team_link.profile.limits, team_link.robots);
   for (const auto& finding : validated.findings) record(channel_team, finding);
-  if (!validated.packet_ok || validated.packet.commands.empty()) return;
-  publish_commands(team_link.commands.offer(std::move(validated.packet), t_arrival));
+  if (!validated.packet_ok || validated.packet.commands.empty()) return out;
+  add(out, team_link.commands.offer(std::move(validated.packet), t_arrival));
+  return out;
 }
 
-void RadioEmulator::sync_poll(Team team, double earliest_arrival) {
+RadioEmulator::Output RadioEmulator::sync_poll(Team team, double earliest_arrival) {
   // A packet arriving exactly when the link frees replaces the waiting one,
   // so transmit only what frees strictly before the next possible arrival.
-  publish_commands(link(team).commands.poll(earliest_arrival - 2 * CommandLink::kTimeEpsilon));
+  Output out;
+  add(out, link(team).commands.poll(earliest_arrival - 2 * CommandLink::kTimeEpsilon));
+  return out;
 }
 
-void RadioEmulator::publish_commands(const std::optional<sim_commands_t>& message) {
-  if (message && sinks_.commands) sinks_.commands(*message);
+void RadioEmulator::add(Output& out, std::optional<sim_commands_t> message) {
+  if (message) out.commands.push_back(std::move(*message));
 }
 
 void RadioEmulator::record(Team team, const Finding& finding) {

@@ -9,11 +9,12 @@ namespace ubersim::radio {
 using Clock = SyncCoordinator::Clock;
 
 SyncDriver::SyncDriver(MessageBus& bus, const ChannelNames& channels, RadioEmulator& emulator,
-                       SyncOptions options)
+                       SyncOptions options, Publish publish)
     : bus_(bus),
       horizon_channel_(channels.extra(kSyncHorizonChannel)),
       emulator_(emulator),
       options_(options),
+      publish_(std::move(publish)),
       coordinator_(options.client_timeout) {
   emulator_.set_sync(true);
   horizon_.horizon = -1;
@@ -49,7 +50,7 @@ void SyncDriver::on_packet(Team team, const radio_packet_t& packet) {
     case SyncCoordinator::Verdict::Accepted:
       break;
   }
-  emulator_.on_answer(team, packet, answer.t_arrival);
+  publish_(emulator_.on_answer(team, packet, answer.t_arrival));
   update(false);
 }
 
@@ -91,7 +92,7 @@ void SyncDriver::update(bool always_publish) {
   } else {
     for (Team team : kTeams) {
       const double arrival = coordinator_.earliest_arrival(team);
-      emulator_.sync_poll(team, arrival);
+      publish_(emulator_.sync_poll(team, arrival));
       const double apply = emulator_.earliest_apply(team, arrival);
       if (apply < horizon) {
         horizon = apply;

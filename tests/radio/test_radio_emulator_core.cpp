@@ -20,9 +20,10 @@ constexpr double kStep = 1.0 / 240;
 struct Recorder {
   std::vector<ubersim::sim_commands_t> commands;
   std::vector<std::pair<Team, ubersim::radio_feedback_t>> feedback;
-  RadioEmulator::Sinks sinks() {
-    return {[this](const ubersim::sim_commands_t& m) { commands.push_back(m); },
-            [this](Team t, const ubersim::radio_feedback_t& m) { feedback.emplace_back(t, m); }};
+  // Everything the emulator returns, in order.
+  void add(RadioEmulator::Output o) {
+    for (auto& m : o.commands) commands.push_back(std::move(m));
+    for (auto& f : o.feedback) feedback.push_back(std::move(f));
   }
 };
 
@@ -30,12 +31,12 @@ struct Recorder {
 
 TEST(RadioEmulatorCore, PacketsBeforeAnySimStateAreDroppedAndCounted) {
   Recorder out;
-  RadioEmulator emulator({profile(60, 0.03), profile(60, 0.03)}, std::nullopt, out.sinks());
-  emulator.on_radio_packet(Team::Yellow, packet(0, 1, {0}));
+  RadioEmulator emulator({profile(60, 0.03), profile(60, 0.03)}, std::nullopt);
+  out.add(emulator.on_radio_packet(Team::Yellow, packet(0, 1, {0})));
   EXPECT_TRUE(out.commands.empty());
   EXPECT_EQ(emulator.report(Team::Yellow).problem(Problem::NoSimTime), 1u);
-  emulator.on_sim_state(state(0.5, 120, 3));
-  emulator.on_radio_packet(Team::Yellow, packet(0, 2, {0}));
+  out.add(emulator.on_sim_state(state(0.5, 120, 3)));
+  out.add(emulator.on_radio_packet(Team::Yellow, packet(0, 2, {0})));
   ASSERT_EQ(out.commands.size(), 1u);
   EXPECT_DOUBLE_EQ(out.commands[0].t_received, 0.5);  // the latest SIM_STATE's time
 }
@@ -46,12 +47,12 @@ TEST(RadioEmulatorCore, EachTeamHasItsOwnLinkAndTimeout) {
   yellow.command_timeout = 0.4;
   auto blue = profile(0, 0.0);
   blue.command_timeout = 0.1;
-  RadioEmulator emulator({yellow, blue}, std::nullopt, out.sinks());
-  emulator.on_sim_state(state(1.0, 240, 2));
-  emulator.on_radio_packet(Team::Yellow, packet(0, 1, {0}));
-  emulator.on_radio_packet(Team::Yellow, packet(0, 2, {0}));  // yellow link busy: waits
-  emulator.on_radio_packet(Team::Blue, packet(1, 1, {0}));    // blue's link is its own
-  emulator.on_radio_packet(Team::Blue, packet(1, 2, {0}));
+  RadioEmulator emulator({yellow, blue}, std::nullopt);
+  out.add(emulator.on_sim_state(state(1.0, 240, 2)));
+  out.add(emulator.on_radio_packet(Team::Yellow, packet(0, 1, {0})));
+  out.add(emulator.on_radio_packet(Team::Yellow, packet(0, 2, {0})));  // yellow link busy: waits
+  out.add(emulator.on_radio_packet(Team::Blue, packet(1, 1, {0})));    // blue's link is its own
+  out.add(emulator.on_radio_packet(Team::Blue, packet(1, 2, {0})));
   ASSERT_EQ(out.commands.size(), 3u);
   EXPECT_EQ(out.commands[0].team, 0);
   EXPECT_DOUBLE_EQ(out.commands[0].command_timeout, 0.4);
@@ -61,9 +62,9 @@ TEST(RadioEmulatorCore, EachTeamHasItsOwnLinkAndTimeout) {
   EXPECT_DOUBLE_EQ(out.commands[1].t_apply, 1.0);
   EXPECT_EQ(out.commands[2].sequence, 2);
   // The waiting yellow packet goes out on the SIM_STATE at which its link is free.
-  emulator.on_sim_state(state(1.05, 252, 2));
+  out.add(emulator.on_sim_state(state(1.05, 252, 2)));
   EXPECT_EQ(out.commands.size(), 3u);
-  emulator.on_sim_state(state(1.1, 264, 2));
+  out.add(emulator.on_sim_state(state(1.1, 264, 2)));
   ASSERT_EQ(out.commands.size(), 4u);
   EXPECT_EQ(out.commands[3].team, 0);
   EXPECT_EQ(out.commands[3].sequence, 2);
@@ -71,9 +72,9 @@ TEST(RadioEmulatorCore, EachTeamHasItsOwnLinkAndTimeout) {
 
 TEST(RadioEmulatorCore, RobotsNotOnTheFieldAreCountedPerTeam) {
   Recorder out;
-  RadioEmulator emulator({profile(0, 0), profile(0, 0)}, std::nullopt, out.sinks());
-  emulator.on_sim_state(state(1.0, 240, 3));  // robots 0..2 of each team
-  emulator.on_radio_packet(Team::Blue, packet(1, 1, {0, 3, 11}));
+  RadioEmulator emulator({profile(0, 0), profile(0, 0)}, std::nullopt);
+  out.add(emulator.on_sim_state(state(1.0, 240, 3)));  // robots 0..2 of each team
+  out.add(emulator.on_radio_packet(Team::Blue, packet(1, 1, {0, 3, 11})));
   ASSERT_EQ(out.commands.size(), 1u);
   EXPECT_EQ(out.commands[0].num_commands, 1);
   EXPECT_EQ(emulator.report(Team::Blue).problem(Problem::OffField), 2u);
@@ -85,7 +86,7 @@ TEST(RadioEmulatorCore, RobotsNotOnTheFieldAreCountedPerTeam) {
 TEST(RadioEmulatorCore, FeedbackArrivesWithItsLatencyAndTheMeasuredState) {
   Recorder out;
   auto yellow = profile(60, 0.03);  // feedback 30 Hz, 20 ms, no loss
-  RadioEmulator emulator({yellow, profile(60, 0.03)}, std::nullopt, out.sinks());
+  RadioEmulator emulator({yellow, profile(60, 0.03)}, std::nullopt);
   const int steps = 240 * 10;
   for (int k = 0; k < steps; ++k) {
     auto s = state(k * kStep, k, 2);
@@ -93,7 +94,7 @@ TEST(RadioEmulatorCore, FeedbackArrivesWithItsLatencyAndTheMeasuredState) {
       r.ball_contact = (k / 7 + r.robot_id) % 2 == 0;
       r.kicker_charged = (k / 13 + r.robot_id) % 3 != 0;
     }
-    emulator.on_sim_state(s);
+    out.add(emulator.on_sim_state(s));
   }
   std::size_t yellow_count = 0;
   for (const auto& [team, fb] : out.feedback) {
@@ -116,28 +117,28 @@ TEST(RadioEmulatorCore, FeedbackArrivesWithItsLatencyAndTheMeasuredState) {
 
 TEST(RadioEmulatorCore, AResetStartsTheLinksAfresh) {
   Recorder out;
-  RadioEmulator emulator({profile(1, 0.1), profile(1, 0.1)}, std::nullopt, out.sinks());
-  emulator.on_sim_state(state(30.0, 7200, 1));
-  emulator.on_radio_packet(Team::Yellow, packet(0, 1, {0}));
-  emulator.on_radio_packet(Team::Yellow, packet(0, 2, {0}));  // waits for the busy link
-  emulator.on_sim_state(state(0.0, 0, 1));                    // world reset
+  RadioEmulator emulator({profile(1, 0.1), profile(1, 0.1)}, std::nullopt);
+  out.add(emulator.on_sim_state(state(30.0, 7200, 1)));
+  out.add(emulator.on_radio_packet(Team::Yellow, packet(0, 1, {0})));
+  out.add(emulator.on_radio_packet(Team::Yellow, packet(0, 2, {0})));  // waits for the busy link
+  out.add(emulator.on_sim_state(state(0.0, 0, 1)));                    // world reset
   EXPECT_EQ(emulator.resets(), 1u);
-  emulator.on_sim_state(state(2.0, 480, 1));  // the old waiting packet is gone
+  out.add(emulator.on_sim_state(state(2.0, 480, 1)));  // the old waiting packet is gone
   ASSERT_EQ(out.commands.size(), 1u);
-  emulator.on_radio_packet(Team::Yellow, packet(0, 3, {0}));
+  out.add(emulator.on_radio_packet(Team::Yellow, packet(0, 3, {0})));
   ASSERT_EQ(out.commands.size(), 2u);
   EXPECT_NEAR(out.commands[1].t_apply, 2.1, 1e-9);
 }
 
 TEST(RadioEmulatorCore, OutOfOrderSimStatesAreIgnored) {
   Recorder out;
-  RadioEmulator emulator({profile(0, 0), profile(0, 0)}, std::nullopt, out.sinks());
-  emulator.on_sim_state(state(10.0, 2400, 1));
-  emulator.on_sim_state(state(9.0, 2160, 1));  // stale
+  RadioEmulator emulator({profile(0, 0), profile(0, 0)}, std::nullopt);
+  out.add(emulator.on_sim_state(state(10.0, 2400, 1)));
+  out.add(emulator.on_sim_state(state(9.0, 2160, 1)));  // stale
   auto bad = state(std::nan(""), 2401, 1);
-  emulator.on_sim_state(bad);
+  out.add(emulator.on_sim_state(bad));
   EXPECT_EQ(emulator.rejected_sim_states(), 2u);
-  emulator.on_radio_packet(Team::Yellow, packet(0, 1, {0}));
+  out.add(emulator.on_radio_packet(Team::Yellow, packet(0, 1, {0})));
   ASSERT_EQ(out.commands.size(), 1u);
   EXPECT_DOUBLE_EQ(out.commands[0].t_received, 10.0);
 }
@@ -146,10 +147,10 @@ TEST(RadioEmulatorCore, SeedOverrideMakesRunsRepeatable) {
   const auto run = [](std::uint64_t seed) {
     Recorder out;
     RadioEmulator emulator({profile(0, 0.03, 0.01, 0.3, 0.3), profile(0, 0.03, 0.01, 0.3, 0.3)},
-                           seed, out.sinks());
+                           seed);
     for (int k = 0; k < 200; ++k) {
-      emulator.on_sim_state(state(k * kStep, k, 3));
-      emulator.on_radio_packet(Team::Yellow, packet(0, k, {0, 1, 2}));
+      out.add(emulator.on_sim_state(state(k * kStep, k, 3)));
+      out.add(emulator.on_radio_packet(Team::Yellow, packet(0, k, {0, 1, 2})));
     }
     std::vector<double> trace;
     for (const auto& c : out.commands) trace.push_back(c.t_apply + 10.0 * c.num_commands);

@@ -251,7 +251,7 @@ TEST(VisionEmulatorCore, UnknownRobotTypeIsSeenAsAnSslRobot) {
   s.robots[0].robot_type = "no_such_type";
   s.robots[0].x = -1.2;
   s.robots[0].y = 0.3;
-  VisionEmulator::Outcome outcome = emulator.on_sim_state(s);
+  VisionEmulator::Output outcome = emulator.on_sim_state(s);
   std::vector<vision_frame_t> frames;
   for (std::int64_t step = 1; step < 30; ++step) {
     sim_state_t next = s;

@@ -161,8 +161,8 @@ void VisionEmulator::check_step_fits(const sim_state_t& state) {
   }
 }
 
-VisionEmulator::Outcome VisionEmulator::on_sim_state(const sim_state_t& state) {
-  Outcome outcome;
+VisionEmulator::Output VisionEmulator::on_sim_state(const sim_state_t& state) {
+  Output outcome;
   outcome.problem = find_sim_state_problem(state);
   if (!outcome.problem.empty()) {
     ++stats_.states_invalid;

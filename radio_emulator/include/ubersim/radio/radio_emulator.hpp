@@ -1,7 +1,9 @@
 #pragma once
 // The radio emulator without its transport: both teams' links, fed with
-// SIM_STATE and radio packets, handing what gets through to sinks. The program
-// (main.cpp) wires it to LCM; tests can drive it in-process.
+// SIM_STATE and radio packets; each call returns what gets through. The
+// program (main.cpp) wires it to LCM; tests can drive it in-process. The same
+// shape as the physics and vision cores (docs/design.md, "One shape for the
+// cores").
 //
 // Sim time of a packet's arrival is the time of the latest SIM_STATE seen, so
 // with physics paced in real time the arrival time has a granularity of one
@@ -9,7 +11,6 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <string>
 #include <ubersim/emulator_realism_t.hpp>
@@ -18,6 +19,8 @@
 #include <ubersim/sim_commands_t.hpp>
 #include <ubersim/sim_state_t.hpp>
 #include <ubersim/truth_demand_t.hpp>
+#include <utility>
+#include <vector>
 
 #include "ubersim/logging.hpp"
 #include "ubersim/radio/command_link.hpp"
@@ -39,27 +42,28 @@ struct TeamReport {
 
 class RadioEmulator {
  public:
-  struct Sinks {
-    std::function<void(const sim_commands_t&)> commands;
-    std::function<void(Team, const radio_feedback_t&)> feedback;
+  // What one call produced, to publish in this order.
+  struct Output {
+    std::vector<sim_commands_t> commands;                     // SIM_COMMANDS
+    std::vector<std::pair<Team, radio_feedback_t>> feedback;  // RADIO_FEEDBACK_<team>
   };
 
   // seed_override replaces both profiles' SEED (the --seed option).
   RadioEmulator(const std::array<RadioProfile, 2>& profiles,
-                std::optional<std::uint64_t> seed_override, Sinks sinks);
+                std::optional<std::uint64_t> seed_override);
 
-  void on_sim_state(const sim_state_t& state);
+  Output on_sim_state(const sim_state_t& state);
   // A packet that came on `channel_team`'s radio channel.
-  void on_radio_packet(Team channel_team, const radio_packet_t& packet);
+  Output on_radio_packet(Team channel_team, const radio_packet_t& packet);
 
   // Sync mode (docs/sync.md): packets arrive at the sim time given (their
   // frame's publication), not at the latest SIM_STATE's, and a waiting packet
   // goes out only when sync_poll() says no newer one can arrive before the
   // link frees; SIM_STATE then only drives the feedback.
   void set_sync(bool sync) { sync_ = sync; }
-  void on_answer(Team channel_team, const radio_packet_t& packet, double t_arrival);
+  Output on_answer(Team channel_team, const radio_packet_t& packet, double t_arrival);
   // No packet of `team` can arrive before `earliest_arrival` (s of sim time).
-  void sync_poll(Team team, double earliest_arrival);
+  Output sync_poll(Team team, double earliest_arrival);
   // The earliest t_apply of a command of `team` not yet forwarded.
   double earliest_apply(Team team, double earliest_arrival) const {
     return link(team).commands.earliest_apply(earliest_arrival);
@@ -99,10 +103,9 @@ class RadioEmulator {
   TeamLink& link(Team team) { return links_[static_cast<int>(team)]; }
   const TeamLink& link(Team team) const { return links_[static_cast<int>(team)]; }
   void record(Team team, const Finding& finding);
-  void publish_commands(const std::optional<sim_commands_t>& message);
+  static void add(Output& out, std::optional<sim_commands_t> message);
 
   std::array<TeamLink, 2> links_;
-  Sinks sinks_;
   SimClock clock_;
   ThrottledLog warnings_;
   std::uint64_t rejected_sim_states_ = 0;

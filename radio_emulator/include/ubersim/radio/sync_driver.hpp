@@ -5,6 +5,7 @@
 // answers, and publishes on SIM_SYNC_HORIZON how far physics may step:
 // the earliest t_apply any command not yet forwarded can still get.
 #include <chrono>
+#include <functional>
 #include <string>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/sync_horizon_t.hpp>
@@ -25,8 +26,11 @@ struct SyncOptions {
 
 class SyncDriver {
  public:
+  // `publish` sends what the emulator's links let through (main.cpp's, the
+  // same as outside sync mode), before the horizon that lets physics past it.
+  using Publish = std::function<void(const RadioEmulator::Output&)>;
   SyncDriver(MessageBus& bus, const ChannelNames& channels, RadioEmulator& emulator,
-             SyncOptions options);
+             SyncOptions options, Publish publish);
 
   // A packet on RADIO_<team>: an answer, if the team has a client.
   void on_packet(Team team, const radio_packet_t& packet);
@@ -41,6 +45,7 @@ class SyncDriver {
   std::string horizon_channel_;
   RadioEmulator& emulator_;
   SyncOptions options_;
+  Publish publish_;
   SyncCoordinator coordinator_;
   bool started_ = false;  // the expected clients registered once
   sync_horizon_t horizon_{};

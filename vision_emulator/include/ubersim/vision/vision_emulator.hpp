@@ -1,6 +1,7 @@
 #pragma once
 // The vision emulator without its process around it: feed it every SIM_STATE
-// and SIM_GEOMETRY, publish what it hands back. All timing is in sim time
+// and SIM_GEOMETRY, publish what it hands back (the same shape as the physics
+// and radio cores: docs/design.md, "One shape for the cores"). All timing is in sim time
 // (docs/design.md, Time), so the output depends only on the profile, the seed and
 // the stream of states, never on how fast physics runs or on the wall clock.
 //
@@ -46,7 +47,8 @@ struct VisionStats {
 class VisionEmulator {
  public:
   enum class Verdict { Used, Reset, Repeated, OutOfOrder, Invalid };
-  struct Outcome {
+  // What one state produced: what became of it, and the frames to publish.
+  struct Output {
     Verdict verdict = Verdict::Used;
     std::string problem;                 // why an invalid state was skipped
     std::vector<vision_frame_t> frames;  // to publish now, in order
@@ -54,7 +56,7 @@ class VisionEmulator {
 
   VisionEmulator(VisionProfile profile, RobotSizes robot_sizes);
 
-  Outcome on_sim_state(const sim_state_t& state);
+  Output on_sim_state(const sim_state_t& state);
 
   // Returns true when the geometry was new (different from the last one).
   // An invalid geometry is counted and ignored (returns false).

@@ -1,0 +1,134 @@
+#pragma once
+// The physics server without its transport: the world, what SIM_CONTROL does
+// to it, the pacing schedule, sync mode's horizons and which states go out.
+// It knows nothing of LCM: the server (physics_server.hpp) subscribes, calls
+// the on_* methods and publishes the Output each returns, in its order. The
+// same shape as the radio and vision emulator cores (docs/design.md, "One
+// shape for the cores").
+#include <algorithm>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <ubersim/field_geometry_t.hpp>
+#include <ubersim/referee_t.hpp>
+#include <ubersim/sim_commands_t.hpp>
+#include <ubersim/sim_control_ack_t.hpp>
+#include <ubersim/sim_control_t.hpp>
+#include <ubersim/sim_state_t.hpp>
+#include <ubersim/sync_horizon_t.hpp>
+#include <ubersim/truth_demand_t.hpp>
+#include <vector>
+
+#include "ubersim/logging.hpp"
+#include "ubersim/physics/pacer.hpp"
+#include "ubersim/physics/truth_demand.hpp"
+#include "ubersim/physics/world.hpp"
+
+namespace ubersim::physics {
+
+struct ServerOptions {
+  std::string scenario;  // for logs and acknowledgements
+  double speed = 1.0;    // > 0 times real time, 0 as fast as possible, < 0 lockstep
+  bool paused = false;
+  double duration = 0;  // s of sim time after which run() returns, 0 = never
+  bool sync = false;    // sync mode (docs/sync.md): step up to the radio emulator's horizon
+  // Sync mode with the automatic referee: also never past the state the referee
+  // judged last (its REFEREE message carries that state's sim time), so each
+  // placement it sends applies at the step after that state; SIM_STATE then
+  // goes out after every step. Physics holds while no referee speaks.
+  bool sync_referee = false;
+  // SIM_STATE only at the instants consumers ask for on SIM_TRUTH_DEMAND
+  // (every step while nobody has asked): docs/sync.md, "Ground truth on demand".
+  bool truth_on_demand = false;
+};
+
+class PhysicsCore {
+ public:
+  using Clock = Pacer::Clock;
+
+  // What one call produced, to publish in this order. Returned by reference
+  // to one the core reuses (valid until its next call), so that a state is
+  // not copied every step: copying 22 robots costs more than encoding them.
+  struct Output {
+    std::vector<sim_state_t> states;           // SIM_STATE
+    std::optional<field_geometry_t> geometry;  // SIM_GEOMETRY
+    std::optional<sim_control_ack_t> ack;      // SIM_CONTROL_ACK
+  };
+
+  PhysicsCore(WorldSetup setup, ServerOptions options);
+
+  void on_commands(const sim_commands_t& packet);
+  // `dropped_input` is what the transport dropped, for the PING reply.
+  const Output& on_control(const sim_control_t& request, const std::string& dropped_input);
+  void on_sync_horizon(const sync_horizon_t& horizon);
+  // Only with sync_referee: the referee has judged the state at its sim_time.
+  void on_referee(const referee_t& referee);
+  void on_truth_demand(const truth_demand_t& demand, Clock::time_point wall);
+  void on_vision_schedule() { vision_heard_ = true; }
+
+  // One step; the state after it when one is due.
+  const Output& step();
+  // The state now (at start, and for late joiners while nothing moves).
+  const Output& state();
+  field_geometry_t geometry() const { return world_.geometry(); }
+  // Forgets truth consumers not heard for 3 s (logged).
+  void expire_demand(Clock::time_point wall);
+
+  // Nothing advances by itself: paused, or lockstep outside sync mode.
+  bool idle() const { return paused_ || (!sync_ && pacer_.lockstep()); }
+  bool sync() const { return sync_; }
+  bool paused() const { return paused_; }
+  // Sync mode: whether the step starting now may run: no command can still
+  // come that applies at its start (docs/sync.md).
+  bool below_horizon() const {
+    return world_.time() + world_.dt() * 1e-6 < std::min(horizon_, referee_horizon_);
+  }
+  // Sync mode: what holds physics at the horizon (a client's name, "vision", "referee" ...).
+  std::string horizon_bound() const;
+  // Sync mode publishes its first state only once the vision emulator listens
+  // and the radio emulator has every client it expects (both have spoken), so
+  // that every run starts alike.
+  bool ready_to_start() const { return vision_heard_ && radio_ready_; }
+  bool duration_reached() const;
+
+  World& world() { return world_; }
+  const World& world() const { return world_; }
+  Pacer& pacer() { return pacer_; }
+  const Pacer& pacer() const { return pacer_; }
+  ThrottledLog& warnings() { return log_; }
+  std::int64_t steps() const { return steps_; }
+  std::int64_t states_published() const { return states_published_; }
+  std::int64_t controls_handled() const { return controls_handled_; }
+  std::int64_t packets_received() const { return packets_received_; }
+  std::uint64_t demand_late() const { return demand_.late(); }
+
+ private:
+  // Empties out_, keeping its states' memory in spare_ for the next ones.
+  void clear_output();
+  void step_once(bool publish_every_step);
+  void add_state();
+  void acknowledge(const sim_control_t& request, bool ok, const std::string& message);
+  double first_state_time() const;
+
+  World world_;
+  ServerOptions options_;
+  Pacer pacer_;
+  bool paused_;
+  double next_state_time_ = 0;  // sim time of the next publication (STATE_PUBLISH_RATE > 0)
+  Output out_;
+  std::vector<sim_state_t> spare_;
+  ThrottledLog log_;
+  bool sync_ = false;
+  TruthDemand demand_;
+  double horizon_ = 0;      // s, from SIM_SYNC_HORIZON
+  double referee_horizon_;  // s, from REFEREE (+inf without --sync-referee)
+  std::string horizon_bound_ = "the radio emulator (no SIM_SYNC_HORIZON yet)";
+  bool vision_heard_ = false;
+  bool radio_ready_ = false;
+  std::int64_t steps_ = 0;
+  std::int64_t states_published_ = 0;
+  std::int64_t controls_handled_ = 0;
+  std::int64_t packets_received_ = 0;
+};
+
+}  // namespace ubersim::physics

@@ -1,0 +1,270 @@
+#include "ubersim/physics/physics_core.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace ubersim::physics {
+namespace {
+
+const char* action_name(int action) {
+  switch (action) {
+    case sim_control_t::PLACE:
+      return "PLACE";
+    case sim_control_t::SETUP:
+      return "SETUP";
+    case sim_control_t::PAUSE:
+      return "PAUSE";
+    case sim_control_t::RESUME:
+      return "RESUME";
+    case sim_control_t::RESET:
+      return "RESET";
+    case sim_control_t::STEP:
+      return "STEP";
+    case sim_control_t::SET_SPEED:
+      return "SET_SPEED";
+    case sim_control_t::SET_SEED:
+      return "SET_SEED";
+    case sim_control_t::REQUEST_GEOMETRY:
+      return "REQUEST_GEOMETRY";
+    case sim_control_t::DEFINE_ROBOT_TYPE:
+      return "DEFINE_ROBOT_TYPE";
+    case sim_control_t::SET_FIELD:
+      return "SET_FIELD";
+    case sim_control_t::PING:
+      return "PING";
+    case sim_control_t::SET_SYNC:
+      return "SET_SYNC";
+    default:
+      return "unknown action";
+  }
+}
+
+}  // namespace
+
+PhysicsCore::PhysicsCore(WorldSetup setup, ServerOptions options)
+    : world_(std::move(setup)),
+      options_(std::move(options)),
+      pacer_(world_.dt(), options_.speed < 0 ? -1.0 : options_.speed,
+             world_.setup().physics.max_pacing_lag),
+      paused_(options_.paused),
+      next_state_time_(first_state_time()),
+      sync_(options_.sync),
+      referee_horizon_(options_.sync_referee ? 0.0 : std::numeric_limits<double>::infinity()) {}
+
+void PhysicsCore::on_commands(const sim_commands_t& packet) {
+  ++packets_received_;
+  world_.submit(packet);
+}
+
+void PhysicsCore::on_sync_horizon(const sync_horizon_t& h) {
+  if (std::isnan(h.horizon)) return;
+  horizon_ = h.horizon;
+  // Until its clients registered, the radio holds the start.
+  radio_ready_ = h.waiting_for != "registration";
+  horizon_bound_ = h.waiting_for.empty() ? "?" : h.waiting_for;
+}
+
+void PhysicsCore::on_referee(const referee_t& r) {
+  // The referee has judged the state at r.sim_time: the step starting there may go.
+  referee_horizon_ =
+      r.game_over ? std::numeric_limits<double>::infinity() : r.sim_time + world_.dt() / 2;
+}
+
+void PhysicsCore::on_truth_demand(const truth_demand_t& d, Clock::time_point wall) {
+  const std::string problem = demand_.on_demand(d, world_.time(), world_.dt(), wall);
+  if (!problem.empty()) log_.warn("demand", "ignored a SIM_TRUTH_DEMAND: " + problem);
+}
+
+void PhysicsCore::expire_demand(Clock::time_point wall) {
+  for (const std::string& gone : demand_.expire(wall, std::chrono::seconds(3))) {
+    spdlog::info("truth demand of '{}' forgotten: not heard for 3 s", gone);
+  }
+}
+
+std::string PhysicsCore::horizon_bound() const {
+  return referee_horizon_ < horizon_ ? "referee" : horizon_bound_;
+}
+
+bool PhysicsCore::duration_reached() const {
+  return options_.duration > 0 && world_.time() >= options_.duration - world_.dt() / 2;
+}
+
+double PhysicsCore::first_state_time() const {
+  // Step 0 is published at start (and after a reset); then one per 1 / rate.
+  const double rate = world_.setup().physics.state_publish_rate;
+  return rate > 0 ? 1.0 / rate : 0.0;
+}
+
+void PhysicsCore::clear_output() {
+  for (sim_state_t& s : out_.states) spare_.push_back(std::move(s));
+  out_.states.clear();
+  out_.geometry.reset();
+  out_.ack.reset();
+}
+
+const PhysicsCore::Output& PhysicsCore::state() {
+  clear_output();
+  add_state();
+  return out_;
+}
+
+const PhysicsCore::Output& PhysicsCore::step() {
+  clear_output();
+  step_once(false);
+  return out_;
+}
+
+void PhysicsCore::step_once(bool publish_every_step) {
+  world_.step();
+  ++steps_;
+  const double rate = world_.setup().physics.state_publish_rate;
+  if (options_.truth_on_demand && !publish_every_step && !options_.sync_referee &&
+      !demand_.empty()) {
+    // Only what someone asked for: ground truth costs only its consumers.
+    if (demand_.wanted(world_.time(), world_.dt())) add_state();
+    return;
+  }
+  if (publish_every_step || rate <= 0 || options_.sync_referee) {
+    add_state();
+  } else if (world_.time() >= next_state_time_ - world_.dt() / 2) {
+    add_state();
+    next_state_time_ += 1.0 / rate;
+    if (next_state_time_ < world_.time()) next_state_time_ = world_.time() + 1.0 / rate;
+  }
+}
+
+void PhysicsCore::add_state() {
+  // Filled into a state of an earlier output, so its arrays keep their memory.
+  if (spare_.empty()) {
+    out_.states.emplace_back();
+  } else {
+    out_.states.push_back(std::move(spare_.back()));
+    spare_.pop_back();
+  }
+  sim_state_t& state = out_.states.back();
+  world_.fill_state(state);
+  state.paused = paused_;
+  state.speed_factor = sync_ ? 0.0 : pacer_.speed();
+  ++states_published_;
+  demand_.published(world_.time());
+}
+
+void PhysicsCore::acknowledge(const sim_control_t& request, bool ok, const std::string& message) {
+  sim_control_ack_t ack{};
+  ack.request_id = request.request_id;
+  ack.sender = request.sender;
+  ack.ok = ok;
+  ack.message = message;
+  ack.sim_time = world_.time();
+  ack.step = world_.step_index();
+  out_.ack = ack;
+  if (ok) {
+    spdlog::debug("{} from '{}' (#{}): {}", action_name(request.action), request.sender,
+                  request.request_id, message);
+  } else {
+    log_.warn("control:" + request.sender, std::string(action_name(request.action)) + " from '" +
+                                               request.sender + "' refused: " + message);
+  }
+}
+
+const PhysicsCore::Output& PhysicsCore::on_control(const sim_control_t& request,
+                                                   const std::string& dropped_input) {
+  ++controls_handled_;
+  clear_output();
+  const auto now = Clock::now();
+  switch (request.action) {
+    case sim_control_t::PLACE:
+    case sim_control_t::SETUP: {
+      const PlaceOutcome outcome = world_.place(request, request.action == sim_control_t::SETUP);
+      if (outcome.ok) add_state();
+      acknowledge(request, outcome.ok, outcome.message);
+      return out_;
+    }
+    case sim_control_t::PAUSE:
+      paused_ = true;
+      add_state();
+      acknowledge(request, true, "paused");
+      return out_;
+    case sim_control_t::RESUME:
+      paused_ = false;
+      pacer_.restart(now, world_.step_index());
+      acknowledge(request, true, "running");
+      return out_;
+    case sim_control_t::RESET:
+      world_.reset();
+      demand_.reset();
+      next_state_time_ = first_state_time();
+      pacer_.restart(now, world_.step_index());
+      add_state();
+      acknowledge(request, true, "reset to scenario " + options_.scenario);
+      return out_;
+    case sim_control_t::STEP: {
+      const std::int64_t limit = world_.setup().physics.max_steps_per_request;
+      if (request.step_count < 1 || request.step_count > limit) {
+        acknowledge(request, false,
+                    "step_count must be 1.." + std::to_string(limit) + ", got " +
+                        std::to_string(request.step_count));
+        return out_;
+      }
+      for (int i = 0; i < request.step_count; ++i) step_once(true);
+      pacer_.restart(Clock::now(), world_.step_index());
+      acknowledge(request, true, "stepped " + std::to_string(request.step_count));
+      return out_;
+    }
+    case sim_control_t::SET_SPEED: {
+      if (!std::isfinite(request.speed_factor)) {
+        acknowledge(request, false, "speed_factor must be finite");
+        return out_;
+      }
+      const double speed = request.speed_factor < 0 ? -1.0 : request.speed_factor;
+      pacer_.set_speed(speed, now, world_.step_index());
+      sync_ = false;
+      acknowledge(request, true,
+                  speed < 0    ? std::string("lockstep")
+                  : speed == 0 ? std::string("as fast as possible")
+                               : fmt::format("{:g} x real time", speed));
+      return out_;
+    }
+    case sim_control_t::SET_SYNC:
+      sync_ = true;
+      acknowledge(request, true, "sync");
+      return out_;
+    case sim_control_t::SET_SEED:
+      world_.set_seed(static_cast<std::uint64_t>(request.seed));
+      acknowledge(request, true, "seed " + std::to_string(request.seed));
+      return out_;
+    case sim_control_t::REQUEST_GEOMETRY:
+      out_.geometry = world_.geometry();
+      acknowledge(request, true, "geometry published");
+      return out_;
+    case sim_control_t::PING:
+      // The status reply: what this process dropped, per kind and channel.
+      acknowledge(request, true,
+                  "pong; malformed messages dropped: " + dropped_input +
+                      "; other warnings (rejected contents, pacing): " + log_.counts());
+      return out_;
+    case sim_control_t::DEFINE_ROBOT_TYPE:
+      try {
+        world_.define_robot_type(request.robot_type_name, request.robot_type_config);
+        acknowledge(request, true, "robot type " + request.robot_type_name + " defined");
+      } catch (const std::exception& error) {
+        acknowledge(request, false, error.what());
+      }
+      return out_;
+    case sim_control_t::SET_FIELD:
+      try {
+        const std::string done = world_.change_field(request.field_config);
+        add_state();
+        out_.geometry = world_.geometry();
+        acknowledge(request, true, done);
+      } catch (const std::exception& error) {
+        acknowledge(request, false, error.what());
+      }
+      return out_;
+    default:
+      acknowledge(request, false, "unknown action " + std::to_string(request.action));
+      return out_;
+  }
+}
+
+}  // namespace ubersim::physics
