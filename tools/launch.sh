@@ -25,8 +25,9 @@ usage: tools/launch.sh [options]
   --referee            start the automatic referee (ubersim_referee auto, docs/autoref.md): it runs
                        the game and everything stops when it is over; with --sync, reproducibly
   --game-length S      the refereed game's length in s of sim time (default: config/referee)
-  --truth-on-demand    physics publishes SIM_STATE only at the instants its consumers ask for
-                       (vision captures and releases, radio feedback, viewer frames): docs/sync.md
+  --truth-every-step   physics publishes SIM_STATE after every step (default: only at the
+                       instants its consumers ask for: vision captures and releases, radio
+                       feedback, viewer frames, bridges; docs/sync.md). Use it to record every step
   --seed N             seed for physics and both emulators
   --duration S         stop everything after S seconds of sim time
   --lcm-url URL        LCM URL for every process (default \$LCM_DEFAULT_URL or LCM's)
@@ -46,7 +47,7 @@ usage: tools/launch.sh [options]
 USAGE
 }
 
-scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" truth_on_demand=0 seed="" duration=""
+scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" truth_every_step=0 seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix=""
 referee=0 game_length=""
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port=8080 ssl_bridge=0
@@ -62,7 +63,8 @@ while [ $# -gt 0 ]; do
     --sync-clients) sync_clients=$2; shift 2 ;;
     --referee) referee=1; shift ;;
     --game-length) game_length=$2; shift 2 ;;
-    --truth-on-demand) truth_on_demand=1; shift ;;
+    --truth-every-step) truth_every_step=1; shift ;;
+    --truth-on-demand) shift ;;  # the default; accepted for older scripts
     --seed) seed=$2; shift 2 ;;
     --duration) duration=$2; shift 2 ;;
     --lcm-url) lcm_url=$2; shift 2 ;;
@@ -131,7 +133,7 @@ if [ -n "$log_file" ]; then
 fi
 physics_args=(--scenario "$scenario" --speed "$speed")
 [ "$lockstep" = 1 ] && physics_args+=(--lockstep)
-[ "$truth_on_demand" = 1 ] && physics_args+=(--truth-on-demand)
+[ "$truth_every_step" = 1 ] && physics_args+=(--truth-every-step)
 radio_args=() demo_args=() bridge_args=()
 if [ "$sync" = 1 ]; then
   # Physics holds at sim time 0 until every demo team has registered, so

@@ -17,6 +17,7 @@
 #include "ubersim/process_main.hpp"
 #include "ubersim/radio/radio_profile.hpp"
 #include "ubersim/shutdown.hpp"
+#include "ubersim/truth_demand_announcer.hpp"
 
 namespace {
 
@@ -25,6 +26,7 @@ struct Options {
   int domain = 0;
   bool network = false;
   std::string config = "default";
+  double truth_rate = 0;  // Hz of sim time; 0: every step
 };
 
 int run(const Options& options) {
@@ -60,7 +62,22 @@ int run(const Options& options) {
 
   // DDS's samples wait in Cyclone's reader cache; its listener signals wake_fd.
   bus.watch(bridge.wake_fd(), [&bridge] { bridge.take_dds(); });
-  while (!shutdown.requested()) bus.wait_and_handle(500, &shutdown);
+  // A relay cannot know what its DDS readers need: with SIM_STATE bridged it
+  // asks physics for every step, as DDS stacks got before states came on
+  // demand, or for --truth-rate (docs/dds_bridge.md, docs/sync.md).
+  TruthDemandAnnouncer truth_demand(bus, channels, "dds_bridge");
+  const dds::Route* state_route = config.find(Channel::SimState);
+  if (state_route != nullptr && dds::carries_lcm_to_dds(state_route->direction)) {
+    if (options.truth_rate > 0) {
+      truth_demand.periodic(options.truth_rate);
+    } else {
+      truth_demand.every_step();
+    }
+  }
+  while (!shutdown.requested()) {
+    bus.wait_and_handle(500, &shutdown);
+    truth_demand.tick();
+  }
 
   for (const std::string& line : bridge.summary()) spdlog::info("{}", line);
   spdlog::info("malformed LCM messages dropped: {}", bus.malformed_count());
@@ -79,6 +96,11 @@ int parse_and_run(int argc, char** argv) {
                "LCM's ttl=0; CYCLONEDDS_URI, when set, always decides)");
   app.add_option("--config", options.config,
                  "bridge config: config/dds_bridge/NAME.cfg or a path to a .cfg file")
+      ->capture_default_str();
+  app.add_option("--truth-rate", options.truth_rate,
+                 "SIM_STATE states per second of sim time to ask physics for, when SIM_STATE is "
+                 "bridged to DDS (0 = every step)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 

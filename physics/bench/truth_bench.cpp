@@ -5,7 +5,8 @@
 //      step and on demand, against the World stepped alone in real time;
 //   2. as fast as possible, physics + vision + radio (no teams): sim seconds per
 //      wall second against the physics alone (ubersim_physics_bench's server);
-//   3. what each extra idle listener on the group adds to physics' CPU share.
+//   3. what each extra idle listener on the group adds to physics' CPU share
+//      (and the set's): the slope over 0, L and 2 L listeners.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -44,8 +45,22 @@ std::string read_file(const fs::path& path) {
   return text.str();
 }
 
-// CPU seconds (user + system) of a process, from /proc/<pid>/stat.
+// CPU seconds of a process: the sum of its threads' time on a CPU in ns
+// (/proc/<pid>/task/<tid>/schedstat), where /proc/<pid>/stat counts 10 ms
+// ticks, too coarse for the cost of one idle listener.
 double cpu_seconds(pid_t pid) {
+  double total = 0;
+  bool any = false;
+  std::error_code error;
+  for (const auto& task : fs::directory_iterator("/proc/" + std::to_string(pid) + "/task", error)) {
+    std::ifstream in(task.path() / "schedstat");
+    unsigned long long ns = 0;
+    if (in >> ns) {
+      total += 1e-9 * static_cast<double>(ns);
+      any = true;
+    }
+  }
+  if (any) return total;
   std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
   std::string text;
   std::getline(in, text);
@@ -95,7 +110,8 @@ struct SetOptions {
 
 struct SetResult {
   double physics = 0, vision = 0, radio = 0;  // shares of one core
-  double speed = 0;                           // sim s per wall s (as fast as possible)
+  double stepping = 0;  // physics' own World::step share over its run (its log)
+  double speed = 0;     // sim s per wall s (as fast as possible)
   double total() const { return physics + vision + radio; }
 };
 
@@ -104,7 +120,7 @@ SetResult run_set(const SetOptions& o, const fs::path& work) {
   std::vector<std::string> physics_argv{
       program("ubersim_physics"), url, "--scenario", o.scenario, "--speed",
       o.real_time ? "1" : "0"};
-  if (o.on_demand) physics_argv.push_back("--truth-on-demand");
+  physics_argv.push_back(o.on_demand ? "--truth-on-demand" : "--truth-every-step");
   if (!o.real_time)
     physics_argv.insert(physics_argv.end(), {"--duration", std::to_string(o.seconds)});
   std::vector<std::unique_ptr<ChildProcess>> others;
@@ -150,6 +166,12 @@ SetResult run_set(const SetOptions& o, const fs::path& work) {
   r.physics = (after[0] - before[0]) / wall;
   r.vision = (after[1] - before[1]) / wall;
   r.radio = (after[2] - before[2]) / wall;
+  physics.stop();
+  std::smatch m;
+  const std::string log = read_file(work / "physics.log");
+  if (std::regex_search(log, m, std::regex(R"(stepping took [0-9.]+ s of CPU \(([0-9.]+) %)"))) {
+    r.stepping = std::stod(m[1]) / 100;
+  }
   return r;
 }
 
@@ -181,12 +203,15 @@ int run(int argc, char** argv) {
   std::string url = "udpm://239.255.76.67:7793?ttl=0";
   std::vector<std::string> scenarios{"division_a_11v11", "division_a_11v11_planar"};
   int listeners = 4;
+  double listener_seconds = 20;
   app.add_option("--seconds", seconds, "measuring window / sim seconds per run")
       ->capture_default_str();
   app.add_option("--lcm-url", url, "LCM URL of the runs (a port of their own)")
       ->capture_default_str();
   app.add_option("--scenarios", scenarios, "scenarios")->capture_default_str();
-  app.add_option("--listeners", listeners, "idle listeners added for figure 3")
+  app.add_option("--listeners", listeners, "idle listeners added for figure 3 (and twice that)")
+      ->capture_default_str();
+  app.add_option("--listener-seconds", listener_seconds, "measuring window of figure 3")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   char pattern[] = "/tmp/ubersim_truth_bench_XXXXXX";
@@ -209,9 +234,10 @@ int run(int argc, char** argv) {
       const SetResult r = run_set(o, work);
       std::printf(
           "   physics+vision+radio, %-10s     %6.2f %% (physics %.2f, vision %.2f, radio %.2f) "
-          "= %.2f x stepping alone\n",
+          "= %.2f x stepping alone; physics' own stepping %.2f %%: %.2f x it\n",
           on_demand ? "on demand" : "every step", 100 * r.total(), 100 * r.physics, 100 * r.vision,
-          100 * r.radio, r.total() / alone);
+          100 * r.radio, r.total() / alone, 100 * r.stepping,
+          r.stepping > 0 ? r.total() / r.stepping : 0.0);
     }
     const std::string alone_scenario = std::regex_replace(scenario, std::regex("_planar$"), "");
     const double alone_speed =
@@ -230,19 +256,38 @@ int run(int argc, char** argv) {
       std::printf("   physics+vision+radio, %-10s     %6.1f x = %3.0f %% of the physics alone\n",
                   on_demand ? "on demand" : "every step", r.speed, 100 * r.speed / alone_speed);
     }
-    std::printf("3. each extra idle listener on the group, added to physics' CPU share:\n");
+    std::printf(
+        "3. each extra idle listener on the group (0, %d, %d of them, %g s each): least-squares "
+        "slope of the CPU share\n",
+        listeners, 2 * listeners, listener_seconds);
     for (bool on_demand : {false, true}) {
-      SetOptions o;
-      o.scenario = scenario;
-      o.url = url;
-      o.on_demand = on_demand;
-      o.seconds = seconds;
-      const SetResult without = run_set(o, work);
-      o.idle_listeners = listeners;
-      const SetResult with = run_set(o, work);
-      std::printf("   %-10s  physics %.2f %% -> %.2f %% with %d listeners: %+.3f %% each\n",
-                  on_demand ? "on demand" : "every step", 100 * without.physics, 100 * with.physics,
-                  listeners, 100 * (with.physics - without.physics) / listeners);
+      double sn = 0, sx = 0, sy_p = 0, sy_t = 0, sxx = 0, sxy_p = 0, sxy_t = 0;
+      std::string shares;
+      for (int n : {0, listeners, 2 * listeners}) {
+        SetOptions o;
+        o.scenario = scenario;
+        o.url = url;
+        o.on_demand = on_demand;
+        o.seconds = listener_seconds;
+        o.idle_listeners = n;
+        const SetResult r = run_set(o, work);
+        sn += 1;
+        sx += n;
+        sxx += n * n;
+        sy_p += r.physics;
+        sxy_p += n * r.physics;
+        sy_t += r.total();
+        sxy_t += n * r.total();
+        char text[64];
+        std::snprintf(text, sizeof text, "%s%.2f/%.2f", shares.empty() ? "" : ", ",
+                      100 * r.physics, 100 * r.total());
+        shares += text;
+      }
+      const double denominator = sn * sxx - sx * sx;
+      std::printf(
+          "   %-10s  physics/set %s %%: %+.3f %% (physics) %+.3f %% (set) per listener\n",
+          on_demand ? "on demand" : "every step", shares.c_str(),
+          100 * (sn * sxy_p - sx * sy_p) / denominator, 100 * (sn * sxy_t - sx * sy_t) / denominator);
     }
     std::printf("\n");
     std::fflush(stdout);

@@ -40,10 +40,16 @@ int run(int argc, char** argv) {
   app.add_flag("--sync-referee", sync_referee,
                "with --sync: also wait for the automatic referee's horizon (ubersim_referee auto "
                "--sync), so its placements apply at a fixed step (docs/autoref.md)");
+  // Ground truth on demand is the default (docs/sync.md, "Ground truth on
+  // demand"): every reader of SIM_STATE in this tree says what it needs.
+  bool truth_every_step = false;
+  app.add_flag("--truth-every-step", truth_every_step,
+               "publish SIM_STATE after every step, whoever asks (default: only at the instants "
+               "consumers ask for on SIM_TRUTH_DEMAND, every step while nobody asks; "
+               "docs/sync.md)");
   bool truth_on_demand = false;
-  app.add_flag("--truth-on-demand", truth_on_demand,
-               "publish SIM_STATE only at the instants consumers ask for on SIM_TRUTH_DEMAND "
-               "(every step while nobody asks; docs/sync.md)");
+  app.add_flag("--truth-on-demand", truth_on_demand, "the default; kept for older scripts")
+      ->excludes("--truth-every-step");
   app.add_flag("--paused", paused, "start paused (RESUME or STEP to advance)");
   app.add_option("--seed", seed, "seed of the solver's randomness")->capture_default_str();
   app.add_option("--duration", duration, "exit after this many seconds of sim time (0 = never)")
@@ -62,7 +68,7 @@ int run(int argc, char** argv) {
   options.duration = duration;
   options.sync = sync || sync_referee;
   options.sync_referee = sync_referee;
-  options.truth_on_demand = truth_on_demand;
+  options.truth_on_demand = !truth_every_step;
   ubersim::MessageBus bus(ubersim::with_receive_buffer(common.lcm_url));
   ubersim::ShutdownSignal shutdown;
   ubersim::physics::PhysicsServer server(std::move(setup), bus, common.channels(), options);

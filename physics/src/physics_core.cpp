@@ -1,10 +1,18 @@
 #include "ubersim/physics/physics_core.hpp"
 
+#include <time.h>
+
 #include <cmath>
 #include <limits>
 
 namespace ubersim::physics {
 namespace {
+
+double thread_cpu_seconds() {
+  timespec t{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 const char* action_name(int action) {
   switch (action) {
@@ -115,7 +123,14 @@ const PhysicsCore::Output& PhysicsCore::step() {
 }
 
 void PhysicsCore::step_once(bool publish_every_step) {
-  world_.step();
+  if (pacer_.paced() && !sync_) {
+    // Two system calls a step: measured only where steps are few (paced).
+    const double cpu = thread_cpu_seconds();
+    world_.step();
+    step_cpu_seconds_ += thread_cpu_seconds() - cpu;
+  } else {
+    world_.step();
+  }
   ++steps_;
   const double rate = world_.setup().physics.state_publish_rate;
   if (options_.truth_on_demand && !publish_every_step && !options_.sync_referee &&
@@ -131,6 +146,15 @@ void PhysicsCore::step_once(bool publish_every_step) {
     next_state_time_ += 1.0 / rate;
     if (next_state_time_ < world_.time()) next_state_time_ = world_.time() + 1.0 / rate;
   }
+}
+
+std::int64_t PhysicsCore::steps_to_wanted_state(std::int64_t max_steps) const {
+  if (!options_.truth_on_demand || options_.sync_referee || demand_.empty()) return 1;
+  const double dt = world_.dt();
+  const std::int64_t step = world_.step_index();
+  std::int64_t k = 1;
+  while (k < max_steps && !demand_.would_want(static_cast<double>(step + k) * dt, dt)) ++k;
+  return k;
 }
 
 void PhysicsCore::add_state() {

@@ -69,6 +69,19 @@ bool TruthDemand::wanted(double t, double dt) {
   return want;
 }
 
+bool TruthDemand::would_want(double t, double dt) const {
+  if (catch_up_) return true;
+  for (const auto& [name, c] : consumers_) {
+    if (c.every_step) return true;
+    for (const auto& [period, phase] : c.periodic) {
+      const double n = std::floor((t + kTolerance - phase) / period);
+      if (n >= 0 && phase + n * period > t - dt + kTolerance) return true;
+    }
+    if (!c.instants.empty() && *c.instants.begin() <= t + kTolerance) return true;
+  }
+  return false;
+}
+
 std::vector<std::string> TruthDemand::expire(Clock::time_point wall, Clock::duration silence) {
   std::vector<std::string> gone;
   for (auto it = consumers_.begin(); it != consumers_.end();) {

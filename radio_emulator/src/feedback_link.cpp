@@ -15,6 +15,7 @@ FeedbackLink::FeedbackLink(const RadioProfile& profile, Team team, std::uint64_t
 
 void FeedbackLink::reset() {
   next_sample_ = kLongAgo;
+  grid_origin_ = 0;
   in_flight_.clear();
 }
 
@@ -24,7 +25,11 @@ std::vector<radio_feedback_t> FeedbackLink::on_sim_state(const sim_state_t& stat
     const double period = 1.0 / profile_.feedback_rate;
     // Keep the phase while physics steps finer than the period; start afresh
     // after a gap (first state, or steps coarser than the period).
-    next_sample_ = now < next_sample_ + period ? next_sample_ + period : now + period;
+    if (now < next_sample_ + period) {
+      next_sample_ += period;
+    } else {
+      next_sample_ = grid_origin_ = now + period;
+    }
     sample(state);
   }
   std::vector<radio_feedback_t> due;
@@ -38,8 +43,8 @@ std::vector<radio_feedback_t> FeedbackLink::on_sim_state(const sim_state_t& stat
   return due;
 }
 
-double FeedbackLink::next_sample() const {
-  return next_sample_ == kLongAgo ? 0.0 : next_sample_;
+double FeedbackLink::sample_phase() const {
+  return next_sample_ == kLongAgo ? 0.0 : grid_origin_;
 }
 
 void FeedbackLink::sample(const sim_state_t& state) {

@@ -101,22 +101,25 @@ int run(const Options& options) {
   // said whenever it changes and once a second, and first before any horizon
   // (physics in sync mode sends its first state after both).
   const std::string demand_channel = channels.extra(kTruthDemandChannel);
-  std::vector<std::uint8_t> last_demand;
+  // Compared as encoded bytes, in buffers kept across wakeups (no allocation
+  // per message handled).
+  std::vector<std::uint8_t> last_demand, demand_bytes;
   auto last_demand_wall = std::chrono::steady_clock::time_point{};
   const auto announce_demand = [&] {
     const truth_demand_t demand = emulator.truth_demand();
-    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(demand.getEncodedSize()));
-    demand.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    const auto size = static_cast<std::size_t>(demand.getEncodedSize());
+    demand_bytes.resize(size);
+    demand.encode(demand_bytes.data(), 0, static_cast<int>(size));
     const auto now = std::chrono::steady_clock::now();
-    if (bytes == last_demand && now - last_demand_wall < std::chrono::seconds(1)) return;
-    bus.publish(demand_channel, demand);
-    last_demand = std::move(bytes);
+    if (demand_bytes == last_demand && now - last_demand_wall < std::chrono::seconds(1)) return;
+    bus.publish_encoded(demand_channel, demand_bytes.data(), size);
+    last_demand.swap(demand_bytes);
     last_demand_wall = now;
   };
 
   int status = 0;
+  announce_demand();
   while (!shutdown.requested()) {
-    announce_demand();
     bus.wait_and_handle(sync ? 50 : 200, &shutdown);
     announce_demand();
     if (sync && !sync->tick()) {

@@ -130,7 +130,7 @@ truth_demand_t RadioEmulator::truth_demand() const {
   for (const auto& team_link : links_) {
     if (team_link.feedback.rate() > 0) {
       demand.period.push_back(1.0 / team_link.feedback.rate());
-      demand.phase.push_back(team_link.feedback.next_sample());
+      demand.phase.push_back(team_link.feedback.sample_phase());
     }
     if (!sync_ && team_link.commands.has_waiting_packet()) {
       demand.instants.push_back(team_link.commands.busy_until());

@@ -52,7 +52,8 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
       referee_socket_(UdpSocket::multicast_sender(options_.referee_ttl, options_.vision_interface)),
       referee_destination_(make_address(options_.referee_address, options_.referee_port)),
       referee_translator_("ubersim-" + random_uuid()),
-      sync_{{SyncAnswers(options_.sync_timeout), SyncAnswers(options_.sync_timeout)}} {
+      sync_{{SyncAnswers(options_.sync_timeout), SyncAnswers(options_.sync_timeout)}},
+      truth_demand_(bus, channels, "ssl_bridge") {
   // protobuf logs every datagram that misses a required field to stderr, one
   // line each, at any rate; decoded() counts and logs them throttled instead.
   google::protobuf::SetLogHandler(nullptr);
@@ -73,6 +74,7 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
     tracked_socket_.emplace(
         UdpSocket::multicast_sender(options_.tracked_ttl, options_.vision_interface));
     tracked_destination_ = make_address(options_.tracked_address, options_.tracked_port);
+    truth_demand_.periodic(options_.tracked_rate);
   }
   bus_.subscribe<sim_state_t>(
       channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 10);
@@ -398,6 +400,7 @@ void SslBridge::run(const ShutdownSignal& shutdown) {
     bus_.wait_and_handle(50, &shutdown);
     expire_pending();
     if (options_.sync) sync_tick();
+    truth_demand_.tick();
   }
   if (options_.sync) sync_leave();
 }

@@ -161,7 +161,8 @@ void send_control(ubersim::MessageBus& bus, std::int8_t action, std::int64_t id,
 
 TEST(HostileBus, EveryProcessSurvivesAndRecovers) {
   TempDir dir;
-  Launch launch({"--demo", "both"}, dir);
+  // Every step's state, so that 240 Hz tells physics is back at full pace.
+  Launch launch({"--demo", "both", "--truth-every-step"}, dir);
   const auto pids = launch.processes();
   ASSERT_GE(pids.size(), 5u) << launch.output();
 

@@ -98,7 +98,7 @@ class CpuHog {
 // same bytes on every reproducible channel; a third with another seed does not.
 TEST(Sync, SameSeedsGiveByteIdenticalLogsEvenUnderLoad) {
   TempDir dir;
-  const std::vector<std::string> options{"--duration", "4", "--seed", "7"};
+  const std::vector<std::string> options{"--duration", "4", "--seed", "7", "--truth-every-step"};
   const GameRun quiet = run_game(dir, "quiet", options);
   ASSERT_EQ(quiet.status, 0) << quiet.output;
   GameRun loaded;
@@ -114,7 +114,8 @@ TEST(Sync, SameSeedsGiveByteIdenticalLogsEvenUnderLoad) {
   EXPECT_NE(quiet.radio_log.find("0 client timeouts"), std::string::npos) << quiet.radio_log;
 
   // The comparison can fail: another vision and radio seed changes the game.
-  const GameRun other = run_game(dir, "other", {"--duration", "4", "--seed", "8"});
+  const GameRun other =
+      run_game(dir, "other", {"--duration", "4", "--seed", "8", "--truth-every-step"});
   ASSERT_EQ(other.status, 0) << other.output;
   EXPECT_NE(compare_channel(quiet.log.at("VISION"), other.log.at("VISION")), "");
 }
@@ -207,13 +208,13 @@ TEST(Sync, SilentClientIsDroppedOrFailsTheRunWhenStrict) {
   }
 }
 
-// Ground truth on demand (physics --truth-on-demand): the states consumers
+// Ground truth on demand (the default; --truth-every-step is the old way): the states consumers
 // asked for, and nothing else changes. Reproducible too, also under load.
 TEST(Sync, TruthOnDemandSendsFewerStatesAndChangesNothingElse) {
   TempDir dir;
-  const std::vector<std::string> options{"--duration", "4", "--seed", "7"};
-  std::vector<std::string> on_demand = options;
-  on_demand.push_back("--truth-on-demand");
+  const std::vector<std::string> on_demand{"--duration", "4", "--seed", "7"};  // the default
+  std::vector<std::string> options = on_demand;
+  options.push_back("--truth-every-step");
   const GameRun every_step = run_game(dir, "every_step", options);
   const GameRun quiet = run_game(dir, "quiet", on_demand);
   GameRun loaded;

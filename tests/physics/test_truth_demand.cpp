@@ -77,3 +77,27 @@ TEST(TruthDemand, SilentConsumersAreForgottenAndBadDemandsRefused) {
   EXPECT_EQ(truth.expire(start + std::chrono::seconds(4), std::chrono::seconds(3)).size(), 1u);
   EXPECT_TRUE(truth.empty());
 }
+
+// Physics looks ahead with would_want() to sleep until the step of the next
+// wanted state: it must give wanted()'s answer for every step, and change nothing.
+TEST(TruthDemand, WouldWantForeseesWantedWithoutChangingIt) {
+  TruthDemand truth;
+  const auto now = TruthDemand::Clock::now();
+  ASSERT_EQ(truth.on_demand(demand("vision", {1.0 / 30}, {0.0}, {10.5 * kDt, 13 * kDt}), 0, kDt,
+                            now),
+            "");
+  ASSERT_EQ(truth.on_demand(demand("radio", {1.0 / 20}, {0.02}, {}), 0, kDt, now), "");
+  std::vector<int> foreseen, wanted;
+  for (int i = 1; i <= 48; ++i) {
+    // Looking ahead several steps (as physics does) does not consume anything.
+    for (int k = 1; k <= 12; ++k) static_cast<void>(truth.would_want((i + k) * kDt, kDt));
+    if (truth.would_want(i * kDt, kDt)) foreseen.push_back(i);
+    if (truth.wanted(i * kDt, kDt)) {
+      wanted.push_back(i);
+      truth.published(i * kDt);
+    }
+  }
+  EXPECT_EQ(foreseen, wanted);
+  // 30 Hz: 8, 16, ...; 20 Hz from 0.02 s: 5, 17, 29, 41; instants: 11, 13.
+  EXPECT_EQ(wanted, (std::vector<int>{5, 8, 11, 13, 16, 17, 24, 29, 32, 40, 41, 48}));
+}

@@ -40,6 +40,8 @@ SimRig::SimRig(const RigPaths& paths, const RigOptions& options)
   };
 
   bus_ = std::make_unique<MessageBus>(with_receive_buffer(default_lcm_url()));
+  truth_demand_ = std::make_unique<TruthDemandAnnouncer>(*bus_, channels_, sender_);
+  truth_demand_->every_step();
   bus_->subscribe<sim_state_t>(channels_(Channel::SimState), [this](const sim_state_t& s) {
     // Physics publishes a step's state again after a placement and, while idle
     // in lockstep, once a second of wall time: handlers see each step once, so
@@ -154,6 +156,7 @@ bool SimRig::wait(Done done, double timeout_s) {
                           deadline - std::chrono::steady_clock::now())
                           .count();
     if (left <= 0) return false;
+    truth_demand_->tick();
     bus_->wait_and_handle(static_cast<int>(std::min<long long>(left, 100)));
   }
   return true;

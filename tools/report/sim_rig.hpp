@@ -33,6 +33,7 @@
 #include "ubersim/channels.hpp"
 #include "ubersim/child_process.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/truth_demand_announcer.hpp"
 
 namespace ubersim::report {
 
@@ -100,6 +101,9 @@ class SimRig {
   ChannelNames channels_;
   std::string sender_;
   std::unique_ptr<MessageBus> bus_;
+  // Every step's state (lockstep publishes each step anyway; said all the same,
+  // so that the rig does not depend on that).
+  std::unique_ptr<TruthDemandAnnouncer> truth_demand_;
   std::unique_ptr<ChildProcess> physics_, vision_, radio_;
   std::vector<std::function<void(const sim_state_t&)>> state_handlers_;
   std::vector<std::function<void(const vision_frame_t&)>> frame_handlers_;

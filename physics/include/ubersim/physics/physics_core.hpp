@@ -39,7 +39,8 @@ struct ServerOptions {
   bool sync_referee = false;
   // SIM_STATE only at the instants consumers ask for on SIM_TRUTH_DEMAND
   // (every step while nobody has asked): docs/sync.md, "Ground truth on demand".
-  bool truth_on_demand = false;
+  // The default; --truth-every-step turns it off.
+  bool truth_on_demand = true;
 };
 
 class PhysicsCore {
@@ -73,6 +74,11 @@ class PhysicsCore {
   field_geometry_t geometry() const { return world_.geometry(); }
   // Forgets truth consumers not heard for 3 s (logged).
   void expire_demand(Clock::time_point wall);
+  // States on demand with someone asking: in how many steps (1..max_steps) the
+  // next wanted state comes, max_steps if none before. Steps nobody sees a
+  // state of need not run on time (the server sleeps until that step is due).
+  // 1 when every step's state goes out.
+  std::int64_t steps_to_wanted_state(std::int64_t max_steps) const;
 
   // Nothing advances by itself: paused, or lockstep outside sync mode.
   bool idle() const { return paused_ || (!sync_ && pacer_.lockstep()); }
@@ -101,6 +107,9 @@ class PhysicsCore {
   std::int64_t controls_handled() const { return controls_handled_; }
   std::int64_t packets_received() const { return packets_received_; }
   std::uint64_t demand_late() const { return demand_.late(); }
+  // Paced modes: CPU time of this thread spent in World::step (s), so that
+  // the cost of everything else (messages, waiting) can be told from stepping.
+  double step_cpu_seconds() const { return step_cpu_seconds_; }
 
  private:
   // Empties out_, keeping its states' memory in spare_ for the next ones.
@@ -129,6 +138,7 @@ class PhysicsCore {
   std::int64_t states_published_ = 0;
   std::int64_t controls_handled_ = 0;
   std::int64_t packets_received_ = 0;
+  double step_cpu_seconds_ = 0;
 };
 
 }  // namespace ubersim::physics

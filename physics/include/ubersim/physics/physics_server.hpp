@@ -60,6 +60,10 @@ class PhysicsServer {
   void publish(const PhysicsCore::Output& out);
   void publish_geometry();
   void wait_at_horizon(const ShutdownSignal* shutdown);
+  // Paced: when to wake for the step that is due at `due`. With states on
+  // demand, the steps before the next wanted state run when that one is due
+  // (docs/sync.md, "Steps nobody sees"), instead of one wakeup a step.
+  Pacer::Clock::time_point wake_for(Pacer::Clock::time_point due) const;
   void log_sync_waits() const;
   // Waits until `deadline` or a message or a signal; handles messages.
   void wait_until(Pacer::Clock::time_point deadline, const ShutdownSignal* shutdown);

@@ -29,6 +29,9 @@ class TruthDemand {
   void published(double t);
   // Whether the state at the end of the step that went from t - dt to t is wanted.
   bool wanted(double t, double dt);
+  // The same question, changing nothing: to see how far ahead the next wanted
+  // state is (physics sleeps until its step is due; docs/sync.md).
+  bool would_want(double t, double dt) const;
   // Forgets consumers not heard for `silence`; returns their names.
   std::vector<std::string> expire(Clock::time_point wall, Clock::duration silence);
   // Sim time went back to 0: explicit instants of the old timeline go.

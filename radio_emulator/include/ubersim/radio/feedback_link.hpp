@@ -41,9 +41,11 @@ class FeedbackLink {
   void set_profile(const RadioProfile& profile) { profile_ = profile; }
 
   const FeedbackLinkStats& stats() const { return stats_; }
-  // Sim time of the next sample (0 before the first state); samples follow at
-  // 1 / FEEDBACK_RATE, so physics on demand is asked for states at those instants.
-  double next_sample() const;
+  // Sim time of the first sample of the current sampling grid (0 before the
+  // first state); samples follow at 1 / FEEDBACK_RATE, so physics on demand is
+  // asked for states at those instants. The grid's origin, not the next
+  // sample: it stays the same from sample to sample, and so does the demand.
+  double sample_phase() const;
   double rate() const { return profile_.feedback_rate; }
 
  private:
@@ -53,6 +55,7 @@ class FeedbackLink {
   Team team_;
   LinkRandom random_;
   double next_sample_;
+  double grid_origin_ = 0;  // s, the first sample since the grid (re)started
   DelayLine<radio_feedback_t> in_flight_;
   FeedbackLinkStats stats_;
 };

@@ -22,6 +22,7 @@
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/shutdown.hpp"
+#include "ubersim/truth_demand_announcer.hpp"
 
 namespace ubersim::ssl {
 
@@ -123,6 +124,9 @@ class SslBridge {
   std::chrono::steady_clock::time_point next_sync_hello_{};
   ThrottledLog bad_input_;
   std::map<std::string, uint64_t> counters_;
+  // Ground truth at the tracked rate (tracked frames); without them the
+  // bridge takes whatever states the others ask for (docs/sync.md).
+  TruthDemandAnnouncer truth_demand_;
 };
 
 }  // namespace ubersim::ssl

@@ -1,0 +1,39 @@
+#pragma once
+// What a consumer of ground truth tells physics it needs (docs/sync.md,
+// "Ground truth on demand"): a truth_demand_t on SIM_TRUTH_DEMAND, sent when it
+// changes and again at least once a second (physics forgets a consumer not
+// heard for 3 s). Call tick() from the process's loop, as often as it wakes.
+#include <chrono>
+#include <string>
+#include <ubersim/truth_demand_t.hpp>
+
+#include "ubersim/channels.hpp"
+#include "ubersim/message_bus.hpp"
+
+namespace ubersim {
+
+class TruthDemandAnnouncer {
+ public:
+  using Clock = std::chrono::steady_clock;
+  static constexpr std::chrono::milliseconds kRepeat{1000};
+
+  TruthDemandAnnouncer(MessageBus& bus, const ChannelNames& channels, std::string consumer);
+
+  // What is asked for from now on (sent at the next tick).
+  void every_step();
+  void periodic(double rate_hz);  // instants n / rate of sim time
+  void nothing();                 // stop asking (no message: physics forgets in 3 s)
+
+  // Sends the demand if it changed or kRepeat has passed since it was last sent.
+  void tick(Clock::time_point now = Clock::now());
+
+ private:
+  MessageBus& bus_;
+  std::string channel_;
+  truth_demand_t demand_{};
+  bool asking_ = false;
+  bool changed_ = false;
+  Clock::time_point next_{};
+};
+
+}  // namespace ubersim
