@@ -67,6 +67,7 @@ void PhysicsCore::on_commands(const sim_commands_t& packet) {
 void PhysicsCore::on_sync_horizon(const sync_horizon_t& h) {
   if (std::isnan(h.horizon)) return;
   horizon_ = h.horizon;
+  if (!std::isnan(h.answered_until)) answered_until_ = h.answered_until;
   // Until its clients registered, the radio holds the start.
   radio_ready_ = h.waiting_for != "registration";
   horizon_bound_ = h.waiting_for.empty() ? "?" : h.waiting_for;

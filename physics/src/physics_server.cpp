@@ -140,6 +140,9 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
     }
     publish(core_.step());
   }
+  if (core_.sync() && first_state_sent_ && core_.duration_reached()) {
+    wait_for_last_answers(shutdown);
+  }
   const auto end = Clock::now();
   stats_.wall_seconds = seconds_between(start, end);
   if (options_.truth_on_demand) {
@@ -188,6 +191,24 @@ Clock::time_point PhysicsServer::wake_for(Clock::time_point due) const {
       1, static_cast<std::int64_t>(window * core_.pacer().speed() / world.dt()));
   const std::int64_t k = core_.steps_to_wanted_state(max_steps);
   return k <= 1 ? due : core_.pacer().due(world.step_index() + k - 1);
+}
+
+void PhysicsServer::wait_for_last_answers(const ShutdownSignal* shutdown) {
+  // The run ends when physics exits, and the launch script then stops every
+  // process: wait until the clients' answers to the frames published up to
+  // the last state are in (the radio says so), so that every run's log ends
+  // alike. Bounded: a client that never answers is dropped by the radio
+  // after its timeout, which also ends this wait.
+  const auto deadline = Clock::now() + std::chrono::seconds(3);
+  auto stopping = [&] { return shutdown != nullptr && shutdown->requested(); };
+  while (!core_.last_frames_answered() && Clock::now() < deadline && !stopping()) {
+    if (bus_.handle_pending() > 0) continue;
+    wait_until(std::min(deadline, Clock::now() + std::chrono::milliseconds(100)), shutdown);
+  }
+  if (!core_.last_frames_answered() && !stopping()) {
+    spdlog::warn("sync: the run ends without the answers to the last frames (answered until {} s)",
+                 core_.answered_until());
+  }
 }
 
 void PhysicsServer::log_sync_waits() const {

@@ -71,6 +71,7 @@ bool SyncDriver::tick() {
 
 void SyncDriver::update(bool always_publish) {
   double horizon = std::numeric_limits<double>::infinity();
+  double answered_until = std::numeric_limits<double>::infinity();
   std::string bound;
   if (!started_ && coordinator_.clients() >= options_.expected_clients) {
     started_ = true;
@@ -80,6 +81,7 @@ void SyncDriver::update(bool always_publish) {
     // Physics holds where it is until every expected client can see the
     // first frame, so that runs start alike.
     horizon = 0;
+    answered_until = 0;
     bound = started_ ? "vision" : "registration";
     const auto now = Clock::now();
     if (now >= next_hold_log_) {
@@ -92,6 +94,7 @@ void SyncDriver::update(bool always_publish) {
   } else {
     for (Team team : kTeams) {
       const double arrival = coordinator_.earliest_arrival(team);
+      answered_until = std::min(answered_until, arrival);
       publish_(emulator_.sync_poll(team, arrival));
       const double apply = emulator_.earliest_apply(team, arrival);
       if (apply < horizon) {
@@ -100,9 +103,13 @@ void SyncDriver::update(bool always_publish) {
       }
     }
   }
-  if (!always_publish && horizon == horizon_.horizon && bound == horizon_.waiting_for) return;
+  if (!always_publish && horizon == horizon_.horizon && bound == horizon_.waiting_for &&
+      answered_until == horizon_.answered_until) {
+    return;
+  }
   ++horizon_.sequence;
   horizon_.horizon = horizon;
+  horizon_.answered_until = answered_until;
   horizon_.waiting_for = bound;
   horizon_.clients = coordinator_.clients();
   bus_.publish(horizon_channel_, horizon_);

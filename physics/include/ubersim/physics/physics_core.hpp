@@ -96,6 +96,12 @@ class PhysicsCore {
   // that every run starts alike.
   bool ready_to_start() const { return vision_heard_ && radio_ready_; }
   bool duration_reached() const;
+  // Sync mode: every frame published up to the current state has its answers
+  // from every client (the radio emulator says so), so a run may end here.
+  bool last_frames_answered() const {
+    return answered_until_ > world_.time() + world_.dt() * 1e-6;
+  }
+  double answered_until() const { return answered_until_; }
 
   World& world() { return world_; }
   const World& world() const { return world_; }
@@ -130,6 +136,7 @@ class PhysicsCore {
   bool sync_ = false;
   TruthDemand demand_;
   double horizon_ = 0;      // s, from SIM_SYNC_HORIZON
+  double answered_until_ = 0;  // s, from SIM_SYNC_HORIZON: frames published before it are answered
   double referee_horizon_;  // s, from REFEREE (+inf without --sync-referee)
   std::string horizon_bound_ = "the radio emulator (no SIM_SYNC_HORIZON yet)";
   bool vision_heard_ = false;

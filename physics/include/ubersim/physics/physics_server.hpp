@@ -60,6 +60,8 @@ class PhysicsServer {
   void publish(const PhysicsCore::Output& out);
   void publish_geometry();
   void wait_at_horizon(const ShutdownSignal* shutdown);
+  // Sync mode, duration reached: until the last frames' answers are in (at most 3 s).
+  void wait_for_last_answers(const ShutdownSignal* shutdown);
   // Paced: when to wake for the step that is due at `due`. With states on
   // demand, the steps before the next wanted state run when that one is due
   // (docs/sync.md, "Steps nobody sees"), instead of one wakeup a step.
