@@ -6,7 +6,8 @@
 //              SIM_CONTROL  (sim_control_t):  place, setup, pause, resume, reset,
 //                                             step, speed, sync, seed, geometry, ping
 //              SIM_SYNC_HORIZON (sync_horizon_t): in sync mode, how far it may step
-//   publishes  SIM_STATE    (sim_state_t):    after every step (or at STATE_PUBLISH_RATE)
+//   publishes  SIM_STATE    (sim_state_t):    at the steps SIM_TRUTH_DEMAND asks for (every
+//                                             step while nobody asks, or at STATE_PUBLISH_RATE)
 //              SIM_GEOMETRY (field_geometry_t): at start, every GEOMETRY_PUBLISH_PERIOD
 //                                             of wall time, and on request
 //              SIM_CONTROL_ACK (sim_control_ack_t): one per SIM_CONTROL
