@@ -78,7 +78,8 @@ SyncRun sync_run(const std::string& source_dir, const std::string& scenario,
                                 url,
                                 "--log-dir",
                                 logs.string()};
-  if (on_demand) argv.push_back("--truth-on-demand");
+  // On demand is physics' default; the other mode must be asked for.
+  argv.push_back(on_demand ? "--truth-on-demand" : "--truth-every-step");
   ubersim::ChildProcess launch(argv, (work / "launch.out").string());
   if (launch.wait(600) != 0) throw std::runtime_error("launch.sh failed: " + launch.log());
   const std::string log = read_file(logs / "physics.log");
@@ -124,7 +125,8 @@ int run(int argc, char** argv) {
   app.add_option("--scenarios", scenarios, "scenarios")->capture_default_str();
   app.add_option("--profiles", profiles, "vision and radio profiles")->capture_default_str();
   app.add_option("--truth", truth,
-                 "SIM_STATE every step, or only on demand (physics --truth-on-demand)")
+                 "SIM_STATE every step (physics --truth-every-step), or only on demand (the "
+                 "default)")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
