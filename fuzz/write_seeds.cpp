@@ -16,6 +16,7 @@
 #include <ubersim/vision_geometry_t.hpp>
 #include <vector>
 
+#include "lcm_seeds.hpp"
 #include "ubersim/field_config.hpp"
 #include "ubersim/ssl_bridge/vision_translation.hpp"
 
@@ -210,6 +211,7 @@ int main(int argc, char** argv) {
     ssl_control_seeds(dir / "fuzz_ssl_control");
     ssl_robot_control_seeds(dir / "fuzz_ssl_robot_control");
     viewer_seeds(dir / "fuzz_viewer_http", dir / "fuzz_viewer_control");
+    ubersim::fuzz::write_lcm_seeds(dir / "fuzz_lcm_decode", dir / "fuzz_lcm_physics");
   } catch (const std::exception& error) {
     std::fprintf(stderr, "ubersim_fuzz_seeds: %s\n", error.what());
     return 1;

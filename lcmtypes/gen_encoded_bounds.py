@@ -199,6 +199,12 @@ struct EncodedBounds;
 
 {traits}
 
+// Every message type of lcmtypes/, for code that must treat them all alike
+// (the fuzz target of every type's check and decode, tests).
+template <class... Msgs>
+struct LcmTypeList {{}};
+using AllLcmTypes = LcmTypeList<{type_list}>;
+
 }}  // namespace ubersim
 """
 
@@ -237,7 +243,8 @@ def main(argv):
         includes="\n".join(f'#include "ubersim/{name}.hpp"' for name in names),
         declarations="\n".join(f"inline bool walk_{name}(Reader& r);" for name in names),
         walkers="\n\n".join(walkers),
-        traits="\n\n".join(traits))
+        traits="\n\n".join(traits),
+        type_list=", ".join(names))
     with open(output, "w", encoding="utf-8") as f:
         f.write(text)
     return 0

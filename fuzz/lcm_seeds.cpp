@@ -1,0 +1,247 @@
+// Real messages for the LCM fuzz targets: a state of the Division B scenario
+// as its World fills it, commands as the radio emulator forwards them, the
+// control requests the referee and the SSL bridge send, the sync and truth
+// messages of a sync run, and a default message of every other type (so every
+// type has a seed). Inputs are one selector byte and then the encoded message.
+#include "lcm_seeds.hpp"
+
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <ubersim/referee_t.hpp>
+#include <ubersim/sim_commands_t.hpp>
+#include <ubersim/sim_control_t.hpp>
+#include <ubersim/sim_state_t.hpp>
+#include <ubersim/sync_horizon_t.hpp>
+#include <ubersim/truth_demand_t.hpp>
+#include <ubersim/vision_schedule_t.hpp>
+#include <utility>
+
+#include "physics_inputs.hpp"
+#include "ubersim/encoded_bounds.hpp"
+#include "ubersim/physics/world.hpp"
+
+namespace ubersim::fuzz {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string file_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+template <class Msg>
+std::string encoded(const Msg& message) {
+  std::string bytes(static_cast<std::size_t>(message.getEncodedSize()), '\0');
+  message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+void write(const fs::path& dir, const std::string& name, std::uint8_t selector,
+           const std::string& bytes) {
+  fs::create_directories(dir);
+  std::ofstream out(dir / name, std::ios::binary);
+  out.put(static_cast<char>(selector));
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw std::runtime_error("cannot write " + (dir / name).string());
+}
+
+// The selector fuzz_lcm_decode reads for Msg: its index in AllLcmTypes.
+template <class Msg, class... Msgs>
+std::uint8_t type_index(LcmTypeList<Msgs...>) {
+  std::uint8_t index = 0;
+  bool found = false;
+  ((found = found || std::is_same_v<Msg, Msgs>, index += found ? 0 : 1), ...);
+  return index;
+}
+
+template <class Msg>
+void write_decode_seed(const fs::path& dir, const std::string& name, const Msg& message) {
+  write(dir, name, type_index<Msg>(AllLcmTypes{}), encoded(message));
+}
+
+template <class... Msgs>
+void write_default_seeds(const fs::path& dir, LcmTypeList<Msgs...>) {
+  (write_decode_seed(dir, std::string(Msgs::getTypeName()) + "_default", Msgs{}), ...);
+}
+
+robot_command_t command(int id, std::int8_t mode, double vx, double omega, double kick) {
+  robot_command_t c{};
+  c.robot_id = id;
+  c.mode = mode;
+  c.vx = vx;
+  c.omega = omega;
+  c.kick_speed = kick;
+  if (mode == robot_command_t::MODE_WHEEL_SPEEDS) {
+    c.wheel_speeds = {20.0, -20.0, -20.0, 20.0};
+    c.num_wheels = 4;
+  }
+  return c;
+}
+
+sim_commands_t commands() {
+  sim_commands_t p{};
+  p.team = 1;
+  p.sequence = 7;
+  p.t_received = 0.004;
+  p.t_apply = 0.0125;
+  p.command_timeout = 0.5;
+  p.commands = {command(0, robot_command_t::MODE_LOCAL_VELOCITY, 1.5, 0.5, 0),
+                command(1, robot_command_t::MODE_GLOBAL_VELOCITY, -1.0, 2.0, 4.0),
+                command(2, robot_command_t::MODE_WHEEL_SPEEDS, 0, 0, 0)};
+  p.commands[0].dribbler_speed = 300;
+  p.commands[1].chip_speed = 3;
+  p.num_commands = static_cast<std::int32_t>(p.commands.size());
+  return p;
+}
+
+sim_control_t control(std::int8_t action) {
+  sim_control_t c{};
+  c.request_id = 1;
+  c.sender = "referee";
+  c.action = action;
+  return c;
+}
+
+sim_control_t placement() {
+  sim_control_t c = control(sim_control_t::PLACE);
+  robot_placement_t robot{};
+  robot.team = 0;
+  robot.robot_id = 2;
+  robot.present = true;
+  robot.x = -1.0;
+  robot.y = 0.5;
+  robot.orientation = 1.2;
+  robot.vx = 0.3;
+  c.robots = {robot};
+  c.num_robots = 1;
+  c.has_ball = true;
+  c.ball.position[0] = 0.2;
+  c.ball.linear_velocity[0] = 3.0;
+  c.ball.rolling = true;
+  return c;
+}
+
+truth_demand_t demand() {
+  truth_demand_t d{};
+  d.consumer = "vision";
+  d.period = {1.0 / 60};
+  d.phase = {0.0};
+  d.num_periodic = 1;
+  d.instants = {0.05, 0.0625};
+  d.num_instants = 2;
+  return d;
+}
+
+sync_horizon_t horizon() {
+  sync_horizon_t h{};
+  h.sequence = 3;
+  h.horizon = 0.05;
+  h.waiting_for = "demo yellow";
+  h.clients = 2;
+  return h;
+}
+
+vision_schedule_t schedule() {
+  vision_schedule_t s{};
+  s.t_state = 0.0375;
+  s.step = 9;
+  s.next_publication = 0.054;
+  s.next_capture = 0.0167;
+  s.camera_id = {0};
+  s.frame_number = {1};
+  s.t_capture = {0.0};
+  s.num_frames = 1;
+  return s;
+}
+
+referee_t referee() {
+  referee_t r{};
+  r.sim_time = 0.1;
+  r.stage = referee_t::STAGE_FIRST_HALF;
+  r.stage_time_left = 150;
+  r.command = referee_t::NORMAL_START;
+  r.ball_in_play = true;
+  r.yellow_goalkeeper = 0;
+  r.blue_goalkeeper = 0;
+  return r;
+}
+
+sim_state_t division_b_state() {
+  physics::World world(physics::load_world_setup(UBERSIM_FUZZ_CONFIG_DIR, "division_b_6v6",
+                                                 "default"));
+  world.submit(commands());
+  for (int i = 0; i < 24; ++i) world.step();
+  sim_state_t state{};
+  world.fill_state(state);
+  return state;
+}
+
+}  // namespace
+
+void write_lcm_seeds(const fs::path& decode_dir, const fs::path& physics_dir) {
+  write_default_seeds(decode_dir, AllLcmTypes{});
+  write_decode_seed(decode_dir, "sim_state", division_b_state());
+  write_decode_seed(decode_dir, "sim_commands", commands());
+  write_decode_seed(decode_dir, "sim_control_place", placement());
+  write_decode_seed(decode_dir, "truth_demand", demand());
+  write_decode_seed(decode_dir, "sync_horizon", horizon());
+  write_decode_seed(decode_dir, "vision_schedule", schedule());
+  write_decode_seed(decode_dir, "referee", referee());
+
+  const auto on = [](PhysicsChannel channel, std::uint8_t options = 0) {
+    return static_cast<std::uint8_t>(static_cast<std::uint8_t>(channel) | options);
+  };
+  write(physics_dir, "commands", on(PhysicsChannel::SimCommands), encoded(commands()));
+  // What a hostile or broken sender puts in numbers (the handlers must drop these).
+  sim_commands_t not_a_number = commands();
+  not_a_number.commands[0].vx = std::numeric_limits<double>::quiet_NaN();
+  not_a_number.commands[1].kick_speed = std::numeric_limits<double>::infinity();
+  not_a_number.commands[2].wheel_speeds[1] = -std::numeric_limits<double>::infinity();
+  write(physics_dir, "commands_not_finite", on(PhysicsChannel::SimCommands),
+        encoded(not_a_number));
+  sim_control_t place_nan = placement();
+  place_nan.robots[0].x = std::numeric_limits<double>::quiet_NaN();
+  place_nan.ball.linear_velocity[1] = std::numeric_limits<double>::infinity();
+  write(physics_dir, "place_not_finite", on(PhysicsChannel::SimControl), encoded(place_nan));
+  write(physics_dir, "place", on(PhysicsChannel::SimControl), encoded(placement()));
+  sim_control_t setup = placement();
+  setup.action = sim_control_t::SETUP;
+  write(physics_dir, "setup", on(PhysicsChannel::SimControl), encoded(setup));
+  for (std::int8_t action : {sim_control_t::PAUSE, sim_control_t::RESUME, sim_control_t::RESET,
+                             sim_control_t::PING, sim_control_t::REQUEST_GEOMETRY}) {
+    write(physics_dir, "control_" + std::to_string(action), on(PhysicsChannel::SimControl),
+          encoded(control(action)));
+  }
+  sim_control_t step = control(sim_control_t::STEP);
+  step.step_count = 12;
+  write(physics_dir, "step", on(PhysicsChannel::SimControl), encoded(step));
+  sim_control_t speed = control(sim_control_t::SET_SPEED);
+  speed.speed_factor = 2.0;
+  write(physics_dir, "speed", on(PhysicsChannel::SimControl), encoded(speed));
+  sim_control_t seed = control(sim_control_t::SET_SEED);
+  seed.seed = 42;
+  write(physics_dir, "seed", on(PhysicsChannel::SimControl), encoded(seed));
+  sim_control_t field = control(sim_control_t::SET_FIELD);
+  field.field_config = file_text(fs::path(UBERSIM_FUZZ_CONFIG_DIR) / "fields" / "division_b.cfg");
+  write(physics_dir, "field", on(PhysicsChannel::SimControl), encoded(field));
+  sim_control_t type = control(sim_control_t::DEFINE_ROBOT_TYPE);
+  type.robot_type_name = "fuzz_bot";
+  type.robot_type_config = "BASE = omni4_ssl\nMASS = 2.5\n";
+  write(physics_dir, "robot_type", on(PhysicsChannel::SimControl), encoded(type));
+  write(physics_dir, "demand", on(PhysicsChannel::TruthDemand), encoded(demand()));
+  write(physics_dir, "horizon_sync", on(PhysicsChannel::SyncHorizon, kSyncBit),
+        encoded(horizon()));
+  write(physics_dir, "schedule_sync", on(PhysicsChannel::VisionSchedule, kSyncBit),
+        encoded(schedule()));
+  write(physics_dir, "referee_sync", on(PhysicsChannel::Referee, kSyncRefereeBit),
+        encoded(referee()));
+}
+
+}  // namespace ubersim::fuzz
