@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <ubersim/emulator_realism_t.hpp>
+#include <ubersim/radio_packet_t.hpp>
 #include <ubersim/referee_t.hpp>
 #include <ubersim/sim_commands_t.hpp>
 #include <ubersim/sim_control_t.hpp>
@@ -21,6 +23,7 @@
 #include <ubersim/vision_schedule_t.hpp>
 #include <utility>
 
+#include "emulator_inputs.hpp"
 #include "physics_inputs.hpp"
 #include "ubersim/encoded_bounds.hpp"
 #include "ubersim/physics/world.hpp"
@@ -183,9 +186,58 @@ sim_state_t division_b_state() {
   return state;
 }
 
+radio_packet_t radio_packet(std::int8_t team) {
+  radio_packet_t p{};
+  p.team = team;
+  p.sequence = 12;
+  p.t_sent = 0.0;
+  p.commands = commands().commands;
+  p.num_commands = static_cast<std::int32_t>(p.commands.size());
+  return p;
+}
+
+emulator_realism_t realism() {
+  emulator_realism_t r{};
+  r.request_id = 5;
+  r.sender = "ssl bridge";
+  r.robot_sigma_position = 0.002;
+  r.robot_sigma_orientation = 0.01;
+  r.ball_sigma_position = 0.003;
+  r.robot_detection_probability = 0.95;
+  r.ball_detection_probability = 0.9;
+  r.false_ball_rate = 0.1;
+  r.ball_min_visible_fraction = 0.4;
+  r.vision_latency = 0.035;
+  r.vision_processing_time = 0.005;
+  r.command_latency = 0.02;
+  r.command_robot_loss = 0.05;
+  r.feedback_robot_loss = -1;  // keep the profile's
+  return r;
+}
+
+void write_emulator_seeds(const fs::path& dir) {
+  const auto on = [](EmulatorChannel channel) { return static_cast<std::uint8_t>(channel); };
+  write(dir, "radio_yellow", on(EmulatorChannel::RadioYellow), encoded(radio_packet(0)));
+  write(dir, "radio_blue", on(EmulatorChannel::RadioBlue), encoded(radio_packet(1)));
+  radio_packet_t not_finite = radio_packet(1);
+  not_finite.commands[0].omega = std::numeric_limits<double>::quiet_NaN();
+  not_finite.commands[2].wheel_speeds[0] = std::numeric_limits<double>::infinity();
+  write(dir, "radio_not_finite", on(EmulatorChannel::RadioBlue), encoded(not_finite));
+  write(dir, "radio_wrong_team", on(EmulatorChannel::RadioYellow), encoded(radio_packet(1)));
+  write(dir, "state", on(EmulatorChannel::SimState), encoded(division_b_state()));
+  physics::World world(physics::load_world_setup(UBERSIM_FUZZ_CONFIG_DIR, "division_b_6v6",
+                                                 "default"));
+  write(dir, "geometry", on(EmulatorChannel::SimGeometry), encoded(world.geometry()));
+  write(dir, "realism", on(EmulatorChannel::EmulatorRealism), encoded(realism()));
+}
+
 }  // namespace
 
-void write_lcm_seeds(const fs::path& decode_dir, const fs::path& physics_dir) {
+void write_lcm_seeds(const fs::path& decode_dir, const fs::path& physics_dir,
+                     const fs::path& emulators_dir) {
+  write_emulator_seeds(emulators_dir);
+  write_decode_seed(decode_dir, "radio_packet", radio_packet(1));
+  write_decode_seed(decode_dir, "emulator_realism", realism());
   write_default_seeds(decode_dir, AllLcmTypes{});
   write_decode_seed(decode_dir, "sim_state", division_b_state());
   write_decode_seed(decode_dir, "sim_commands", commands());

@@ -5,8 +5,9 @@
 
 namespace ubersim::fuzz {
 
-// Writes fuzz_lcm_decode's seeds into decode_dir and fuzz_lcm_physics's into physics_dir.
+// Writes the seeds of fuzz_lcm_decode, fuzz_lcm_physics and fuzz_lcm_emulators.
 void write_lcm_seeds(const std::filesystem::path& decode_dir,
-                     const std::filesystem::path& physics_dir);
+                     const std::filesystem::path& physics_dir,
+                     const std::filesystem::path& emulators_dir);
 
 }  // namespace ubersim::fuzz
