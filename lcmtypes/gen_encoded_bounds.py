@@ -162,11 +162,18 @@ class Reader {{
                              : static_cast<std::int64_t>(raw << unused_bits) >> unused_bits;
     return skip(bytes);
   }}
-  // A string: int32 length counting its NUL, then that many bytes.
+  // A string: int32 length counting its NUL, then that many bytes, a C string:
+  // no NUL inside and one at the end. lcm-gen's encode measures a string with
+  // strlen, so one with a NUL inside would encode shorter than the size it
+  // announces, and a process that passes it on (an acknowledgement echoes its
+  // sender) would publish a malformed message with uninitialised bytes at its end.
   bool skip_string() {{
     std::int64_t length = 0;
-    if (!read_integer(4, length)) return false;
-    return length >= 1 && skip(length);
+    if (!read_integer(4, length) || length < 1 || length > left_) return false;
+    if (data_[length - 1] != 0 || std::memchr(data_, 0, static_cast<std::size_t>(length - 1)) != nullptr) {{
+      return false;
+    }}
+    return skip(length);
   }}
   // elements *= count, refusing a negative count or a product whose smallest
   // encoding (element_min_size bytes each) cannot fit in the bytes left.

@@ -133,6 +133,23 @@ TEST(EncodedBounds, AStringLengthOfZeroOrBeyondTheBytesIsRefused) {
   }
 }
 
+// Found by fuzz_lcm_decode: lcm-gen encodes a string up to its first NUL but
+// announces its whole size, so a sender name with a NUL inside, echoed in an
+// acknowledgement, went out as a malformed message with stray bytes at its end.
+TEST(EncodedBounds, AStringWithANulInsideOrNoneAtItsEndIsRefused) {
+  ubersim::sim_control_t control{};
+  control.sender = "referee";
+  const auto real = encode(control);
+  const std::size_t text_at = 8 + 8 + 4;  // fingerprint, request_id, the sender's length
+  ASSERT_TRUE(ubersim::decode_bounded(real.data(), real.size(), control));
+  auto nul_inside = real;
+  nul_inside[text_at + 3] = 0;
+  EXPECT_FALSE(ubersim::decode_bounded(nul_inside.data(), nul_inside.size(), control));
+  auto no_terminator = real;
+  no_terminator[text_at + 7] = 'x';
+  EXPECT_FALSE(ubersim::decode_bounded(no_terminator.data(), no_terminator.size(), control));
+}
+
 TEST(EncodedBounds, AnotherTypesFingerprintIsRefused) {
   const auto bytes = encode(ubersim::radio_packet_t{});
   EXPECT_TRUE(refused_without_allocating<ubersim::vision_frame_t>(bytes));
