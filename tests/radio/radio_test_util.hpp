@@ -39,7 +39,11 @@ inline ubersim::sim_state_t state(double t, std::int64_t step, int per_team) {
   s.sim_time = t;
   s.step = step;
   s.dt = 1.0 / 240;
-  s.speed_factor = 1;
+  // As fast as possible: the tests publish states as fast as they can, and
+  // at speed 0 a packet arrives at the latest state's time. A real-time speed
+  // would make the radio add the wall time since that state (docs/sync.md,
+  // truth on demand), so the stamps would depend on how the test was scheduled.
+  s.speed_factor = 0;
   for (int team = 0; team < 2; ++team) {
     for (int id = 0; id < per_team; ++id) {
       ubersim::robot_state_t r{};
