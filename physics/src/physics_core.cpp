@@ -74,9 +74,13 @@ void PhysicsCore::on_sync_horizon(const sync_horizon_t& h) {
 }
 
 void PhysicsCore::on_referee(const referee_t& r) {
-  // The referee has judged the state at r.sim_time: the step starting there may go.
-  referee_horizon_ =
-      r.game_over ? std::numeric_limits<double>::infinity() : r.sim_time + world_.dt() / 2;
+  // The referee has judged the state at r.sim_time and needs none before
+  // r.next_judge_time: every step starting before that may go (an older
+  // referee that names no later time: just the step from r.sim_time).
+  const bool ahead = std::isfinite(r.next_judge_time) && r.next_judge_time > r.sim_time;
+  referee_horizon_ = r.game_over ? std::numeric_limits<double>::infinity()
+                     : ahead     ? r.next_judge_time
+                                 : r.sim_time + world_.dt() / 2;
 }
 
 void PhysicsCore::on_truth_demand(const truth_demand_t& d, Clock::time_point wall) {
@@ -134,10 +138,12 @@ void PhysicsCore::step_once(bool publish_every_step) {
   }
   ++steps_;
   const double rate = world_.setup().physics.state_publish_rate;
-  if (options_.truth_on_demand && !publish_every_step && !options_.sync_referee &&
-      !demand_.empty()) {
-    // Only what someone asked for: ground truth costs only its consumers.
-    if (demand_.wanted(world_.time(), world_.dt())) add_state();
+  if (options_.truth_on_demand && !publish_every_step && !demand_.empty()) {
+    // Only what someone asked for: ground truth costs only its consumers. The
+    // state physics waits at for the referee (sync_referee) is the referee's
+    // demand: it judges that state and names the next one (REFEREE).
+    const bool referee_wants = options_.sync_referee && !below_referee_horizon();
+    if (demand_.wanted(world_.time(), world_.dt()) || referee_wants) add_state();
     return;
   }
   if (publish_every_step || rate <= 0 || options_.sync_referee) {

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <map>
 #include <ubersim/referee_t.hpp>
+#include <ubersim/truth_demand_t.hpp>
 
 #include "ubersim/config.hpp"
 #include "ubersim/message_bus.hpp"
@@ -20,6 +21,8 @@ namespace {
 constexpr double kPublishPeriod = 0.1;       // s of sim time between unchanged referee_t
 constexpr double kFallbackRadius = 0.09;     // m, SSL maximum, for a type with no config
 constexpr std::int64_t kRequestBase = 7LL << 56;  // our request ids, apart from the CLI's
+// SIM_TRUTH_DEMAND is repeated this often (physics forgets a demand after 3 s).
+constexpr auto kDemandRepeat = std::chrono::seconds(1);
 
 class Runner {
  public:
@@ -58,6 +61,7 @@ class Runner {
                  field_.name, options_.game.game_length, options_.game.halves,
                  channels_.referee(), options_.sync ? " after every state (sync)" : "");
     while (!shutdown_.requested() && !(over_ && options_.exit_at_end)) {
+      announce_demand();
       bus_.wait_and_handle(100, &shutdown_);
     }
     if (!over_) finish();
@@ -94,8 +98,34 @@ class Runner {
     }
   }
 
+  // Physics with --truth-on-demand sends only the states someone asked for.
+  // In sync mode physics stops at the state the referee judges next
+  // (REFEREE.next_judge_time) and sends it: that is the referee's demand.
+  // Otherwise physics does not wait for the referee, which then needs every
+  // state to see the ones it judges.
+  void announce_demand() {
+    if (options_.sync) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_demand_ < kDemandRepeat) return;
+    last_demand_ = now;
+    truth_demand_t demand{};
+    demand.consumer = "ubersim_referee auto";
+    demand.every_step = true;
+    bus_.publish(channels_.extra(kTruthDemandChannel), demand);
+  }
+
+  // Whether the referee judges this state: the first at or after the time it
+  // named (physics in sync mode sends that one), or after a reset.
+  bool judges(const sim_state_t& state) const {
+    if (options_.judge_every_step || !judged_any_) return true;
+    if (state.sim_time < last_time_) return true;  // physics was reset
+    return state.sim_time >= next_judge_ - 1e-6 * std::max(state.dt, 1e-6);
+  }
+
   void on_state(const sim_state_t& state) {
-    if (over_) return;
+    if (over_ || !judges(state)) return;
+    ++judged_;
+    judged_any_ = true;
     if (!started_) {
       started_ = true;
       wall_start_ = std::chrono::steady_clock::now();
@@ -112,10 +142,13 @@ class Runner {
                    stage_name(s.stage), s.yellow.goals, s.blue.goals);
       write(command_line(s, state.sim_time));
     }
+    next_judge_ = options_.judge_every_step ? state.sim_time + state.dt
+                                            : referee_->next_judge_time(state);
     if (options_.sync || decision.command_changed || !decision.events.empty() ||
         state.sim_time - last_publish_ >= kPublishPeriod || state.sim_time < last_publish_) {
-      bus_.publish(channels_.referee(),
-                   to_message(s, options_.game, options_.sides, state.sim_time));
+      auto message = to_message(s, options_.game, options_.sides, state.sim_time);
+      message.next_judge_time = next_judge_;
+      bus_.publish(channels_.referee(), message);
       last_publish_ = state.sim_time;
     }
     last_time_ = state.sim_time;
@@ -133,7 +166,7 @@ class Runner {
     write(result_line(s, last_time_, wall));
     std::cout << "result: yellow " << s.yellow.goals << " : " << s.blue.goals << " blue ("
               << (s.game_over ? "game over" : "stopped") << " at " << last_time_ << " s sim time, "
-              << wall << " s wall time)" << std::endl;
+              << wall << " s wall time, " << judged_ << " states judged)" << std::endl;
   }
 
   const AutoOptions& options_;
@@ -147,6 +180,10 @@ class Runner {
   std::int64_t next_request_ = 0;
   double last_publish_ = -1e9;
   double last_time_ = 0;
+  double next_judge_ = 0;      // s: the state to judge next
+  std::uint64_t judged_ = 0;   // states judged
+  bool judged_any_ = false;
+  std::chrono::steady_clock::time_point last_demand_{};
   bool started_ = false;
   bool over_ = false;
   std::chrono::steady_clock::time_point wall_start_;

@@ -9,16 +9,10 @@
 namespace ubersim::referee {
 namespace {
 
-// The ball counts as kicked (a restart taken) once it left its spot by this much.
-constexpr double kKickedDistance = 0.05;  // m
 // The referee's placement has arrived when the ball is this close to its spot.
 constexpr double kPlacedTolerance = 0.05;  // m
 // A placement physics never carried out (refused, lost) is given up after this.
 constexpr double kPlacementWait = 1.0;  // s
-// A kick faster than this whose path enters the goal mouth is a shot.
-constexpr double kShotSpeed = 1.5;  // m/s
-// A ball higher than this cannot touch a robot (SSL robots are at most 0.15 m).
-constexpr double kRobotHeight = 0.15;  // m
 
 Team team_of(const robot_state_t& robot) {
   return robot.team == team_t::BLUE ? Team::Blue : Team::Yellow;
@@ -67,6 +61,7 @@ const char* event_name(EventType type) {
     case EventType::BallLeftFieldTouchLine: return "BALL_LEFT_FIELD_TOUCH_LINE";
     case EventType::BallLeftFieldGoalLine: return "BALL_LEFT_FIELD_GOAL_LINE";
     case EventType::Goal: return "GOAL";
+    case EventType::AttackerDoubleTouchedBall: return "ATTACKER_DOUBLE_TOUCHED_BALL";
     case EventType::BotKickedBallTooFast: return "BOT_KICKED_BALL_TOO_FAST";
     case EventType::DefenderInDefenseArea: return "DEFENDER_IN_DEFENSE_AREA";
     case EventType::TooManyRobots: return "TOO_MANY_ROBOTS";
@@ -126,6 +121,7 @@ void AutoReferee::stop_for(const Restart& restart, Decision& decision) {
   phase_ = Phase::Stopped;
   phase_start_ = now_;
   last_touch_.reset();
+  kicker_.reset();
   // Where the restart will be: the designated position of the SSL protocol.
   state_.designated_position.reset();
   if (restart.placement) {
@@ -157,9 +153,10 @@ void AutoReferee::track_touches(const sim_state_t& state) {
 }
 
 void AutoReferee::advance_clock(double dt) {
+  // From the stage's end, not a sum of steps: the same at every judging rate.
   if (state_.stage == Stage::FirstHalf || state_.stage == Stage::SecondHalf ||
       state_.stage == Stage::HalfTime) {
-    state_.stage_time_left -= dt;
+    state_.stage_time_left = stage_end_ - now_;
   }
   if (state_.ball_in_play && last_touch_) state_.of(last_touch_->team).possession += dt;
   if (phase_ == Phase::AwaitKick) {
@@ -229,6 +226,29 @@ bool AutoReferee::check_goal_and_out(const sim_state_t& state, Decision& decisio
 void AutoReferee::check_fouls(const sim_state_t& state, Decision& decision) {
   const double bx = state.ball.position[0], by = state.ball.position[1];
   const auto& v = state.ball.linear_velocity;
+
+  // Double touch: the robot that took a kick-off or free kick touches the
+  // ball again before any other robot did: free kick for the other team.
+  if (kicker_ && last_touch_ && last_touch_->id != kicker_->id) {
+    const Touch kicker = *kicker_;
+    kicker_.reset();
+    if (last_touch_->team == kicker.team && last_touch_->robot == kicker.robot) {
+      GameEvent e;
+      e.type = EventType::AttackerDoubleTouchedBall;
+      e.team = kicker.team;
+      e.robot = kicker.robot;
+      e.has_location = true;  // where it took the restart, as the SSL event has it
+      e.x = kicker.x;
+      e.y = kicker.y;
+      e.foul = true;
+      e.description = robot_name(kicker.team, kicker.robot) +
+                      " touched the ball twice after its restart: free kick " +
+                      team_name(other(kicker.team));
+      raise(e, decision);
+      stop_for(free_kick(other(kicker.team), bx, by), decision);
+      return;
+    }
+  }
 
   // Ball speed: a non-stopping foul of the robot that touched it last, once per touch.
   const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -354,6 +374,7 @@ void AutoReferee::end_half(Decision& decision) {
   if (state_.stage == Stage::FirstHalf && config_.halves == 2) {
     state_.stage = Stage::HalfTime;
     state_.stage_time_left = config_.half_time_break;
+    stage_end_ = now_ + config_.half_time_break;
     phase_ = Phase::HalfTime;
   } else {
     state_.stage = Stage::PostGame;
@@ -407,6 +428,7 @@ void AutoReferee::run_phase(const sim_state_t& state, Decision& decision) {
       if (state_.stage == Stage::FirstHalfPre || state_.stage == Stage::SecondHalfPre) {
         state_.stage = state_.stage == Stage::FirstHalfPre ? Stage::FirstHalf : Stage::SecondHalf;
         state_.stage_time_left = config_.half_length();
+        stage_end_ = now_ + config_.half_length();
       }
       set_command(Command::NormalStart, decision);
       state_.next_command.reset();
@@ -418,6 +440,9 @@ void AutoReferee::run_phase(const sim_state_t& state, Decision& decision) {
     case Phase::AwaitKick:
       if (placement_pending_) return;
       if (std::hypot(bx - kick_anchor_x_, by - kick_anchor_y_) > kKickedDistance) {
+        // The robot that touched the ball last took the restart (none: nobody
+        // is bound by the double-touch rule).
+        kicker_ = last_touch_;
         phase_ = Phase::Running;
         state_.ball_in_play = true;
         state_.action_time_left = 0;

@@ -21,6 +21,11 @@ BallOut ball_out(const field_geometry_t& field, double x, double y) {
   return BallOut::No;
 }
 
+double distance_to_out(const field_geometry_t& field, double x, double y) {
+  const double r = field.ball_radius;
+  return std::min(field.field_length / 2 + r - std::abs(x), field.field_width / 2 + r - std::abs(y));
+}
+
 bool fully_in_defense_area(const field_geometry_t& field, int side, double x, double y,
                            double radius) {
   const double along = x * side;  // towards that goal line

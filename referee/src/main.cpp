@@ -52,6 +52,7 @@ struct Options {
   bool keep_running = false;
   bool start_physics = false;
   bool sync = false;
+  bool judge_every_step = false;
 };
 
 // `auto`: the automatic referee runs the game until it is over.
@@ -66,6 +67,7 @@ int run_auto(const Options& o) {
   a.exit_at_end = !o.keep_running;
   a.start_physics = o.start_physics;
   a.sync = o.sync;
+  a.judge_every_step = o.judge_every_step;
   ShutdownSignal shutdown;
   return run_auto_referee(a, shutdown);
 }
@@ -422,6 +424,9 @@ int main(int argc, char** argv) {
   automatic->add_flag("--sync", o.sync,
                       "REFEREE after every state: a physics started with --sync-referee waits "
                       "for it, placements apply at a fixed step, games are reproducible");
+  automatic->add_flag("--judge-every-step", o.judge_every_step,
+                      "judge every state (default: only the states where a rule could decide, "
+                      "docs/autoref.md; the same decisions at a fraction of the cost)");
 
   CLI11_PARSE(app, argc, argv);
   const bool is_auto = app.got_subcommand("auto");

@@ -48,6 +48,7 @@ referee_t to_message(const RefereeState& state, const GameConfig& config, FieldS
                      double sim_time) {
   referee_t m{};
   m.sim_time = sim_time;
+  m.next_judge_time = sim_time;  // the runner names the next state it judges
   m.stage = static_cast<int8_t>(state.stage);
   m.stage_time_left = state.stage_time_left;
   m.command = static_cast<int8_t>(state.command);

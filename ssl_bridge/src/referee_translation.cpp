@@ -70,6 +70,13 @@ GameEvent to_ssl_game_event(const referee_event_t& e, std::uint64_t now_us) {
       p->set_initial_ball_speed(static_cast<float>(e.value));
       break;
     }
+    case referee_event_t::ATTACKER_DOUBLE_TOUCHED_BALL: {
+      auto* p = g.mutable_attacker_double_touched_ball();
+      p->set_by_team(team);
+      if (e.robot_id >= 0) p->set_by_bot(static_cast<std::uint32_t>(e.robot_id));
+      locate(p, e);
+      break;
+    }
     case referee_event_t::DEFENDER_IN_DEFENSE_AREA: {
       auto* p = g.mutable_defender_in_defense_area();
       p->set_by_team(team);

@@ -18,6 +18,8 @@ import unittest
 SOURCE, BUILD = sys.argv[1], sys.argv[2]
 BATCH = os.path.join(SOURCE, "tools", "ubersim_batch")
 SMOKE = os.path.join(SOURCE, "config", "experiments", "smoke.cfg")
+sys.path.insert(0, os.path.join(SOURCE, "tools", "batch"))
+import results as results_module  # noqa: E402
 
 
 def run_batch(*args, timeout=600):
@@ -100,6 +102,11 @@ class BatchTest(unittest.TestCase):
             self.assertAlmostEqual(
                 float(g["yellow_possession"]) + float(g["blue_possession"]), 1.0, places=3)
             self.assertGreater(float(g["speed"]), 0.0)
+            # What each process of the game cost: the benchmark's per-process figures.
+            cpu = results_module.cpu_by_process(g)
+            self.assertEqual(sorted(cpu), ["blue", "physics", "radio", "referee", "vision",
+                                           "yellow"], g["cpu_seconds"])
+            self.assertGreater(cpu["physics"], 0.0)
             # Each game kept its own event log and the logs of its processes.
             for log in ("events.jsonl", "physics.log", "referee.log", "yellow.log"):
                 self.assertTrue(os.path.exists(os.path.join(g["log_dir"], log)), log)
@@ -122,6 +129,8 @@ class BatchTest(unittest.TestCase):
             (SHORT + "SWEEP = vision.LATENCY 0.1..0.2:x\n",
              "experiment.cfg:12: SWEEP: expected FROM..TO:POINTS"),
             (SHORT.replace("SCENARIO = division_b_6v6\n", ""), "missing key SCENARIO"),
+            (SHORT + "JUDGING = sometimes\n",
+             "experiment.cfg:12: JUDGING: expected adaptive or every_step, got 'sometimes'"),
         ]
         for text, message in cases:
             path = experiment(self.folder, text)

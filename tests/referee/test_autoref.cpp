@@ -325,6 +325,67 @@ TEST(AutoRefereeFouls, TooManyRobotsGivesTheOtherTeamAFreeKick) {
   EXPECT_EQ(*game.state().next_command, Command::DirectFreeBlue);
 }
 
+namespace {
+
+// Up to NORMAL_START of the first kick-off, then yellow 1 takes it: it stands
+// at the ball, the ball rolls 0.1 m away (in play) and yellow 1 is clear of it.
+void yellow_one_takes_the_kick_off(Game& game) {
+  game.run(2.0 + kDt);  // the stop
+  game.carry_out_placement();
+  game.run(1.0 + kDt);  // prepare
+  ASSERT_EQ(game.state().command, Command::NormalStart);
+  auto& kicker = game.robot(Team::Yellow, 1);
+  kicker.x = -0.12;
+  kicker.y = 0.0;
+  game.tick();  // touches the ball
+  game.ball(0.1, 0.0);
+  game.tick();  // the ball left its spot: in play
+  ASSERT_TRUE(game.state().ball_in_play);
+  ASSERT_TRUE(game.events().empty());
+}
+
+}  // namespace
+
+TEST(AutoRefereeFouls, TheKickerTouchingTheBallAgainFirstIsADoubleTouchFreeKickForTheOthers) {
+  Game game;
+  yellow_one_takes_the_kick_off(game);
+  auto& kicker = game.robot(Team::Yellow, 1);
+  game.ball(0.3, 0.0);
+  game.tick();
+  EXPECT_TRUE(game.events().empty());
+  kicker.x = 0.3 - 0.12;  // and touches it again, before anyone else
+  game.tick();
+  ASSERT_EQ(game.events().size(), 1u);
+  EXPECT_EQ(game.events()[0].type, EventType::AttackerDoubleTouchedBall);
+  EXPECT_EQ(static_cast<int>(game.events()[0].type), 14);  // the SSL number
+  EXPECT_EQ(*game.events()[0].team, Team::Yellow);
+  EXPECT_EQ(game.events()[0].robot, 1);
+  EXPECT_TRUE(game.events()[0].foul);
+  EXPECT_EQ(game.state().yellow.fouls, 1);
+  EXPECT_EQ(game.state().command, Command::Stop);
+  EXPECT_EQ(*game.state().next_command, Command::DirectFreeBlue);
+  ASSERT_TRUE(game.state().designated_position.has_value());
+  EXPECT_NEAR(game.state().designated_position->first, 0.3, 1e-9);
+}
+
+TEST(AutoRefereeFouls, NoDoubleTouchOnceAnotherRobotTouchedTheBall) {
+  Game game;
+  yellow_one_takes_the_kick_off(game);
+  auto& kicker = game.robot(Team::Yellow, 1);
+  auto& other = game.robot(Team::Blue, 2);
+  other.x = 0.1 + 0.12;  // a blue robot touches it first
+  other.y = 0.0;
+  game.tick();
+  other.x = 2.0;
+  game.ball(0.3, 0.0);
+  game.tick();
+  kicker.x = 0.3 - 0.12;  // then the kicker again: legal
+  game.tick();
+  EXPECT_TRUE(game.events().empty());
+  EXPECT_TRUE(game.state().ball_in_play);
+  EXPECT_EQ(game.state().command, Command::NormalStart);
+}
+
 TEST(AutoRefereeProgress, BallStillForTenSecondsIsNoProgressThenForceStart) {
   Game game;
   game.kick_off_and_play();

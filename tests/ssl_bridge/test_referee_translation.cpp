@@ -104,6 +104,11 @@ TEST(RefereeTranslation, EveryEventTypeCarriesItsPayload) {
        }},
       {referee_event_t::DEFENDER_IN_DEFENSE_AREA,
        [](const GameEvent& g) { return g.has_defender_in_defense_area(); }},
+      {referee_event_t::ATTACKER_DOUBLE_TOUCHED_BALL,
+       [](const GameEvent& g) {
+         return g.has_attacker_double_touched_ball() &&
+                g.attacker_double_touched_ball().by_bot() == 2;
+       }},
       {referee_event_t::TOO_MANY_ROBOTS,
        [](const GameEvent& g) {
          return g.has_too_many_robots() && g.too_many_robots().num_robots_on_field() == 7;

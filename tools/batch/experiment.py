@@ -22,9 +22,11 @@ KEYS = {
     "BLUE": "demo, or the blue team's command line",
     "MODE": "sync (reproducible, as fast as the teams answer) or fast (as fast as possible)",
     "GAME_TIMEOUT": "s of wall time after which a game counts as failed",
+    "JUDGING": "adaptive (the referee judges the states where a rule could decide) or "
+               "every_step (every state: slower, the same decisions)",
 }
-OPTIONAL = {"SWEEP", "GAME_TIMEOUT", "MODE"}
-DEFAULTS = {"GAME_TIMEOUT": ["900"], "MODE": ["sync"]}
+OPTIONAL = {"SWEEP", "GAME_TIMEOUT", "MODE", "JUDGING"}
+DEFAULTS = {"GAME_TIMEOUT": ["900"], "MODE": ["sync"], "JUDGING": ["adaptive"]}
 
 # Short names of the files a sweep key may change: kind folder, experiment key
 # naming the file.
@@ -127,6 +129,10 @@ class Experiment:
         if self.mode not in ("sync", "fast"):
             raise ExperimentError(f"{entries['MODE']['where']}: MODE: expected sync or fast, "
                                   f"got '{self.mode}'")
+        self.judging = one("JUDGING")
+        if self.judging not in ("adaptive", "every_step"):
+            raise ExperimentError(f"{entries['JUDGING']['where']}: JUDGING: expected adaptive or "
+                                  f"every_step, got '{self.judging}'")
         self.teams = {}
         for team in ("YELLOW", "BLUE"):
             values = entries[team]["values"]
@@ -195,6 +201,7 @@ class Experiment:
                     "game": self.game,
                     "game_length": self.game_length,
                     "mode": self.mode,
+                    "judging": self.judging,
                     "teams": self.teams,
                     "timeout": self.game_timeout,
                 })

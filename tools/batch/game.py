@@ -142,6 +142,7 @@ class ProcessSet:
     def __init__(self, game_dir):
         self.game_dir = game_dir
         self.processes = []  # (name, Popen)
+        self.cpu = {}  # name -> CPU seconds (user + system) of the process, once reaped
 
     def start(self, name, command):
         log = open(os.path.join(self.game_dir, name + ".log"), "w")
@@ -153,23 +154,39 @@ class ProcessSet:
         self.processes.append((name, p))
         return p
 
+    def _reap(self, name, p, block):
+        """Reaps the process with wait4, which also gives its CPU time (Popen's
+        own wait would reap it without): the benchmark's per-process figures."""
+        if p.returncode is not None:
+            return True
+        try:
+            pid, status, usage = os.wait4(p.pid, 0 if block else os.WNOHANG)
+        except ChildProcessError:
+            p.poll()  # already reaped elsewhere: no CPU figure
+            return p.returncode is not None
+        if pid == 0:
+            return False
+        p.returncode = os.waitstatus_to_exitcode(status)
+        self.cpu[name] = round(usage.ru_utime + usage.ru_stime, 3)
+        return True
+
     def first_exit(self):
         for name, p in self.processes:
-            if p.poll() is not None:
+            if self._reap(name, p, block=False):
                 return name, p.returncode
         return None
 
     def stop(self):
-        for _, p in self.processes:
-            if p.poll() is None:
+        for name, p in self.processes:
+            if not self._reap(name, p, block=False):
                 p.terminate()
         deadline = time.monotonic() + STOP_GRACE
-        for _, p in self.processes:
-            try:
-                p.wait(timeout=max(0.05, deadline - time.monotonic()))
-            except subprocess.TimeoutExpired:
+        for name, p in self.processes:
+            while not self._reap(name, p, block=False) and time.monotonic() < deadline:
+                time.sleep(0.02)
+            if p.returncode is None:
                 p.kill()
-                p.wait()
+                self._reap(name, p, block=True)
 
 
 def _wait_for_line(processes, name, text, timeout):
@@ -230,6 +247,9 @@ def run_driver(spec):
     # (--sync-referee), so the referee is started, and listening, first.
     physics = [f"{bin_dir}/ubersim_physics", *common, "--scenario", spec["scenario"],
                "--seed", seed, "--duration", str(2 * spec["game_length"] + 120)]
+    # Sync mode: physics waits for the referee only at the states it judges,
+    # and (ground truth on demand, the default) sends only those and the
+    # emulators' (docs/sync.md, docs/autoref.md "Judging rate").
     physics += ["--sync-referee"] if sync else ["--speed", "0", "--paused"]
     radio = [f"{bin_dir}/ubersim_radio", *common, "--profile", spec["radio_profile"],
              "--seed", seed]
@@ -240,6 +260,8 @@ def run_driver(spec):
                "--timeout", "20", "auto", "--game", spec["game"], "--game-length",
                str(spec["game_length"]), "--events", events_path]
     referee += ["--sync"] if sync else ["--start"]
+    if spec.get("judging") == "every_step":
+        referee += ["--judge-every-step"]
     wall_start = time.monotonic()
     reason = None
     try:
@@ -297,6 +319,7 @@ def run_driver(spec):
             "sim_time": sim_time,
             "wall_time": round(wall, 3),
             "speed": round(sim_time / wall, 3) if wall > 0 else 0.0,
+            "cpu": processes.cpu,
             "log_dir": game_dir,
         }
     with open(os.path.join(game_dir, "result.json"), "w") as f:

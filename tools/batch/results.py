@@ -22,6 +22,12 @@ T95 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.
        2.060, 2.056, 2.052, 2.048, 2.045, 2.042]
 
 
+def cpu_by_process(row):
+    """{process: CPU seconds} from a results.csv row's cpu_seconds column."""
+    pairs = (item.split(":") for item in row.get("cpu_seconds", "").split())
+    return {name: float(seconds) for name, seconds in pairs}
+
+
 def read_results(out_dir):
     with open(os.path.join(out_dir, "results.csv")) as f:
         return list(csv.DictReader(f))
@@ -48,12 +54,15 @@ def _row(result, sweep_names):
         row[column] = result.get(column, "")
     types = result.get("events_by_type", {})
     row["event_types"] = " ".join(f"{k}:{types[k]}" for k in sorted(types))
+    cpu = result.get("cpu", {})
+    row["cpu_seconds"] = " ".join(f"{k}:{cpu[k]}" for k in sorted(cpu))
     return row
 
 
 def write_results(out_dir, results, sweep_names):
     path = os.path.join(out_dir, "results.csv")
-    columns = ["game", "point", "seed", *sweep_names, *GAME_COLUMNS, "event_types"]
+    columns = ["game", "point", "seed", *sweep_names, *GAME_COLUMNS, "event_types",
+               "cpu_seconds"]
     with open(path, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=columns)
         writer.writeheader()

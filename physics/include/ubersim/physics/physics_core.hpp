@@ -33,9 +33,10 @@ struct ServerOptions {
   double duration = 0;  // s of sim time after which run() returns, 0 = never
   bool sync = false;    // sync mode (docs/sync.md): step up to the radio emulator's horizon
   // Sync mode with the automatic referee: also never past the state the referee
-  // judged last (its REFEREE message carries that state's sim time), so each
-  // placement it sends applies at the step after that state; SIM_STATE then
-  // goes out after every step. Physics holds while no referee speaks.
+  // judges next (its REFEREE message names it, next_judge_time), so each
+  // placement it decides on a state applies at the step from that state.
+  // SIM_STATE goes out after every step, or with truth_on_demand at the
+  // demanded steps and that state. Physics holds while no referee speaks.
   bool sync_referee = false;
   // SIM_STATE only at the instants consumers ask for on SIM_TRUTH_DEMAND
   // (every step while nobody has asked): docs/sync.md, "Ground truth on demand".
@@ -62,7 +63,8 @@ class PhysicsCore {
   // `dropped_input` is what the transport dropped, for the PING reply.
   const Output& on_control(const sim_control_t& request, const std::string& dropped_input);
   void on_sync_horizon(const sync_horizon_t& horizon);
-  // Only with sync_referee: the referee has judged the state at its sim_time.
+  // Only with sync_referee: the referee has judged the state at its sim_time
+  // and judges the one at its next_judge_time next.
   void on_referee(const referee_t& referee);
   void on_truth_demand(const truth_demand_t& demand, Clock::time_point wall);
   void on_vision_schedule() { vision_heard_ = true; }
@@ -88,6 +90,10 @@ class PhysicsCore {
   // come that applies at its start (docs/sync.md).
   bool below_horizon() const {
     return world_.time() + world_.dt() * 1e-6 < std::min(horizon_, referee_horizon_);
+  }
+  // Whether the step starting now stays short of the state the referee judges next.
+  bool below_referee_horizon() const {
+    return world_.time() + world_.dt() * 1e-6 < referee_horizon_;
   }
   // Sync mode: what holds physics at the horizon (a client's name, "vision", "referee" ...).
   std::string horizon_bound() const;

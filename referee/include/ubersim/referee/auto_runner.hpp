@@ -1,6 +1,6 @@
 #pragma once
-// `ubersim_referee auto`: the automatic referee on the bus. It judges every
-// SIM_STATE with AutoReferee, publishes referee_t on REFEREE (on each change
+// `ubersim_referee auto`: the automatic referee on the bus. It judges the
+// SIM_STATEs where a rule could decide (AutoReferee::next_judge_time), publishes referee_t on REFEREE (on each change
 // and at 10 Hz of sim time), carries out each restart's placement through the
 // safe placement (SIM_CONTROL PLACE), and writes the event log. It returns
 // when the game is over (or on SIGINT/SIGTERM).
@@ -24,8 +24,10 @@ struct AutoOptions {
   bool exit_at_end = true;     // return once the game is over
   bool start_physics = false;  // send RESUME once listening (physics started --paused)
   // Sync mode: REFEREE after every state judged; a physics started with
-  // --sync-referee steps only past states the referee has judged.
+  // --sync-referee steps only up to the state the referee judges next.
   bool sync = false;
+  // Judge every state, not only those AutoReferee::next_judge_time names.
+  bool judge_every_step = false;
 };
 
 // Returns 0 after a finished game (or a clean stop), 1 on an error.

@@ -51,6 +51,7 @@ enum class EventType : int {
   BallLeftFieldTouchLine = 6,
   BallLeftFieldGoalLine = 7,
   Goal = 8,
+  AttackerDoubleTouchedBall = 14,
   BotKickedBallTooFast = 18,
   DefenderInDefenseArea = 31,
   TooManyRobots = 38,
@@ -115,6 +116,15 @@ class AutoReferee {
 
   Decision update(const sim_state_t& state);
 
+  // Sim time of the next state this referee must judge, after update(state):
+  // no rule can decide differently on any state before it, given how fast
+  // the ball and the robots can move and when its clocks run out, so judging
+  // only the states it names decides exactly as judging every state
+  // (docs/autoref.md, "Judging rate"). A step of state.dt at least, at most
+  // kMaxJudgePeriod.
+  double next_judge_time(const sim_state_t& state) const;
+  static constexpr double kMaxJudgePeriod = 0.1;  // s: REFEREE at 10 Hz at least
+
   const RefereeState& state() const { return state_; }
   const GameConfig& config() const { return config_; }
 
@@ -160,6 +170,7 @@ class AutoReferee {
   bool have_time_ = false;
   Restart pending_;
   std::optional<Touch> last_touch_;
+  std::optional<Touch> kicker_;  // took the last kick-off / free kick; no other robot touched since
   std::vector<bool> touching_;  // per robot index of the last state
   int touch_counter_ = 0;
   bool placement_pending_ = false;  // placed, and physics has not shown it yet
@@ -170,6 +181,7 @@ class AutoReferee {
   double progress_x_ = 0, progress_y_ = 0;          // ball when it last moved (m)
   double progress_time_ = 0;                        // s
   double too_many_reported_[2] = {-1e9, -1e9};      // sim time of the last report per team
+  double stage_end_ = 0;                            // s, of a half or the half-time break
   Team second_half_kickoff_ = Team::Blue;
 };
 

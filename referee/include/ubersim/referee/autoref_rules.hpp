@@ -9,6 +9,17 @@ namespace ubersim::referee {
 
 enum class BallOut { No, TouchLine, GoalLine };
 
+// The ball counts as kicked (a restart taken) once it left its spot by this much.
+inline constexpr double kKickedDistance = 0.05;  // m
+// A kick faster than this whose path enters the goal mouth is a shot.
+inline constexpr double kShotSpeed = 1.5;  // m/s
+// A ball higher than this cannot touch a robot (SSL robots are at most 0.15 m).
+inline constexpr double kRobotHeight = 0.15;  // m
+
+// How far the ball's centre is from being wholly over a touch line or a goal
+// line (m; <= 0: it is over one). Goals and outs both start there.
+double distance_to_out(const field_geometry_t& field, double x, double y);
+
 // The whole ball is over a goal line between the posts and below the crossbar:
 // returns that goal's side, else 0.
 int goal_side(const field_geometry_t& field, double x, double y, double z);
