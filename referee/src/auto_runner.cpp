@@ -98,7 +98,7 @@ class Runner {
     }
   }
 
-  // Physics with --truth-on-demand sends only the states someone asked for.
+  // Physics (ground truth on demand, its default) sends only the states someone asked for.
   // In sync mode physics stops at the state the referee judges next
   // (REFEREE.next_judge_time) and sends it: that is the referee's demand.
   // Otherwise physics does not wait for the referee, which then needs every
