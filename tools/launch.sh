@@ -37,7 +37,7 @@ usage: tools/launch.sh [options]
   --demo WHO           start the demo team for yellow | blue | both | none (default none)
   --demo-mode MODE     play | positions | figure8 (default play)
   --log FILE           record every channel into FILE (an LCM log: lcm-logplayer replays it)
-  --log-dir DIR        where process logs go (default: a new folder under /tmp)
+  --log-dir DIR        where process logs go (default: a new folder under $TMPDIR or /tmp)
   --viewer             start the browser viewer (ubersim_viewer) and print its address
   --viewer-port P      the viewer's port on 127.0.0.1 (default 8080)
   --ssl-bridge         start the SSL protocol bridge (SSL-Vision on 224.5.23.2:10020, simulation
@@ -98,7 +98,7 @@ for program in ubersim_physics ubersim_vision ubersim_radio ubersim_demo_team ub
 done
 [ "$ssl_bridge" = 0 ] || [ -x "$bin_dir/ubersim_ssl_bridge" ] || { echo "launch: $bin_dir/ubersim_ssl_bridge not found (is protobuf installed?): run tools/build.sh" >&2; exit 2; }
 [ "$viewer" = 0 ] || [ -x "$bin_dir/ubersim_viewer" ] || { echo "launch: $bin_dir/ubersim_viewer not found: run tools/build.sh" >&2; exit 2; }
-[ -n "$log_dir" ] || log_dir=$(mktemp -d /tmp/ubersim-XXXXXX)
+[ -n "$log_dir" ] || log_dir=$(mktemp -d "${TMPDIR:-/tmp}/ubersim-XXXXXX")
 mkdir -p "$log_dir"
 
 common=(--lcm-url "$lcm_url")

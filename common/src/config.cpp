@@ -293,6 +293,16 @@ std::int64_t ConfigFile::integer(const std::string& key, std::int64_t fallback) 
   return has(key) ? integer(key) : fallback;
 }
 
+std::int64_t ConfigFile::integer_in(const std::string& key, std::int64_t min,
+                                    std::int64_t max) const {
+  const std::int64_t value = integer(key);
+  if (value < min || value > max) {
+    fail(key, "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
+                  "], got " + std::to_string(value));
+  }
+  return value;
+}
+
 std::vector<std::string> ConfigFile::strings(const std::string& key,
                                              std::optional<std::size_t> length) const {
   return entry_of_length(key, "strings", length).values;

@@ -18,10 +18,7 @@ PhysicsConfig load_physics_config(const ConfigFile& config, const std::string& n
     p.solver = Solver::Exact;
   else
     config.fail("SOLVER", "expected 'quickstep' or 'exact', got '" + solver + "'");
-  p.solver_iterations = static_cast<int>(config.integer("SOLVER_ITERATIONS"));
-  if (p.solver_iterations < 1 || p.solver_iterations > 1000) {
-    config.fail("SOLVER_ITERATIONS", "expected an integer in [1, 1000]");
-  }
+  p.solver_iterations = static_cast<int>(config.integer_in("SOLVER_ITERATIONS", 1, 1000));
   p.solver_sor = config.real_in("SOLVER_SOR", 0.1, 2.0);
   p.erp = config.real_in("ERP", 0.0, 1.0);
   p.cfm = config.real_in("CFM", 0.0, 1.0);
@@ -29,24 +26,17 @@ PhysicsConfig load_physics_config(const ConfigFile& config, const std::string& n
 
   p.contact_max_correcting_velocity = config.real_in("CONTACT_MAX_CORRECTING_VELOCITY", 0.0, 100.0);
   p.contact_surface_layer = config.real_in("CONTACT_SURFACE_LAYER", 0.0, 0.01);
-  p.max_contacts = static_cast<int>(config.integer("MAX_CONTACTS"));
-  if (p.max_contacts < 1 || p.max_contacts > 64) {
-    config.fail("MAX_CONTACTS", "expected an integer in [1, 64]");
-  }
+  p.max_contacts = static_cast<int>(config.integer_in("MAX_CONTACTS", 1, 64));
   p.bounce_min_velocity = config.real_in("BOUNCE_MIN_VELOCITY", 0.0, 10.0);
   p.wheel_contact_margin = config.real_in("WHEEL_CONTACT_MARGIN", 0.0, 0.01);
   p.ball_robot_friction = config.real_in("BALL_ROBOT_FRICTION", 0.0, 10.0);
   p.robot_robot_friction = config.real_in("ROBOT_ROBOT_FRICTION", 0.0, 10.0);
   p.robot_robot_restitution = config.real_in("ROBOT_ROBOT_RESTITUTION", 0.0, 1.0);
   p.chassis_ground_friction = config.real_in("CHASSIS_GROUND_FRICTION", 0.0, 10.0);
-  p.chassis_outline_segments = static_cast<int>(config.integer("CHASSIS_OUTLINE_SEGMENTS"));
-  if (p.chassis_outline_segments < 6 || p.chassis_outline_segments > 128) {
-    config.fail("CHASSIS_OUTLINE_SEGMENTS", "expected an integer in [6, 128]");
-  }
-  p.planar_solver_iterations = static_cast<int>(config.integer("PLANAR_SOLVER_ITERATIONS"));
-  if (p.planar_solver_iterations < 1 || p.planar_solver_iterations > 1000) {
-    config.fail("PLANAR_SOLVER_ITERATIONS", "expected an integer in [1, 1000]");
-  }
+  p.chassis_outline_segments =
+      static_cast<int>(config.integer_in("CHASSIS_OUTLINE_SEGMENTS", 6, 128));
+  p.planar_solver_iterations =
+      static_cast<int>(config.integer_in("PLANAR_SOLVER_ITERATIONS", 1, 1000));
 
   p.tip_angle = config.real_in("TIP_ANGLE_DEG", 5.0, 90.0) * kDegToRad;
   p.max_linear_speed = config.real_in("MAX_LINEAR_SPEED", 1.0, 1e6);

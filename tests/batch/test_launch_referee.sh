@@ -5,7 +5,7 @@
 # folder, removed when the test passes. Usage: test_launch_referee.sh SOURCE_DIR
 set -uo pipefail
 source_dir=$1
-logs=$(mktemp -d /tmp/ubersim-launch-referee-XXXXXX)
+logs=$(mktemp -d "${TMPDIR:-/tmp}/ubersim-launch-referee-XXXXXX")
 timeout 120 "$source_dir/tools/launch.sh" --sync --demo both --referee --game-length 6 --quiet \
   --log-dir "$logs" > "$logs/launch.out" 2>&1
 status=$?

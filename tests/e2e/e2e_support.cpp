@@ -17,17 +17,6 @@ std::string bin_dir() {
   return UBERSIM_BIN_DIR;
 }
 
-TempDir::TempDir() {
-  std::string pattern = "/tmp/ubersim_e2e_XXXXXX";
-  if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-  root_ = pattern;
-}
-
-TempDir::~TempDir() {
-  std::error_code ignored;
-  std::filesystem::remove_all(root_, ignored);
-}
-
 namespace {
 
 std::vector<std::string> launch_argv(const std::vector<std::string>& options, const TempDir& dir) {
@@ -44,6 +33,10 @@ std::vector<std::string> launch_argv(const std::vector<std::string>& options, co
 
 Launch::Launch(const std::vector<std::string>& options, const TempDir& dir)
     : script_(launch_argv(options, dir), dir.path("launch.out")) {}
+
+Launch::~Launch() {
+  if (script_.running()) script_.stop(5, SIGINT);
+}
 
 std::map<std::string, pid_t> Launch::processes(double timeout_s) {
   static const std::regex line(R"(^\s+(\S+)\s+pid (\d+)\s+log )");

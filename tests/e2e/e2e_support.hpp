@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "child_process.hpp"
+#include "temp_dir.hpp"
 #include "ubersim/message_bus.hpp"
 
 namespace e2e {
@@ -21,21 +22,17 @@ namespace e2e {
 std::string source_dir();  // the repository root
 std::string bin_dir();     // where the programs are built
 
-// A fresh folder under /tmp, removed at the end.
-class TempDir {
- public:
-  TempDir();
-  ~TempDir();
-  std::string path(const std::string& name) const { return (root_ / name).string(); }
-
- private:
-  std::filesystem::path root_;
-};
+using TempDir = ubersim::test::TempDir;
 
 // tools/launch.sh with the given options, run as a user would.
 class Launch {
  public:
   Launch(const std::vector<std::string>& options, const TempDir& dir);
+  // Ctrl-C, as a user would: the script stops what it started. (A test that
+  // failed half-way would otherwise leave the processes running.)
+  ~Launch();
+  Launch(const Launch&) = delete;
+  Launch& operator=(const Launch&) = delete;
   // pid of each process the script started, by name, read from its output.
   std::map<std::string, pid_t> processes(double timeout_s = 10);
   ubersim::test::ChildProcess& script() { return script_; }

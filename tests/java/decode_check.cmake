@@ -4,7 +4,8 @@ execute_process(COMMAND ${WRITER} --file ${WORK}/sample_frame.bin RESULT_VARIABL
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "write_sample_frame failed: ${rc}")
 endif()
-execute_process(COMMAND ${JAVA} -cp ${CLASSPATH} DecodeCheck ${WORK}/sample_frame.bin
+# -XX:-UsePerfData: no /tmp/hsperfdata_<user> (the JVM puts it there whatever TMPDIR says).
+execute_process(COMMAND ${JAVA} -XX:-UsePerfData -cp ${CLASSPATH} DecodeCheck ${WORK}/sample_frame.bin
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "Java decode failed (${rc}): ${err}")

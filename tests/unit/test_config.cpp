@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "temp_dir.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/config_paths.hpp"
 
@@ -25,27 +26,7 @@ void expect_config_error(F action, const std::vector<std::string>& pieces) {
   }
 }
 
-class TempDir {
- public:
-  TempDir() {
-    path_ =
-        std::filesystem::temp_directory_path() /
-        ("ubersim_config_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++));
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() { std::filesystem::remove_all(path_); }
-  std::filesystem::path write(const std::string& name, const std::string& text) const {
-    const auto file = path_ / name;
-    std::filesystem::create_directories(file.parent_path());
-    std::ofstream(file) << text;
-    return file;
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-  static inline int counter_ = 0;
-};
+using ubersim::test::TempDir;
 
 }  // namespace
 
@@ -102,6 +83,14 @@ TEST(Config, RangeCheckNamesTheRange) {
   expect_config_error([&] { config.real_in("P", 0.0, 1.0); }, {"f.cfg:1", "P", "[0, 1]", "1.5"});
 }
 
+TEST(Config, IntegerRangeCheckNamesTheRange) {
+  const auto config = ConfigFile::parse("N = 65
+M = 64
+", "f.cfg");
+  expect_config_error([&] { config.integer_in("N", 1, 64); }, {"f.cfg:1", "N", "[1, 64]", "65"});
+  EXPECT_EQ(config.integer_in("M", 1, 64), 64);
+}
+
 TEST(Config, MissingKeyIsNamed) {
   const auto config = ConfigFile::parse("A = 1\n", "f.cfg");
   expect_config_error([&] { config.real("MASS"); }, {"f.cfg", "missing required key 'MASS'"});
@@ -142,8 +131,8 @@ TEST(Config, BaseFileIsExtendedAndOverridden) {
   const auto config = ConfigFile::load(path);
   EXPECT_DOUBLE_EQ(config.real("MASS"), 2.5);
   EXPECT_DOUBLE_EQ(config.real("RADIUS"), 0.09);
-  EXPECT_EQ(config.where("MASS"), path.string() + ":2");
-  EXPECT_EQ(config.where("RADIUS"), (dir.path() / "base.cfg").string() + ":2");
+  EXPECT_EQ(config.where("MASS"), path + ":2");
+  EXPECT_EQ(config.where("RADIUS"), (dir.root() / "base.cfg").string() + ":2");
 }
 
 TEST(Config, UnknownKeyInBaseNamesTheBaseFile) {
@@ -175,10 +164,10 @@ TEST(ConfigPaths, ResolvesNamesByKindAndListsAlternatives) {
   TempDir dir;
   dir.write("fields/division_b.cfg", "A = 1\n");
   dir.write("fields/division_a.cfg", "A = 1\n");
-  EXPECT_EQ(ubersim::resolve_config(dir.path(), "fields", "division_b"),
-            dir.path() / "fields/division_b.cfg");
+  EXPECT_EQ(ubersim::resolve_config(dir.root(), "fields", "division_b"),
+            dir.root() / "fields/division_b.cfg");
   const auto explicit_path = dir.write("elsewhere/my.cfg", "A = 1\n");
-  EXPECT_EQ(ubersim::resolve_config(dir.path(), "fields", explicit_path.string()), explicit_path);
-  expect_config_error([&] { ubersim::resolve_config(dir.path(), "fields", "division_c"); },
+  EXPECT_EQ(ubersim::resolve_config(dir.root(), "fields", explicit_path), explicit_path);
+  expect_config_error([&] { ubersim::resolve_config(dir.root(), "fields", "division_c"); },
                       {"division_c", "no such fields config", "division_a, division_b"});
 }

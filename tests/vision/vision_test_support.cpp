@@ -40,23 +40,6 @@ std::string read_text(const std::string& path) {
   return text.str();
 }
 
-TempDir::TempDir() {
-  std::string pattern = (std::filesystem::temp_directory_path() / "ubersim_vision_XXXXXX").string();
-  if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-  root_ = pattern;
-}
-
-TempDir::~TempDir() {
-  std::error_code ignored;
-  std::filesystem::remove_all(root_, ignored);
-}
-
-std::string TempDir::write(const std::string& name, const std::string& text) const {
-  const std::string file = path(name);
-  std::ofstream out(file);
-  out << text;
-  return file;
-}
 
 
 std::string marker_camera_keys(int id) {

@@ -26,6 +26,7 @@
 
 #include "ubersim/channels.hpp"
 #include "ubersim/message_bus.hpp"
+#include "temp_dir.hpp"
 
 namespace vision_test {
 
@@ -35,19 +36,7 @@ std::string vision_program();
 std::string config_dir();
 std::string read_text(const std::string& path);
 
-class TempDir {
- public:
-  TempDir();
-  ~TempDir();
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string path(const std::string& name) const { return root_ + "/" + name; }
-  // Writes a file and returns its path.
-  std::string write(const std::string& name, const std::string& text) const;
-
- private:
-  std::string root_;
-};
+using TempDir = ubersim::test::TempDir;
 
 using ubersim::test::ChildProcess;  // tests/support
 

@@ -151,8 +151,7 @@ VisionProfile load_vision_profile(const ConfigFile& config, const std::string& n
   p.ball_min_visible_fraction = config.real_in("BALL_MIN_VISIBLE_FRACTION", 0.0, 1.0);
   p.ball_radius = config.real_in("BALL_RADIUS", 0.005, 0.2);
 
-  const std::int64_t count = config.integer("CAMERA_COUNT");
-  if (count < 1 || count > 64) config.fail("CAMERA_COUNT", "expected 1 to 64 cameras");
+  const std::int64_t count = config.integer_in("CAMERA_COUNT", 1, 64);
   for (int index = 0; index < count; ++index) {
     p.cameras.push_back(load_camera(config, index, p, frame_rate));
   }

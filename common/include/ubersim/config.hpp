@@ -56,6 +56,8 @@ class ConfigFile {
 
   std::int64_t integer(const std::string& key) const;
   std::int64_t integer(const std::string& key, std::int64_t fallback) const;
+  // An integer that must lie in [min, max].
+  std::int64_t integer_in(const std::string& key, std::int64_t min, std::int64_t max) const;
   std::vector<std::int64_t> integers(const std::string& key,
                                      std::optional<std::size_t> length = {}) const;
 
