@@ -18,6 +18,7 @@
 #include <ubersim/sim_commands_t.hpp>
 
 #include "bare_ode_scene.hpp"
+#include "bench_support.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/logging.hpp"
@@ -25,6 +26,8 @@
 #include "ubersim/process_main.hpp"
 
 namespace {
+
+using ubersim::physics::bench::load_average;
 
 using namespace ubersim;
 using namespace ubersim::physics;
@@ -148,13 +151,6 @@ double run_bare(const WorldSetup& setup, DriveModel model, double sim_seconds) {
     scene.step();
   }
   return sim_seconds / std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
 }
 
 struct BenchOptions {

@@ -17,10 +17,13 @@
 #include <string>
 #include <vector>
 
+#include "bench_support.hpp"
 #include "ubersim/child_process.hpp"
 #include "ubersim/process_main.hpp"
 
 namespace {
+
+using ubersim::physics::bench::load_average;
 
 namespace fs = std::filesystem;
 
@@ -101,13 +104,6 @@ SyncRun sync_run(const std::string& source_dir, const std::string& scenario,
   return run;
 }
 
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
-}
-
 int run(int argc, char** argv) {
   CLI::App app{"ubersim sync benchmark: sync mode's speed against the physics alone"};
   std::string source_dir = UBERSIM_SOURCE_DIR;
@@ -130,9 +126,7 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
-  char pattern[] = "/tmp/ubersim_sync_bench_XXXXXX";
-  if (::mkdtemp(pattern) == nullptr) throw std::runtime_error("mkdtemp failed");
-  const fs::path work = pattern;
+  const fs::path work = ubersim::physics::bench::make_work_dir("ubersim_sync_bench");
   std::printf(
       "ubersim sync benchmark: %g s of sim time per run, both demo teams as sync clients,\n"
       "against the physics alone (ubersim_physics_bench, server, in-process bus) in this run.\n"

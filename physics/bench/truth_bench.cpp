@@ -20,12 +20,15 @@
 #include <sstream>
 #include <thread>
 
+#include "bench_support.hpp"
 #include "ubersim/child_process.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/physics/world.hpp"
 #include "ubersim/process_main.hpp"
 
 namespace {
+
+using ubersim::physics::bench::load_average;
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -190,13 +193,6 @@ double physics_alone(const std::string& scenario, const std::string& model, doub
   return std::stod(m[1]);
 }
 
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
-}
-
 int run(int argc, char** argv) {
   CLI::App app{"ubersim truth benchmark: what ground truth costs, against baselines of this run"};
   double seconds = 10;
@@ -214,11 +210,18 @@ int run(int argc, char** argv) {
   app.add_option("--listener-seconds", listener_seconds, "measuring window of figure 3")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
-  char pattern[] = "/tmp/ubersim_truth_bench_XXXXXX";
-  if (::mkdtemp(pattern) == nullptr) throw std::runtime_error("mkdtemp failed");
-  const fs::path work = pattern;
+  const fs::path work = ubersim::physics::bench::make_work_dir("ubersim_truth_bench");
   std::printf("ubersim truth benchmark, %g s per figure; load average at start %s\n\n", seconds,
               load_average().c_str());
+  // The options of one figure's set of runs; the figure sets what else differs.
+  const auto set_options = [&](const std::string& scenario, bool on_demand, double set_seconds) {
+    SetOptions o;
+    o.scenario = scenario;
+    o.url = url;
+    o.on_demand = on_demand;
+    o.seconds = set_seconds;
+    return o;
+  };
   for (const std::string& scenario : scenarios) {
     const bool planar = scenario.find("planar") != std::string::npos;
     std::printf("== %s\n", scenario.c_str());
@@ -226,12 +229,7 @@ int run(int argc, char** argv) {
     std::printf("1. real time, CPU share of one core (demo teams drive, not counted):\n");
     std::printf("   stepping the World alone            %6.2f %%\n", 100 * alone);
     for (bool on_demand : {false, true}) {
-      SetOptions o;
-      o.scenario = scenario;
-      o.url = url;
-      o.on_demand = on_demand;
-      o.seconds = seconds;
-      const SetResult r = run_set(o, work);
+      const SetResult r = run_set(set_options(scenario, on_demand, seconds), work);
       std::printf(
           "   physics+vision+radio, %-10s     %6.2f %% (physics %.2f, vision %.2f, radio %.2f) "
           "= %.2f x stepping alone; physics' own stepping %.2f %%: %.2f x it\n",
@@ -245,13 +243,9 @@ int run(int argc, char** argv) {
     std::printf("2. as fast as possible, sim s per wall s (no teams):\n");
     std::printf("   physics alone (in-process bus)      %6.1f x\n", alone_speed);
     for (bool on_demand : {false, true}) {
-      SetOptions o;
-      o.scenario = scenario;
-      o.url = url;
-      o.on_demand = on_demand;
+      SetOptions o = set_options(scenario, on_demand, 2 * seconds);
       o.real_time = false;
       o.teams = false;
-      o.seconds = 2 * seconds;
       const SetResult r = run_set(o, work);
       std::printf("   physics+vision+radio, %-10s     %6.1f x = %3.0f %% of the physics alone\n",
                   on_demand ? "on demand" : "every step", r.speed, 100 * r.speed / alone_speed);
@@ -264,11 +258,7 @@ int run(int argc, char** argv) {
       double sn = 0, sx = 0, sy_p = 0, sy_t = 0, sxx = 0, sxy_p = 0, sxy_t = 0;
       std::string shares;
       for (int n : {0, listeners, 2 * listeners}) {
-        SetOptions o;
-        o.scenario = scenario;
-        o.url = url;
-        o.on_demand = on_demand;
-        o.seconds = listener_seconds;
+        SetOptions o = set_options(scenario, on_demand, listener_seconds);
         o.idle_listeners = n;
         const SetResult r = run_set(o, work);
         sn += 1;

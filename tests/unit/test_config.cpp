@@ -84,9 +84,7 @@ TEST(Config, RangeCheckNamesTheRange) {
 }
 
 TEST(Config, IntegerRangeCheckNamesTheRange) {
-  const auto config = ConfigFile::parse("N = 65
-M = 64
-", "f.cfg");
+  const auto config = ConfigFile::parse("N = 65\nM = 64\n", "f.cfg");
   expect_config_error([&] { config.integer_in("N", 1, 64); }, {"f.cfg:1", "N", "[1, 64]", "65"});
   EXPECT_EQ(config.integer_in("M", 1, 64), 64);
 }
