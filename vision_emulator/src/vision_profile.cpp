@@ -10,9 +10,6 @@
 namespace ubersim::vision {
 namespace {
 
-constexpr double kMaxFrameRate = 1000.0;  // Hz: anything faster is a unit mistake
-constexpr double kMaxSigma = 1.0;         // m
-constexpr double kMaxLatency = 10.0;      // s
 constexpr double kMaxJitter = 1.0;        // s
 
 std::string camera_key(int index, const char* suffix) {

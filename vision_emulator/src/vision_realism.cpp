@@ -27,7 +27,15 @@ std::string VisionEmulator::apply_realism(const emulator_realism_t& r) {
        {r.robot_detection_probability, r.ball_detection_probability, r.ball_min_visible_fraction}) {
     if (p > 1) return "a probability or fraction above 1";
   }
-  if (r.vision_latency > 10 || r.vision_processing_time > 10) return "a time above 10 s";
+  if (r.vision_latency > kMaxLatency || r.vision_processing_time > kMaxLatency) {
+    return "a time above 10 s";
+  }
+  // Found by fuzz_lcm_emulators: a noise of 1e307 m made frames with infinite positions.
+  if (r.robot_sigma_position > kMaxSigma || r.ball_sigma_position > kMaxSigma) {
+    return "a position noise above 1 m";
+  }
+  if (r.robot_sigma_orientation > M_PI) return "an orientation noise above pi";
+  if (r.false_ball_rate > kMaxFrameRate) return "a false ball rate above 1000 per second";
   VisionProfile& p = profile_;
   if (given(r.robot_sigma_position)) p.robot_sigma_x = p.robot_sigma_y = r.robot_sigma_position;
   if (given(r.robot_sigma_orientation)) p.robot_sigma_orientation = r.robot_sigma_orientation;

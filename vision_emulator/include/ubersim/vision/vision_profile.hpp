@@ -12,6 +12,12 @@
 
 namespace ubersim::vision {
 
+// Bounds a profile's values keep, read from a config file or changed at run
+// time (EMULATOR_REALISM): beyond them a value is a unit mistake or garbage.
+inline constexpr double kMaxFrameRate = 1000.0;  // Hz
+inline constexpr double kMaxSigma = 1.0;         // m
+inline constexpr double kMaxLatency = 10.0;      // s
+
 struct CameraProfile {
   int id = 0;
   double frame_rate = 0;  // Hz
