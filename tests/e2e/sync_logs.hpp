@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "ubersim/bounded_decode.hpp"
+
 namespace e2e {
 
 using ChannelLog = std::vector<std::vector<unsigned char>>;
@@ -23,5 +25,16 @@ const std::vector<std::string>& reproducible_channels();
 // SIM_COMMANDS carries both teams, interleaved as their answers came in: each
 // team's own sequence (team 0 yellow, 1 blue) is what is reproducible.
 ChannelLog team_only(const ChannelLog& sim_commands, int team);
+
+// Every message of a channel's log that decodes as Msg, in order.
+template <class Msg>
+std::vector<Msg> decode_all(const ChannelLog& log) {
+  std::vector<Msg> out;
+  for (const auto& bytes : log) {
+    Msg message;
+    if (ubersim::decode_bounded(bytes.data(), bytes.size(), message)) out.push_back(message);
+  }
+  return out;
+}
 
 }  // namespace e2e

@@ -16,7 +16,6 @@
 #include <ubersim/vision_frame_t.hpp>
 
 #include "e2e_support.hpp"
-#include "ubersim/bounded_decode.hpp"
 #include "sync_logs.hpp"
 
 using namespace e2e;
@@ -50,16 +49,6 @@ GameRun run_game(const TempDir& dir, const std::string& name, std::vector<std::s
   run.radio_log = read_file(dir.path(name + "_logs/radio.log"));
   if (run.status == 0) run.log = read_log_by_channel(log);
   return run;
-}
-
-template <class Msg>
-std::vector<Msg> decode_all(const ChannelLog& log) {
-  std::vector<Msg> out;
-  for (const auto& bytes : log) {
-    Msg m;
-    if (ubersim::decode_bounded(bytes.data(), bytes.size(), m)) out.push_back(m);
-  }
-  return out;
 }
 
 void expect_same_channels(const GameRun& a, const GameRun& b) {

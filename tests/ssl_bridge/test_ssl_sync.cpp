@@ -13,7 +13,6 @@
 
 #include "e2e_support.hpp"
 #include "sync_logs.hpp"
-#include "ubersim/bounded_decode.hpp"
 
 using namespace e2e;
 using ubersim::test::ChildProcess;
@@ -63,16 +62,6 @@ SslGame play(const TempDir& dir, const std::string& name, const std::string& see
   game.radio_log = read_file(logs + "/radio.log");
   if (game.status == 0) game.log = read_log_by_channel(log);
   return game;
-}
-
-template <class Msg>
-std::vector<Msg> decode_all(const ChannelLog& log) {
-  std::vector<Msg> out;
-  for (const auto& bytes : log) {
-    Msg m;
-    if (ubersim::decode_bounded(bytes.data(), bytes.size(), m)) out.push_back(m);
-  }
-  return out;
 }
 
 }  // namespace
