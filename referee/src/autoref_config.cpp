@@ -1,28 +1,29 @@
 #include "ubersim/referee/autoref_config.hpp"
 
+#include <cstdint>
+
 #include "ubersim/config_paths.hpp"
 
 namespace ubersim::referee {
 
 GameConfig load_game_config(const ConfigFile& file) {
-  constexpr double kDay = 86400.0;  // s: a longer game is a unit mistake
+  constexpr double kDay = 86400.0;          // s: a longer game is a unit mistake
+  constexpr std::int64_t kMaxRobotId = 99;  // a scenario's robot keys: YELLOW_0 .. BLUE_99
   GameConfig c;
   c.game_length = file.real_in("GAME_LENGTH", 0.1, kDay);
-  c.halves = static_cast<int>(file.integer("HALVES"));
-  if (c.halves != 1 && c.halves != 2) file.fail("HALVES", "expected 1 or 2");
+  c.halves = static_cast<int>(file.integer_in("HALVES", 1, 2));
   c.half_time_break = file.real_in("HALF_TIME_BREAK", 0.0, kDay);
   c.stop_duration = file.real_in("STOP_DURATION", 0.0, 600.0);
   c.prepare_duration = file.real_in("PREPARE_DURATION", 0.0, 600.0);
   c.restart_timeout = file.real_in("RESTART_TIMEOUT", 0.1, 600.0);
   c.no_progress_time = file.real_in("NO_PROGRESS_TIME", 0.1, 600.0);
   c.progress_distance = file.real_in("PROGRESS_DISTANCE", 0.001, 10.0);
-  c.max_robots = static_cast<int>(file.integer("MAX_ROBOTS"));
-  if (c.max_robots < 1 || c.max_robots > 16) file.fail("MAX_ROBOTS", "expected 1..16");
+  c.max_robots = static_cast<int>(file.integer_in("MAX_ROBOTS", 1, 16));
   c.max_ball_speed = file.real_in("MAX_BALL_SPEED", 0.1, 100.0);
   c.robot_radius = file.real_in("ROBOT_RADIUS", 0.01, 1.0);
   c.touch_margin = file.real_in("TOUCH_MARGIN", 0.0, 0.5);
-  c.keeper_yellow = static_cast<int>(file.integer("KEEPER_YELLOW"));
-  c.keeper_blue = static_cast<int>(file.integer("KEEPER_BLUE"));
+  c.keeper_yellow = static_cast<int>(file.integer_in("KEEPER_YELLOW", 0, kMaxRobotId));
+  c.keeper_blue = static_cast<int>(file.integer_in("KEEPER_BLUE", 0, kMaxRobotId));
   if (!parse_team(file.string("FIRST_KICKOFF"), c.first_kickoff))
     file.fail("FIRST_KICKOFF", "expected yellow or blue");
   file.require_all_used();

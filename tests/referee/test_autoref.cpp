@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/config.hpp"
@@ -492,19 +493,70 @@ TEST(AutoRefereeRules, GeometryOfGoalsOutsAndFreeKickSpots) {
   EXPECT_FALSE(heads_into_goal(field, 1, 2.0, 0.0, -3.0, 0.0));
 }
 
-TEST(AutoRefereeConfig, UnknownKeyIsAnErrorNamingFileAndLine) {
-  try {
-    load_game_config(ConfigFile::parse(
-        "GAME_LENGTH = 30\nHALVES = 2\nHALF_TIME_BREAK = 1\nSTOP_DURATION = 2\n"
-        "PREPARE_DURATION = 1\nRESTART_TIMEOUT = 10\nNO_PROGRESS_TIME = 10\n"
-        "PROGRESS_DISTANCE = 0.1\nMAX_ROBOTS = 6\nMAX_BALL_SPEED = 6.5\nROBOT_RADIUS = 0.09\n"
-        "TOUCH_MARGIN = 0.015\nKEEPER_YELLOW = 0\nKEEPER_BLUE = 0\nFIRST_KICKOFF = yellow\n"
-        "GAME_LENGHT = 20\n",
-        "game.cfg"));
-    FAIL() << "accepted an unknown key";
-  } catch (const ConfigError& error) {
-    EXPECT_NE(std::string(error.what()).find("game.cfg:16"), std::string::npos) << error.what();
+namespace {
+
+// A game config with every key (one a line, in this order), `replace` put in
+// place of the line that starts with its key, `extra` appended.
+std::string game_config_text(const std::string& replace = "", const std::string& extra = "") {
+  std::string text;
+  for (const char* line :
+       {"GAME_LENGTH = 30", "HALVES = 2", "HALF_TIME_BREAK = 1", "STOP_DURATION = 2",
+        "PREPARE_DURATION = 1", "RESTART_TIMEOUT = 10", "NO_PROGRESS_TIME = 10",
+        "PROGRESS_DISTANCE = 0.1", "MAX_ROBOTS = 6", "MAX_BALL_SPEED = 6.5", "ROBOT_RADIUS = 0.09",
+        "TOUCH_MARGIN = 0.015", "KEEPER_YELLOW = 0", "KEEPER_BLUE = 0", "FIRST_KICKOFF = yellow"}) {
+    const std::string key = std::string(line).substr(0, std::string(line).find(' '));
+    const bool replaced = !replace.empty() && replace.rfind(key + " ", 0) == 0;
+    text += (replaced ? replace : std::string(line)) + "\n";
   }
+  return text + extra;
+}
+
+// The message of the ConfigError that reading `text` as game.cfg throws.
+std::string game_config_error(const std::string& text) {
+  try {
+    load_game_config(ConfigFile::parse(text, "game.cfg"));
+  } catch (const ConfigError& error) {
+    return error.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST(AutoRefereeConfig, TheTestTextIsAValidConfig) {
+  EXPECT_EQ(load_game_config(ConfigFile::parse(game_config_text("KEEPER_BLUE = 99"), "game.cfg"))
+                .keeper_blue,
+            99);
+}
+
+TEST(AutoRefereeConfig, UnknownKeyIsAnErrorNamingFileAndLine) {
+  const std::string error = game_config_error(game_config_text("", "GAME_LENGHT = 20\n"));
+  EXPECT_NE(error.find("game.cfg:16"), std::string::npos) << error;
+}
+
+TEST(AutoRefereeConfig, IntegerOutOfRangeNamesFileLineAndRange) {
+  struct Case {
+    std::string line;
+    std::string where;
+    std::string range;
+  };
+  for (const Case& c :
+       {Case{"HALVES = 3", "game.cfg:2", "[1, 2]"}, Case{"MAX_ROBOTS = 0", "game.cfg:9", "[1, 16]"},
+        Case{"MAX_ROBOTS = 17", "game.cfg:9", "[1, 16]"},
+        Case{"KEEPER_YELLOW = -1", "game.cfg:13", "[0, 99]"},
+        // Once cast to int unchecked: keeper 0.
+        Case{"KEEPER_BLUE = 4294967296", "game.cfg:14", "[0, 99]"}}) {
+    const std::string error = game_config_error(game_config_text(c.line));
+    const std::string key = c.line.substr(0, c.line.find(' '));
+    const std::string value = c.line.substr(c.line.rfind(' ') + 1);
+    for (const std::string& piece : {c.where, key, "expected an integer in " + c.range, value}) {
+      EXPECT_NE(error.find(piece), std::string::npos)
+          << "'" << error << "' lacks '" << piece << "'";
+    }
+  }
+  const std::string error = game_config_error(game_config_text("HALVES = 1.5"));
+  EXPECT_NE(error.find("game.cfg:2"), std::string::npos) << error;
+  EXPECT_NE(error.find("HALVES"), std::string::npos) << error;
 }
 
 TEST(AutoRefereeMessage, StateGoesOnTheWireWithSslNumberingAndIntoTheLog) {
