@@ -27,6 +27,7 @@
 #include <ubersim/sim_state_t.hpp>
 #include <vector>
 
+#include "bench_support.hpp"
 #include "child_process.hpp"
 #include "dds_test_support.hpp"
 #include "sample_messages.hpp"
@@ -203,7 +204,9 @@ int run(const Options& options) {
   ubersim::setup_logging("dds_bench", -1);
   const ubersim::ChannelNames channels;
   const std::string url = ubersim::default_lcm_url();
-  const std::string log = "/tmp/ubersim_dds_bridge_benchmark_bridge.log";
+  // The bridge's log: in a folder of the run's own, removed when the run succeeds.
+  ubersim::physics::bench::WorkDir work("ubersim_dds_bridge_benchmark");
+  const std::string log = (work.path() / "bridge.log").string();
   ubersim::test::ChildProcess bridge(
       {UBERSIM_DDS_BRIDGE_EXE, "--domain", std::to_string(options.domain)}, log);
 
@@ -369,8 +372,13 @@ int run(const Options& options) {
     if (at != std::string::npos)
       std::printf("bridge's own count, whole run: %s\n", line.c_str() + at);
   }
-  std::printf("bridge exit status %d (log %s)\n", status, log.c_str());
-  return status == 0 ? 0 : 1;
+  std::printf("bridge exit status %d\n", status);
+  if (status != 0) {
+    std::printf("bridge log %s\n", log.c_str());
+    return 1;
+  }
+  work.succeeded();
+  return 0;
 }
 
 }  // namespace

@@ -126,7 +126,8 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
-  const fs::path work = ubersim::physics::bench::make_work_dir("ubersim_sync_bench");
+  ubersim::physics::bench::WorkDir work_dir("ubersim_sync_bench");
+  const fs::path& work = work_dir.path();
   std::printf(
       "ubersim sync benchmark: %g s of sim time per run, both demo teams as sync clients,\n"
       "against the physics alone (ubersim_physics_bench, server, in-process bus) in this run.\n"
@@ -164,7 +165,7 @@ int run(int argc, char** argv) {
       "sync [x]: sim seconds per wall second from physics' first state to the end (start-up "
       "left out);\nratio: sync over alone. Waits: wall time physics spent at the horizon, by "
       "what bounded it\n(a client's name, or vision when the next frame was not published yet).\n");
-  fs::remove_all(work);
+  work_dir.succeeded();
   return 0;
 }
 

@@ -210,7 +210,8 @@ int run(int argc, char** argv) {
   app.add_option("--listener-seconds", listener_seconds, "measuring window of figure 3")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
-  const fs::path work = ubersim::physics::bench::make_work_dir("ubersim_truth_bench");
+  ubersim::physics::bench::WorkDir work_dir("ubersim_truth_bench");
+  const fs::path& work = work_dir.path();
   std::printf("ubersim truth benchmark, %g s per figure; load average at start %s\n\n", seconds,
               load_average().c_str());
   // The options of one figure's set of runs; the figure sets what else differs.
@@ -282,7 +283,7 @@ int run(int argc, char** argv) {
     std::printf("\n");
     std::fflush(stdout);
   }
-  fs::remove_all(work);
+  work_dir.succeeded();
   return 0;
 }
 
