@@ -21,16 +21,6 @@
 namespace {
 
 template <class Msg>
-std::string encode(const Msg& message) {
-  std::string bytes(static_cast<std::size_t>(message.getEncodedSize()), '\0');
-  if (message.encode(bytes.data(), 0, static_cast<int>(bytes.size())) !=
-      static_cast<int>(bytes.size())) {
-    std::abort();
-  }
-  return bytes;
-}
-
-template <class Msg>
 void check_one(const std::uint8_t* data, std::size_t size) {
   const bool accepted = ubersim::EncodedBounds<Msg>::check(data, size);
   Msg message;
@@ -46,11 +36,11 @@ void check_one(const std::uint8_t* data, std::size_t size) {
     std::abort();  // the check let through what decode cannot read
   }
   if (consumed != static_cast<int>(size)) std::abort();
-  const std::string first = encode(message);
+  const std::string first = ubersim::fuzz::encode_or_abort(message);
   if (first.size() != size) std::abort();
   Msg again;
   if (!ubersim::decode_bounded(first.data(), first.size(), again)) std::abort();
-  if (encode(again) != first) std::abort();
+  if (ubersim::fuzz::encode_or_abort(again) != first) std::abort();
 }
 
 template <class... Msgs, std::size_t... I>

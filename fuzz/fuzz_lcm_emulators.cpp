@@ -49,7 +49,7 @@ void check(const ubersim::vision_frame_t& frame) {
     }
   }
   if (!ok) std::abort();
-  ubersim::fuzz::must_encode(frame);
+  ubersim::fuzz::encode_or_abort(frame);
 }
 
 void check(const ubersim::radio::RadioEmulator::Output& out) {
@@ -62,11 +62,11 @@ void check(const ubersim::radio::RadioEmulator::Output& out) {
       for (double w : c.wheel_speeds) ok = ok && finite(w);
     }
     if (!ok) std::abort();
-    ubersim::fuzz::must_encode(message);
+    ubersim::fuzz::encode_or_abort(message);
   }
   for (const auto& [team, feedback] : out.feedback) {
     if (!finite(feedback.t_measured) || !finite(feedback.t_sent)) std::abort();
-    ubersim::fuzz::must_encode(feedback);
+    ubersim::fuzz::encode_or_abort(feedback);
   }
 }
 

@@ -111,7 +111,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       channels(ubersim::Channel::SimState),
       [](const ubersim::sim_state_t& state) {
         if (!finite(state)) std::abort();
-        ubersim::fuzz::must_encode(state);
+        ubersim::fuzz::encode_or_abort(state);
       },
       100000);
 

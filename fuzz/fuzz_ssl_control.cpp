@@ -25,8 +25,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   SimControlSettings settings = fixture.settings;  // robot specs recorded per input only
   const SimControlTranslation in_game = translate_simulator_command(command, &fixture.state, settings);
   // What goes on SIM_CONTROL must encode (counts match the arrays).
-  for (const ubersim::sim_control_t& request : in_game.requests) ubersim::fuzz::must_encode(request);
-  if (in_game.realism) ubersim::fuzz::must_encode(*in_game.realism);
+  for (const ubersim::sim_control_t& request : in_game.requests)
+    ubersim::fuzz::encode_or_abort(request);
+  if (in_game.realism) ubersim::fuzz::encode_or_abort(*in_game.realism);
   for (const DefinedRobotType& type : in_game.defined_types) settings.spec_types.record(type);
   settings.current_field = nullptr;
   (void)translate_simulator_command(command, nullptr, settings);

@@ -24,7 +24,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (decode_datagram(data, size, control, errors).ok) {
     for (const ubersim::Team team : ubersim::kTeams) {
       RobotControlTranslation out = translate_robot_control(control, team, fixture.wheels);
-      ubersim::fuzz::must_encode(out.packet);  // what goes on the radio
+      ubersim::fuzz::encode_or_abort(out.packet);  // what goes on the radio
       errors.insert(errors.end(), out.errors.begin(), out.errors.end());
     }
     (void)translate_robot_control(control, ubersim::Team::Blue, std::nullopt);

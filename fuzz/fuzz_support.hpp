@@ -1,7 +1,8 @@
 #pragma once
-// What the fuzz targets share.
+// What the fuzz targets (and their seed writer) share.
 #include <spdlog/spdlog.h>
 
+#include <cstddef>
 #include <cstdlib>
 #include <string>
 
@@ -11,14 +12,17 @@ namespace ubersim::fuzz {
 // second that is only noise in the fuzzer's output.
 inline void quiet_logging() { spdlog::set_level(spdlog::level::off); }
 
-// An LCM message the code under test built must encode to the size it
+// An LCM message's bytes as they go on the bus. It must encode to the size it
 // announces (its counts match its arrays; with ASan a count larger than its
-// array is a read out of bounds); anything else aborts, a finding.
+// array is a read out of bounds); anything else aborts: in a target, a
+// finding, for a message the code under test built or one it decoded; in the
+// seed writer, a broken seed.
 template <class Msg>
-void must_encode(const Msg& message) {
+std::string encode_or_abort(const Msg& message) {
   const int size = message.getEncodedSize();
   std::string bytes(static_cast<std::size_t>(size), '\0');
   if (message.encode(bytes.data(), 0, size) != size) std::abort();
+  return bytes;
 }
 
 }  // namespace ubersim::fuzz

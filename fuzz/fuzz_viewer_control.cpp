@@ -19,7 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   const auto parsed = ubersim::viewer::parse_control_request(text, 7, "viewer");
   if (parsed.request) {
-    ubersim::fuzz::must_encode(*parsed.request);
+    ubersim::fuzz::encode_or_abort(*parsed.request);
   } else if (parsed.error.empty()) {
     __builtin_trap();  // refused without saying why
   }

@@ -7,7 +7,6 @@
 
 #include <cstdint>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -24,7 +23,9 @@
 #include <utility>
 
 #include "emulator_inputs.hpp"
+#include "fuzz_support.hpp"
 #include "physics_inputs.hpp"
+#include "ubersim/config_text.hpp"
 #include "ubersim/encoded_bounds.hpp"
 #include "ubersim/physics/world.hpp"
 
@@ -32,19 +33,6 @@ namespace ubersim::fuzz {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string file_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-template <class Msg>
-std::string encoded(const Msg& message) {
-  std::string bytes(static_cast<std::size_t>(message.getEncodedSize()), '\0');
-  message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  return bytes;
-}
 
 void write(const fs::path& dir, const std::string& name, std::uint8_t selector,
            const std::string& bytes) {
@@ -66,7 +54,7 @@ std::uint8_t type_index(LcmTypeList<Msgs...>) {
 
 template <class Msg>
 void write_decode_seed(const fs::path& dir, const std::string& name, const Msg& message) {
-  write(dir, name, type_index<Msg>(AllLcmTypes{}), encoded(message));
+  write(dir, name, type_index<Msg>(AllLcmTypes{}), encode_or_abort(message));
 }
 
 template <class... Msgs>
@@ -177,8 +165,8 @@ referee_t referee() {
 }
 
 sim_state_t division_b_state() {
-  physics::World world(physics::load_world_setup(UBERSIM_FUZZ_CONFIG_DIR, "division_b_6v6",
-                                                 "default"));
+  physics::World world(
+      physics::load_world_setup(UBERSIM_FUZZ_CONFIG_DIR, "division_b_6v6", "default"));
   world.submit(commands());
   for (int i = 0; i < 24; ++i) world.step();
   sim_state_t state{};
@@ -217,18 +205,19 @@ emulator_realism_t realism() {
 
 void write_emulator_seeds(const fs::path& dir) {
   const auto on = [](EmulatorChannel channel) { return static_cast<std::uint8_t>(channel); };
-  write(dir, "radio_yellow", on(EmulatorChannel::RadioYellow), encoded(radio_packet(0)));
-  write(dir, "radio_blue", on(EmulatorChannel::RadioBlue), encoded(radio_packet(1)));
+  write(dir, "radio_yellow", on(EmulatorChannel::RadioYellow), encode_or_abort(radio_packet(0)));
+  write(dir, "radio_blue", on(EmulatorChannel::RadioBlue), encode_or_abort(radio_packet(1)));
   radio_packet_t not_finite = radio_packet(1);
   not_finite.commands[0].omega = std::numeric_limits<double>::quiet_NaN();
   not_finite.commands[2].wheel_speeds[0] = std::numeric_limits<double>::infinity();
-  write(dir, "radio_not_finite", on(EmulatorChannel::RadioBlue), encoded(not_finite));
-  write(dir, "radio_wrong_team", on(EmulatorChannel::RadioYellow), encoded(radio_packet(1)));
-  write(dir, "state", on(EmulatorChannel::SimState), encoded(division_b_state()));
-  physics::World world(physics::load_world_setup(UBERSIM_FUZZ_CONFIG_DIR, "division_b_6v6",
-                                                 "default"));
-  write(dir, "geometry", on(EmulatorChannel::SimGeometry), encoded(world.geometry()));
-  write(dir, "realism", on(EmulatorChannel::EmulatorRealism), encoded(realism()));
+  write(dir, "radio_not_finite", on(EmulatorChannel::RadioBlue), encode_or_abort(not_finite));
+  write(dir, "radio_wrong_team", on(EmulatorChannel::RadioYellow),
+        encode_or_abort(radio_packet(1)));
+  write(dir, "state", on(EmulatorChannel::SimState), encode_or_abort(division_b_state()));
+  physics::World world(
+      physics::load_world_setup(UBERSIM_FUZZ_CONFIG_DIR, "division_b_6v6", "default"));
+  write(dir, "geometry", on(EmulatorChannel::SimGeometry), encode_or_abort(world.geometry()));
+  write(dir, "realism", on(EmulatorChannel::EmulatorRealism), encode_or_abort(realism()));
 }
 
 }  // namespace
@@ -250,50 +239,52 @@ void write_lcm_seeds(const fs::path& decode_dir, const fs::path& physics_dir,
   const auto on = [](PhysicsChannel channel, std::uint8_t options = 0) {
     return static_cast<std::uint8_t>(static_cast<std::uint8_t>(channel) | options);
   };
-  write(physics_dir, "commands", on(PhysicsChannel::SimCommands), encoded(commands()));
+  write(physics_dir, "commands", on(PhysicsChannel::SimCommands), encode_or_abort(commands()));
   // What a hostile or broken sender puts in numbers (the handlers must drop these).
   sim_commands_t not_a_number = commands();
   not_a_number.commands[0].vx = std::numeric_limits<double>::quiet_NaN();
   not_a_number.commands[1].kick_speed = std::numeric_limits<double>::infinity();
   not_a_number.commands[2].wheel_speeds[1] = -std::numeric_limits<double>::infinity();
   write(physics_dir, "commands_not_finite", on(PhysicsChannel::SimCommands),
-        encoded(not_a_number));
+        encode_or_abort(not_a_number));
   sim_control_t place_nan = placement();
   place_nan.robots[0].x = std::numeric_limits<double>::quiet_NaN();
   place_nan.ball.linear_velocity[1] = std::numeric_limits<double>::infinity();
-  write(physics_dir, "place_not_finite", on(PhysicsChannel::SimControl), encoded(place_nan));
-  write(physics_dir, "place", on(PhysicsChannel::SimControl), encoded(placement()));
+  write(physics_dir, "place_not_finite", on(PhysicsChannel::SimControl),
+        encode_or_abort(place_nan));
+  write(physics_dir, "place", on(PhysicsChannel::SimControl), encode_or_abort(placement()));
   sim_control_t setup = placement();
   setup.action = sim_control_t::SETUP;
-  write(physics_dir, "setup", on(PhysicsChannel::SimControl), encoded(setup));
+  write(physics_dir, "setup", on(PhysicsChannel::SimControl), encode_or_abort(setup));
   for (std::int8_t action : {sim_control_t::PAUSE, sim_control_t::RESUME, sim_control_t::RESET,
                              sim_control_t::PING, sim_control_t::REQUEST_GEOMETRY}) {
     write(physics_dir, "control_" + std::to_string(action), on(PhysicsChannel::SimControl),
-          encoded(control(action)));
+          encode_or_abort(control(action)));
   }
   sim_control_t step = control(sim_control_t::STEP);
   step.step_count = 12;
-  write(physics_dir, "step", on(PhysicsChannel::SimControl), encoded(step));
+  write(physics_dir, "step", on(PhysicsChannel::SimControl), encode_or_abort(step));
   sim_control_t speed = control(sim_control_t::SET_SPEED);
   speed.speed_factor = 2.0;
-  write(physics_dir, "speed", on(PhysicsChannel::SimControl), encoded(speed));
+  write(physics_dir, "speed", on(PhysicsChannel::SimControl), encode_or_abort(speed));
   sim_control_t seed = control(sim_control_t::SET_SEED);
   seed.seed = 42;
-  write(physics_dir, "seed", on(PhysicsChannel::SimControl), encoded(seed));
+  write(physics_dir, "seed", on(PhysicsChannel::SimControl), encode_or_abort(seed));
   sim_control_t field = control(sim_control_t::SET_FIELD);
-  field.field_config = file_text(fs::path(UBERSIM_FUZZ_CONFIG_DIR) / "fields" / "division_b.cfg");
-  write(physics_dir, "field", on(PhysicsChannel::SimControl), encoded(field));
+  field.field_config =
+      read_config_text(fs::path(UBERSIM_FUZZ_CONFIG_DIR) / "fields" / "division_b.cfg");
+  write(physics_dir, "field", on(PhysicsChannel::SimControl), encode_or_abort(field));
   sim_control_t type = control(sim_control_t::DEFINE_ROBOT_TYPE);
   type.robot_type_name = "fuzz_bot";
   type.robot_type_config = "BASE = omni4_ssl\nMASS = 2.5\n";
-  write(physics_dir, "robot_type", on(PhysicsChannel::SimControl), encoded(type));
-  write(physics_dir, "demand", on(PhysicsChannel::TruthDemand), encoded(demand()));
+  write(physics_dir, "robot_type", on(PhysicsChannel::SimControl), encode_or_abort(type));
+  write(physics_dir, "demand", on(PhysicsChannel::TruthDemand), encode_or_abort(demand()));
   write(physics_dir, "horizon_sync", on(PhysicsChannel::SyncHorizon, kSyncBit),
-        encoded(horizon()));
+        encode_or_abort(horizon()));
   write(physics_dir, "schedule_sync", on(PhysicsChannel::VisionSchedule, kSyncBit),
-        encoded(schedule()));
+        encode_or_abort(schedule()));
   write(physics_dir, "referee_sync", on(PhysicsChannel::Referee, kSyncRefereeBit),
-        encoded(referee()));
+        encode_or_abort(referee()));
 }
 
 }  // namespace ubersim::fuzz

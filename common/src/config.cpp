@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "ubersim/config_text.hpp"
+
 namespace ubersim {
 namespace {
 
@@ -87,7 +89,13 @@ std::optional<bool> parse_boolean(std::string token) {
 // naming /dev/zero or a FIFO must not read forever).
 constexpr std::uintmax_t kMaxConfigBytes = std::uintmax_t{1} << 20;
 
-std::string read_file(const std::filesystem::path& path) {
+std::string length_text(std::size_t n) {
+  return std::to_string(n) + (n == 1 ? " value" : " values");
+}
+
+}  // namespace
+
+std::string read_config_text(const std::filesystem::path& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
     throw ConfigError(path.string(), 0,
@@ -106,12 +114,6 @@ std::string read_file(const std::filesystem::path& path) {
   return text.str();
 }
 
-std::string length_text(std::size_t n) {
-  return std::to_string(n) + (n == 1 ? " value" : " values");
-}
-
-}  // namespace
-
 ConfigError::ConfigError(std::string file, int line, const std::string& what)
     : std::runtime_error(location(file, line) + ": " + what), file_(std::move(file)), line_(line) {}
 
@@ -119,7 +121,7 @@ ConfigFile ConfigFile::load(const std::filesystem::path& path) {
   ConfigFile config;
   config.path_ = path.string();
   std::vector<std::string> chain;
-  config.parse_into(read_file(path), path.string(), chain);
+  config.parse_into(read_config_text(path), path.string(), chain);
   return config;
 }
 
@@ -182,7 +184,7 @@ void ConfigFile::parse_into(const std::string& text, const std::string& name,
       std::filesystem::path base = values[0];
       if (base.is_relative()) base = std::filesystem::path(name).parent_path() / base;
       try {
-        parse_into(read_file(base), base.string(), base_chain);
+        parse_into(read_config_text(base), base.string(), base_chain);
       } catch (const ConfigError& error) {
         if (error.line() != 0 || error.file() != base.string()) throw;
         throw ConfigError(name, line_number, "BASE file '" + base.string() + "': " + error.what());

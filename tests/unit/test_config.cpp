@@ -6,6 +6,7 @@
 #include "temp_dir.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/config_paths.hpp"
+#include "ubersim/config_text.hpp"
 
 using ubersim::ConfigError;
 using ubersim::ConfigFile;
@@ -156,6 +157,16 @@ TEST(Config, BaseErrors) {
 TEST(Config, MissingFileIsNamed) {
   expect_config_error([] { ConfigFile::load("/nonexistent/robot.cfg"); },
                       {"/nonexistent/robot.cfg", "cannot open"});
+}
+
+TEST(Config, ConfigTextIsTheFileWholeOrANamedError) {
+  TempDir dir;
+  const std::string text = "# a field change\nFIELD_LENGTH = 9.0  # m\n";
+  EXPECT_EQ(ubersim::read_config_text(dir.write("f.cfg", text)), text);
+  expect_config_error([&] { ubersim::read_config_text(dir.root()); },
+                      {dir.root().string(), "not a regular file"});
+  expect_config_error([&] { ubersim::read_config_text(dir.path("missing.cfg")); },
+                      {"missing.cfg", "cannot open"});
 }
 
 TEST(ConfigPaths, ResolvesNamesByKindAndListsAlternatives) {
