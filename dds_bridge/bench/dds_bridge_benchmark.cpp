@@ -27,10 +27,10 @@
 #include <ubersim/sim_state_t.hpp>
 #include <vector>
 
-#include "bench_support.hpp"
 #include "child_process.hpp"
 #include "dds_test_support.hpp"
 #include "sample_messages.hpp"
+#include "temp_folder.hpp"
 #include "ubersim/bounded_decode.hpp"
 #include "ubersim/channels.hpp"
 #include "ubersim/cli.hpp"
@@ -205,8 +205,8 @@ int run(const Options& options) {
   const ubersim::ChannelNames channels;
   const std::string url = ubersim::default_lcm_url();
   // The bridge's log: in a folder of the run's own, removed when the run succeeds.
-  ubersim::physics::bench::WorkDir work("ubersim_dds_bridge_benchmark");
-  const std::string log = (work.path() / "bridge.log").string();
+  ubersim::test::TempFolder work("ubersim_dds_bridge_benchmark");
+  const std::string log = work.path("bridge.log");
   ubersim::test::ChildProcess bridge(
       {UBERSIM_DDS_BRIDGE_EXE, "--domain", std::to_string(options.domain)}, log);
 

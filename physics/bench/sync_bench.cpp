@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "bench_support.hpp"
+#include "temp_folder.hpp"
 #include "ubersim/child_process.hpp"
 #include "ubersim/process_main.hpp"
 
@@ -126,8 +127,8 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
-  ubersim::physics::bench::WorkDir work_dir("ubersim_sync_bench");
-  const fs::path& work = work_dir.path();
+  ubersim::test::TempFolder work_dir("ubersim_sync_bench");  // the runs' logs
+  const fs::path& work = work_dir.root();
   std::printf(
       "ubersim sync benchmark: %g s of sim time per run, both demo teams as sync clients,\n"
       "against the physics alone (ubersim_physics_bench, server, in-process bus) in this run.\n"

@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "bench_support.hpp"
+#include "temp_folder.hpp"
 #include "ubersim/child_process.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/physics/world.hpp"
@@ -210,8 +211,8 @@ int run(int argc, char** argv) {
   app.add_option("--listener-seconds", listener_seconds, "measuring window of figure 3")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
-  ubersim::physics::bench::WorkDir work_dir("ubersim_truth_bench");
-  const fs::path& work = work_dir.path();
+  ubersim::test::TempFolder work_dir("ubersim_truth_bench");  // the runs' logs
+  const fs::path& work = work_dir.root();
   std::printf("ubersim truth benchmark, %g s per figure; load average at start %s\n\n", seconds,
               load_average().c_str());
   // The options of one figure's set of runs; the figure sets what else differs.
