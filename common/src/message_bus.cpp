@@ -3,21 +3,50 @@
 #include <cerrno>
 #include <cstring>
 #include <ctime>
+#include <optional>
+#include <set>
+#include <string_view>
 
+#include "ubersim/lcm_channel_filter.hpp"
+#include "ubersim/lcm_udpm_receiver.hpp"
 #include "ubersim/shutdown.hpp"
 
 namespace ubersim {
 
 MessageBus::MessageBus(const std::string& url) : lcm_(url) {
   if (!lcm_.good()) throw std::runtime_error("cannot open LCM at '" + url + "'");
-  poll_fds_.push_back({lcm_.getFileno(), POLLIN, 0});
+  if (const std::optional<LcmUdpmAddress> address = parse_lcm_udpm_url(url)) {
+    receiver_ = std::make_unique<LcmUdpmReceiver>(*address);
+  }
+  poll_fds_.push_back({receiver_ ? receiver_->fd() : -1, POLLIN, 0});
+  poll_fds_.push_back({-1, POLLIN, 0});  // LCM's, once a subscription goes through it
   poll_fds_.push_back({-1, POLLIN, 0});  // the shutdown signal, when a wait is given one
 }
 
-void MessageBus::add_subscription(lcm::Subscription* raw, const std::string& channel,
-                                  int queue_capacity) {
-  if (raw == nullptr) throw std::runtime_error("cannot subscribe to " + channel);
-  raw->setQueueCapacity(queue_capacity);
+void MessageBus::add_subscription(std::unique_ptr<Subscription> subscription,
+                                  const std::string& channel, int queue_capacity) {
+  if (receiver_ && is_plain_channel_name(channel)) {
+    direct_[channel].push_back(subscription.get());
+    std::set<std::string> channels;
+    for (const auto& entry : direct_) channels.insert(entry.first);
+    // After the handler is in place: a datagram the old filter dropped in
+    // between arrived before the subscription, which LCM would not deliver.
+    receiver_->want_channels(channels);
+  } else {
+    lcm::Subscription* raw =
+        lcm_.subscribe(channel, &Subscription::on_lcm_message, subscription.get());
+    if (raw == nullptr) throw std::runtime_error("cannot subscribe to " + channel);
+    raw->setQueueCapacity(queue_capacity);
+    if (!lcm_receives_) {
+      lcm_receives_ = true;
+      poll_fds_[1].fd = lcm_.getFileno();  // starts LCM's receive thread
+    }
+  }
+  subscriptions_.push_back(std::move(subscription));
+}
+
+std::uint64_t MessageBus::kernel_drops() const {
+  return receiver_ ? receiver_->kernel_drops() : 0;
 }
 
 void MessageBus::publish_encoded(const std::string& channel, const void* data, std::size_t size) {
@@ -33,14 +62,34 @@ void MessageBus::subscribe_raw(const std::string& channel_regex, RawHandler hand
                                int queue_capacity) {
   auto subscription = std::make_unique<RawSubscription>();
   subscription->handler = std::move(handler);
-  add_subscription(lcm_.subscribe(channel_regex, &RawSubscription::on_message, subscription.get()),
-                   channel_regex, queue_capacity);
-  subscriptions_.push_back(std::move(subscription));
+  add_subscription(std::move(subscription), channel_regex, queue_capacity);
+}
+
+int MessageBus::handle_direct(int budget) {
+  if (!receiver_ || budget <= 0) return 0;
+  return receiver_->receive(
+      budget,
+      [this](const char* channel, const void* data, std::size_t size, std::int64_t received) {
+        const auto found = direct_.find(std::string_view(channel));
+        if (found == direct_.end()) return;  // only while the filter could not be attached
+        for (Subscription* subscription : found->second) {
+          subscription->deliver(found->first, data, size, received);
+        }
+      },
+      [this](const char* why, std::size_t size) {
+        bad_input_.warn(std::string("lcm:") + why,
+                        "dropped a datagram of " + std::to_string(size) + " bytes (" + why +
+                            (std::string(why) == "fragment"
+                                 ? ": messages over 64 KB are not received on this bus)"
+                                 : ")"));
+      });
 }
 
 int MessageBus::handle_pending() {
-  int handled = 0;
-  while (handled < kMaxMessagesPerWakeup && lcm_.handleTimeout(0) > 0) ++handled;
+  int handled = handle_direct(kMaxMessagesPerWakeup);
+  if (lcm_receives_) {
+    while (handled < kMaxMessagesPerWakeup && lcm_.handleTimeout(0) > 0) ++handled;
+  }
   return handled;
 }
 
@@ -68,9 +117,12 @@ int MessageBus::wait(const timespec* timeout, const ShutdownSignal* shutdown) {
   // The watched doors first: their input waited in their own queues (a
   // socket, DDS's reader cache) while LCM's waited in its own.
   for (std::size_t i = 0; i < watches_.size(); ++i) {
-    if ((poll_fds_[i + 1].revents & (POLLIN | POLLERR | POLLHUP)) != 0) watches_[i].on_readable();
+    if ((poll_fds_[i + 2].revents & (POLLIN | POLLERR | POLLHUP)) != 0) watches_[i].on_readable();
   }
-  return (poll_fds_.front().revents & POLLIN) != 0 ? handle_pending() : 0;
+  const bool direct_ready = (poll_fds_[0].revents & POLLIN) != 0;
+  const bool lcm_ready = (poll_fds_[1].revents & POLLIN) != 0;
+  if (!direct_ready && !lcm_ready) return 0;
+  return handle_pending();
 }
 
 }  // namespace ubersim

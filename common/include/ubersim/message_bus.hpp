@@ -10,6 +10,14 @@
 // bus cannot keep a loop from stepping, answering or seeing its shutdown; LCM
 // bounds what waits (its receive ring buffer and each subscription's queue,
 // where a flooded channel drops its own newest messages, not other channels').
+//
+// On a udpm:// URL a subscription to a plain channel name is received by the
+// process's own loop (lcm_udpm_receiver.hpp), not by LCM's receive thread,
+// and the kernel drops the datagrams of channels no handler subscribes to
+// (lcm_channel_filter.hpp): a process pays one wakeup per batch of the
+// messages it reads, nothing for the others on the group. A subscription that
+// is a regular expression (a recorder's ".*"), and every subscription on
+// another provider (memq://, file://), goes through LCM as before.
 #include <poll.h>
 
 #include <chrono>
@@ -17,12 +25,14 @@
 #include <cstdint>
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "ubersim/bounded_decode.hpp"
+#include "ubersim/lcm_udpm_receiver.hpp"
 #include "ubersim/logging.hpp"
 
 namespace ubersim {
@@ -71,6 +81,13 @@ class MessageBus {
   int wait_and_handle(int timeout_ms, const ShutdownSignal* shutdown = nullptr);
   int wait_until_and_handle(Clock::time_point deadline, const ShutdownSignal* shutdown = nullptr);
 
+  // True when this bus receives its plain-name subscriptions itself, with the
+  // kernel filtering by channel.
+  bool receives_directly() const { return receiver_ != nullptr; }
+  // Datagrams the kernel dropped on the direct receiver's socket: channels
+  // nobody here reads, and any overflow of its buffer.
+  std::uint64_t kernel_drops() const;
+
   std::uint64_t malformed_count() const { return bad_input_.total(); }
   ThrottledLog& bad_input() { return bad_input_; }
   const ThrottledLog& bad_input() const { return bad_input_; }
@@ -78,18 +95,23 @@ class MessageBus {
  private:
   struct Subscription {
     virtual ~Subscription() = default;
+    virtual void deliver(const std::string& channel, const void* data, std::size_t size,
+                         std::int64_t received) = 0;
+    void on_lcm_message(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+      deliver(channel, buffer->data, buffer->data_size, buffer->recv_utime);
+    }
   };
   template <class Msg>
   struct TypedSubscription : Subscription {
     MessageBus* bus = nullptr;
     std::function<void(const Msg&)> handler;
-    void on_message(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+    void deliver(const std::string& channel, const void* data, std::size_t size,
+                 std::int64_t /*received*/) override {
       Msg message;
-      if (!decode_bounded(buffer->data, buffer->data_size, message)) {
-        bus->bad_input_.warn("decode:" + channel, "dropped a message on " + channel + " (" +
-                                                      std::to_string(buffer->data_size) +
-                                                      " bytes) that does not " + "decode as " +
-                                                      Msg::getTypeName());
+      if (!decode_bounded(data, size, message)) {
+        bus->bad_input_.warn("decode:" + channel,
+                             "dropped a message on " + channel + " (" + std::to_string(size) +
+                                 " bytes) that does not " + "decode as " + Msg::getTypeName());
         return;
       }
       handler(message);
@@ -100,21 +122,29 @@ class MessageBus {
     std::function<void()> on_readable;
   };
 
-  void add_subscription(lcm::Subscription* raw, const std::string& channel, int queue_capacity);
+  void add_subscription(std::unique_ptr<Subscription> subscription, const std::string& channel,
+                        int queue_capacity);
+  int handle_direct(int budget);
   int wait(const timespec* timeout, const ShutdownSignal* shutdown);
 
   struct RawSubscription : Subscription {
     RawHandler handler;
-    void on_message(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
-      handler(channel, buffer->data, buffer->data_size, buffer->recv_utime);
+    void deliver(const std::string& channel, const void* data, std::size_t size,
+                 std::int64_t received) override {
+      handler(channel, data, size, received);
     }
   };
 
   lcm::LCM lcm_;
+  std::unique_ptr<LcmUdpmReceiver> receiver_;  // udpm:// only
+  // The plain-name subscriptions the receiver serves, by channel.
+  std::map<std::string, std::vector<Subscription*>, std::less<>> direct_;
+  bool lcm_receives_ = false;  // a subscription went through LCM
   ThrottledLog bad_input_;
   std::vector<std::unique_ptr<Subscription>> subscriptions_;
   std::vector<Watch> watches_;
-  std::vector<pollfd> poll_fds_;  // LCM, then one per watch, then the shutdown signal
+  // The receiver, LCM, then one per watch, then the shutdown signal (-1 when unused).
+  std::vector<pollfd> poll_fds_;
 };
 
 template <class Msg>
@@ -123,9 +153,7 @@ void MessageBus::subscribe(const std::string& channel, std::function<void(const 
   auto subscription = std::make_unique<TypedSubscription<Msg>>();
   subscription->bus = this;
   subscription->handler = std::move(handler);
-  add_subscription(lcm_.subscribe(channel, &TypedSubscription<Msg>::on_message, subscription.get()),
-                   channel, queue_capacity);
-  subscriptions_.push_back(std::move(subscription));
+  add_subscription(std::move(subscription), channel, queue_capacity);
 }
 
 }  // namespace ubersim
