@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -84,22 +85,53 @@ double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+// Real-time shares are measured in kWindows windows; the quietest window is
+// the figure, the median is printed next to it. On this VM the host slows every
+// process at once for seconds at a time (all five processes of a set, teams
+// included, took 5-10 times their usual CPU in the same two seconds at load
+// average 0, doing the same syscalls as before): such noise only ever adds,
+// so the least a window took is the cost, for the baseline and the sets alike.
+constexpr int kWindows = 5;
+
+template <class Shares>
+std::vector<Shares> sorted_by_total(std::vector<Shares> windows) {
+  std::sort(windows.begin(), windows.end(),
+            [](const Shares& a, const Shares& b) { return a.total() < b.total(); });
+  return windows;
+}
+
+struct SteppingShare {
+  double share = 0;
+  double total() const { return share; }
+};
+
+struct WindowedShare {
+  double quietest = 0, median = 0;
+};
+
 // The World alone, stepped in real time for `seconds`: its share of one core.
-double stepping_alone(const std::string& scenario, double seconds) {
+WindowedShare stepping_alone(const std::string& scenario, double seconds) {
   ubersim::physics::World world(ubersim::physics::load_world_setup(
       ubersim::default_config_dir().string(), scenario, "default"));
   const auto start = Clock::now();
-  const double cpu0 = thread_cpu_seconds();
   std::int64_t step = 0;
   const auto dt = std::chrono::duration<double>(world.dt());
-  while (Clock::now() - start < std::chrono::duration<double>(seconds)) {
-    world.step();
-    ++step;
-    std::this_thread::sleep_until(
-        start + std::chrono::duration_cast<Clock::duration>(dt * static_cast<double>(step)));
+  const auto window = std::chrono::duration<double>(seconds / kWindows);
+  std::vector<SteppingShare> windows;
+  for (int w = 0; w < kWindows; ++w) {
+    const auto window_start = Clock::now();
+    const double cpu0 = thread_cpu_seconds();
+    while (Clock::now() - window_start < window) {
+      world.step();
+      ++step;
+      std::this_thread::sleep_until(
+          start + std::chrono::duration_cast<Clock::duration>(dt * static_cast<double>(step)));
+    }
+    windows.push_back({(thread_cpu_seconds() - cpu0) /
+                       std::chrono::duration<double>(Clock::now() - window_start).count()});
   }
-  return (thread_cpu_seconds() - cpu0) /
-         std::chrono::duration<double>(Clock::now() - start).count();
+  const std::vector<SteppingShare> sorted = sorted_by_total(windows);
+  return {sorted.front().share, sorted[sorted.size() / 2].share};
 }
 
 struct SetOptions {
@@ -114,8 +146,9 @@ struct SetOptions {
 
 struct SetResult {
   double physics = 0, vision = 0, radio = 0;  // shares of one core
-  double stepping = 0;  // physics' own World::step share over its run (its log)
-  double speed = 0;     // sim s per wall s (as fast as possible)
+  double stepping = 0;      // physics' own World::step share over its run (its log)
+  double speed = 0;         // sim s per wall s (as fast as possible)
+  double median_total = 0;  // the median window's total (the shares are the quietest's)
   double total() const { return physics + vision + radio; }
 };
 
@@ -161,15 +194,25 @@ SetResult run_set(const SetOptions& o, const fs::path& work) {
   }
   std::this_thread::sleep_for(std::chrono::seconds(2));  // warm-up
   const pid_t pids[3] = {physics.pid(), others[0]->pid(), others[1]->pid()};
-  double before[3], after[3];
-  for (int i = 0; i < 3; ++i) before[i] = cpu_seconds(pids[i]);
-  const auto start = Clock::now();
-  std::this_thread::sleep_for(std::chrono::duration<double>(o.seconds));
-  for (int i = 0; i < 3; ++i) after[i] = cpu_seconds(pids[i]);
-  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
-  r.physics = (after[0] - before[0]) / wall;
-  r.vision = (after[1] - before[1]) / wall;
-  r.radio = (after[2] - before[2]) / wall;
+  std::vector<SetResult> windows;
+  for (int w = 0; w < kWindows; ++w) {
+    double before[3], after[3];
+    for (int i = 0; i < 3; ++i) before[i] = cpu_seconds(pids[i]);
+    const auto start = Clock::now();
+    std::this_thread::sleep_for(std::chrono::duration<double>(o.seconds / kWindows));
+    for (int i = 0; i < 3; ++i) after[i] = cpu_seconds(pids[i]);
+    const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+    SetResult window;
+    window.physics = (after[0] - before[0]) / wall;
+    window.vision = (after[1] - before[1]) / wall;
+    window.radio = (after[2] - before[2]) / wall;
+    windows.push_back(window);
+  }
+  const std::vector<SetResult> sorted = sorted_by_total(windows);
+  r.physics = sorted.front().physics;
+  r.vision = sorted.front().vision;
+  r.radio = sorted.front().radio;
+  r.median_total = sorted[sorted.size() / 2].total();
   physics.stop();
   std::smatch m;
   const std::string log = read_file(work / "physics.log");
@@ -227,16 +270,23 @@ int run(int argc, char** argv) {
   for (const std::string& scenario : scenarios) {
     const bool planar = scenario.find("planar") != std::string::npos;
     std::printf("== %s\n", scenario.c_str());
-    const double alone = stepping_alone(scenario, seconds);
-    std::printf("1. real time, CPU share of one core (demo teams drive, not counted):\n");
-    std::printf("   stepping the World alone            %6.2f %%\n", 100 * alone);
+    const WindowedShare stepping = stepping_alone(scenario, seconds);
+    const double alone = stepping.quietest;
+    std::printf(
+        "1. real time, CPU share of one core (demo teams drive, not counted); quietest of %d "
+        "windows (median window in brackets):\n",
+        kWindows);
+    std::printf("   stepping the World alone            %6.2f %% [%.2f %%]\n", 100 * alone,
+                100 * stepping.median);
     for (bool on_demand : {false, true}) {
       const SetResult r = run_set(set_options(scenario, on_demand, seconds), work);
       std::printf(
-          "   physics+vision+radio, %-10s     %6.2f %% (physics %.2f, vision %.2f, radio %.2f) "
-          "= %.2f x stepping alone; physics' own stepping %.2f %%: %.2f x it\n",
-          on_demand ? "on demand" : "every step", 100 * r.total(), 100 * r.physics, 100 * r.vision,
-          100 * r.radio, r.total() / alone, 100 * r.stepping,
+          "   physics+vision+radio, %-10s     %6.2f %% [%.2f %%] (physics %.2f, vision %.2f, "
+          "radio %.2f) = %.2f x stepping alone [%.2f x]; physics' own stepping %.2f %%: %.2f x "
+          "it\n",
+          on_demand ? "on demand" : "every step", 100 * r.total(), 100 * r.median_total,
+          100 * r.physics, 100 * r.vision, 100 * r.radio, r.total() / alone,
+          r.median_total / stepping.median, 100 * r.stepping,
           r.stepping > 0 ? r.total() / r.stepping : 0.0);
     }
     const std::string alone_scenario = std::regex_replace(scenario, std::regex("_planar$"), "");
@@ -271,15 +321,15 @@ int run(int argc, char** argv) {
         sy_t += r.total();
         sxy_t += n * r.total();
         char text[64];
-        std::snprintf(text, sizeof text, "%s%.2f/%.2f", shares.empty() ? "" : ", ",
-                      100 * r.physics, 100 * r.total());
+        std::snprintf(text, sizeof text, "%s%.2f/%.2f", shares.empty() ? "" : ", ", 100 * r.physics,
+                      100 * r.total());
         shares += text;
       }
       const double denominator = sn * sxx - sx * sx;
-      std::printf(
-          "   %-10s  physics/set %s %%: %+.3f %% (physics) %+.3f %% (set) per listener\n",
-          on_demand ? "on demand" : "every step", shares.c_str(),
-          100 * (sn * sxy_p - sx * sy_p) / denominator, 100 * (sn * sxy_t - sx * sy_t) / denominator);
+      std::printf("   %-10s  physics/set %s %%: %+.3f %% (physics) %+.3f %% (set) per listener\n",
+                  on_demand ? "on demand" : "every step", shares.c_str(),
+                  100 * (sn * sxy_p - sx * sy_p) / denominator,
+                  100 * (sn * sxy_t - sx * sy_t) / denominator);
     }
     std::printf("\n");
     std::fflush(stdout);
