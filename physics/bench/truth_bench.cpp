@@ -26,6 +26,8 @@
 #include "ubersim/child_process.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/physics/world.hpp"
+#include "ubersim/process_cpu.hpp"
+#include "ubersim/process_cpu.hpp"
 #include "ubersim/process_main.hpp"
 
 namespace {
@@ -50,34 +52,7 @@ std::string read_file(const fs::path& path) {
   return text.str();
 }
 
-// CPU seconds of a process: the sum of its threads' time on a CPU in ns
-// (/proc/<pid>/task/<tid>/schedstat), where /proc/<pid>/stat counts 10 ms
-// ticks, too coarse for the cost of one idle listener.
-double cpu_seconds(pid_t pid) {
-  double total = 0;
-  bool any = false;
-  std::error_code error;
-  for (const auto& task : fs::directory_iterator("/proc/" + std::to_string(pid) + "/task", error)) {
-    std::ifstream in(task.path() / "schedstat");
-    unsigned long long ns = 0;
-    if (in >> ns) {
-      total += 1e-9 * static_cast<double>(ns);
-      any = true;
-    }
-  }
-  if (any) return total;
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string text;
-  std::getline(in, text);
-  std::istringstream fields(text.substr(text.rfind(')') + 2));
-  std::string field;
-  unsigned long long utime = 0, stime = 0;
-  for (int i = 3; i <= 15 && fields >> field; ++i) {
-    if (i == 14) utime = std::stoull(field);
-    if (i == 15) stime = std::stoull(field);
-  }
-  return static_cast<double>(utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
-}
+using ubersim::process_cpu_seconds;
 
 double thread_cpu_seconds() {
   timespec t{};
@@ -197,10 +172,10 @@ SetResult run_set(const SetOptions& o, const fs::path& work) {
   std::vector<SetResult> windows;
   for (int w = 0; w < kWindows; ++w) {
     double before[3], after[3];
-    for (int i = 0; i < 3; ++i) before[i] = cpu_seconds(pids[i]);
+    for (int i = 0; i < 3; ++i) before[i] = process_cpu_seconds(pids[i]);
     const auto start = Clock::now();
     std::this_thread::sleep_for(std::chrono::duration<double>(o.seconds / kWindows));
-    for (int i = 0; i < 3; ++i) after[i] = cpu_seconds(pids[i]);
+    for (int i = 0; i < 3; ++i) after[i] = process_cpu_seconds(pids[i]);
     const double wall = std::chrono::duration<double>(Clock::now() - start).count();
     SetResult window;
     window.physics = (after[0] - before[0]) / wall;

@@ -27,6 +27,7 @@
 #include "ubersim/config_paths.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/process_cpu.hpp"
 #include "ubersim/process_main.hpp"
 #include "ubersim/scenario_config.hpp"
 
@@ -36,10 +37,12 @@ using Clock = std::chrono::steady_clock;
 using ubersim::ChildProcess;
 
 // CPU time of a process in seconds: user (utime) and kernel (stime), fields 14
-// and 15 of /proc/<pid>/stat.
+// and 15 of /proc/<pid>/stat, in 10 ms ticks (for the kernel's part), and the
+// total in ns (for the shares).
 struct CpuTime {
   double user = 0, system = 0;
-  double total() const { return user + system; }
+  double exact = 0;
+  double total() const { return exact; }
 };
 CpuTime cpu_time(pid_t pid) {
   std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
@@ -55,7 +58,8 @@ CpuTime cpu_time(pid_t pid) {
     if (i == 15) stime = std::stoull(field);
   }
   const double tick = static_cast<double>(::sysconf(_SC_CLK_TCK));
-  return CpuTime{static_cast<double>(utime) / tick, static_cast<double>(stime) / tick};
+  return CpuTime{static_cast<double>(utime) / tick, static_cast<double>(stime) / tick,
+                 ubersim::process_cpu_seconds(pid)};
 }
 
 std::string cpu_model() {
@@ -157,26 +161,41 @@ int run(int argc, char** argv) {
       for (ChildProcess* p : {physics.get(), vision.get(), radio.get()}) {
         if (!p->running()) throw std::runtime_error(p->name() + " stopped:\n" + p->log());
       }
-      const auto wall0 = Clock::now();
-      const double sim0 = sim_time;
+      // kWindows windows of seconds / kWindows; the quietest is the figure. On a
+      // shared VM the host inflates every process's CPU time at once for seconds
+      // at a time (docs/sync.md, "Measured"); such noise only ever adds.
+      constexpr int kWindows = 5;
       const std::array<ChildProcess*, 3> set = {physics.get(), vision.get(), radio.get()};
-      std::array<CpuTime, 3> before, after;
-      for (std::size_t i = 0; i < set.size(); ++i) before[i] = cpu_time(set[i]->pid());
-      double d0 = 0;
-      for (const auto& t : teams) d0 += cpu_time(t->pid()).total();
-      run_for(seconds);
-      for (std::size_t i = 0; i < set.size(); ++i) after[i] = cpu_time(set[i]->pid());
-      double d1 = 0;
-      for (const auto& t : teams) d1 += cpu_time(t->pid()).total();
-      const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-      m.physics = (after[0].total() - before[0].total()) / wall;
-      m.vision = (after[1].total() - before[1].total()) / wall;
-      m.radio = (after[2].total() - before[2].total()) / wall;
-      double kernel = 0;
-      for (std::size_t i = 0; i < set.size(); ++i) kernel += after[i].system - before[i].system;
-      m.kernel = kernel / wall / std::max(1e-9, m.physics + m.vision + m.radio);
-      m.demo = (d1 - d0) / wall;
-      m.realtime = (sim_time - sim0) / wall;
+      bool first = true;
+      for (int w = 0; w < kWindows; ++w) {
+        const auto wall0 = Clock::now();
+        const double sim0 = sim_time;
+        std::array<CpuTime, 3> before, after;
+        for (std::size_t i = 0; i < set.size(); ++i) before[i] = cpu_time(set[i]->pid());
+        double d0 = 0;
+        for (const auto& t : teams) d0 += cpu_time(t->pid()).total();
+        run_for(seconds / kWindows);
+        for (std::size_t i = 0; i < set.size(); ++i) after[i] = cpu_time(set[i]->pid());
+        double d1 = 0;
+        for (const auto& t : teams) d1 += cpu_time(t->pid()).total();
+        const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+        Measurement window = m;
+        window.physics = (after[0].total() - before[0].total()) / wall;
+        window.vision = (after[1].total() - before[1].total()) / wall;
+        window.radio = (after[2].total() - before[2].total()) / wall;
+        double kernel = 0;
+        double ticks = 0;
+        for (std::size_t i = 0; i < set.size(); ++i) {
+          kernel += after[i].system - before[i].system;
+          ticks += after[i].user + after[i].system - before[i].user - before[i].system;
+        }
+        const double total = window.physics + window.vision + window.radio;
+        window.kernel = kernel / std::max(1e-9, ticks);
+        window.demo = (d1 - d0) / wall;
+        window.realtime = (sim_time - sim0) / wall;
+        if (first || total < m.physics + m.vision + m.radio) m = window;
+        first = false;
+      }
       m.load = load_average();
       for (auto& t : teams) t->stop();
       for (ChildProcess* p : {radio.get(), vision.get(), physics.get()}) {
@@ -206,11 +225,13 @@ int run(int argc, char** argv) {
         "### CPU share of the process set in real time\n\n"
         "`ubersim_physics` in real time with `ubersim_vision` and `ubersim_radio` (default "
         "profiles: `cmdragons02`), started as a user starts them, plus `ubersim_demo_team` on "
-        "each side so the robots move and the radio carries traffic. CPU time (utime + stime "
-        "from `/proc/<pid>/stat`) over {:g} s of wall time after {:g} s of warm-up, as a share "
+        "each side so the robots move and the radio carries traffic. CPU time (each thread's "
+        "time on a CPU, `/proc/<pid>/task/*/schedstat`), the quietest of 5 windows over {:g} s of "
+        "wall time after {:g} s of warm-up, as a share "
         "of one core of this machine ({}). The demo teams are the user's software: shown "
         "apart, not counted. *In the kernel*: the part of the set's CPU time that is system "
-        "time (stime). For scale: the paper's ÜberSim used about 60 % of a 1 GHz "
+        "time (stime over utime + stime of `/proc/<pid>/stat`). For scale: the paper's ÜberSim "
+        "used about 60 % of a 1 GHz "
         "Pentium for 2 x 5 robots; the best-known simulator of this league, built and run here "
         "headless, uses 39 % of one core for 2 x 11.\n\n",
         seconds, warmup, cpu_model());
