@@ -3,6 +3,7 @@
 #include <sys/socket.h>
 
 #include <cstdint>
+#include <string_view>
 
 namespace ubersim {
 namespace {
@@ -17,6 +18,8 @@ constexpr std::uint32_t kChannelOffset = kUdpHeaderSize + 8;
 constexpr std::size_t kMaxChannelLength = 63;   // LCM_MAX_CHANNEL_NAME_LENGTH
 constexpr std::uint32_t kAccept = 0xffffffffU;  // keep the whole datagram
 constexpr std::uint32_t kDrop = 0;
+// What makes LCM read a subscription as more than a plain name.
+constexpr std::string_view kRegexCharacters = ".[]{}()\\*+?^$|";
 
 sock_filter statement(std::uint16_t code, std::uint32_t k) {
   return BPF_STMT(code, k);
@@ -63,7 +66,7 @@ void append_channel_block(const std::string& channel, std::vector<sock_filter>& 
 bool is_plain_channel_name(const std::string& channel) {
   if (channel.empty() || channel.size() > kMaxChannelLength) return false;
   for (const char c : channel) {
-    if (std::string(".[]{}()\\*+?^$|").find(c) != std::string::npos) return false;
+    if (kRegexCharacters.find(c) != std::string_view::npos) return false;
   }
   return true;
 }

@@ -10,6 +10,23 @@
 
 namespace ubersim {
 
+std::optional<ProcessStatTimes> process_stat_times(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text;
+  std::getline(in, text);
+  const auto close = text.rfind(')');  // the command name may contain spaces
+  if (close == std::string::npos) return std::nullopt;
+  std::istringstream fields(text.substr(close + 2));
+  std::string field;
+  unsigned long long utime = 0, stime = 0;
+  for (int i = 3; i <= 15 && fields >> field; ++i) {
+    if (i == 14) utime = std::stoull(field);
+    if (i == 15) stime = std::stoull(field);
+  }
+  const double tick = static_cast<double>(::sysconf(_SC_CLK_TCK));
+  return ProcessStatTimes{static_cast<double>(utime) / tick, static_cast<double>(stime) / tick};
+}
+
 double process_cpu_seconds(pid_t pid) {
   namespace fs = std::filesystem;
   double total = 0;
@@ -24,19 +41,7 @@ double process_cpu_seconds(pid_t pid) {
     }
   }
   if (any) return total;
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string text;
-  std::getline(in, text);
-  const auto close = text.rfind(')');  // the command name may contain spaces
-  if (close == std::string::npos) return 0;
-  std::istringstream fields(text.substr(close + 2));
-  std::string field;
-  unsigned long long utime = 0, stime = 0;
-  for (int i = 3; i <= 15 && fields >> field; ++i) {
-    if (i == 14) utime = std::stoull(field);
-    if (i == 15) stime = std::stoull(field);
-  }
-  return static_cast<double>(utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
+  const std::optional<ProcessStatTimes> times = process_stat_times(pid);
+  return times ? times->user + times->system : 0;
 }
-
 }  // namespace ubersim

@@ -12,6 +12,14 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/message_bus.hpp"
 
+namespace {
+template <class Done>
+void handle_until(ubersim::MessageBus& bus, Done done) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!done() && std::chrono::steady_clock::now() < deadline) bus.wait_and_handle(100);
+}
+}  // namespace
+
 TEST(MulticastBus, TwoInstancesTalkOverUdpm) {
   const std::string url = ubersim::with_receive_buffer(ubersim::default_lcm_url());
   ASSERT_EQ(url.rfind("udpm://", 0), 0u) << url;
@@ -25,21 +33,10 @@ TEST(MulticastBus, TwoInstancesTalkOverUdpm) {
     frame.frame_number = i;
     sender.publish("VISION", frame);
   }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (frames.size() < 100 && std::chrono::steady_clock::now() < deadline) {
-    receiver.wait_and_handle(100);
-  }
+  handle_until(receiver, [&] { return frames.size() >= 100; });
   ASSERT_EQ(frames.size(), 100u);
   for (int64_t i = 0; i < 100; ++i) EXPECT_EQ(frames[static_cast<size_t>(i)], i);
 }
-
-namespace {
-template <class Done>
-void handle_until(ubersim::MessageBus& bus, Done done) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (!done() && std::chrono::steady_clock::now() < deadline) bus.wait_and_handle(100);
-}
-}  // namespace
 
 // The kernel drops what no handler of a bus wants: a process pays only for the
 // channels it reads. Shown by the sockets' drop counters, and by a recorder's

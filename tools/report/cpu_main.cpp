@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -45,21 +46,9 @@ struct CpuTime {
   double total() const { return exact; }
 };
 CpuTime cpu_time(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string text;
-  std::getline(in, text);
-  const auto close = text.rfind(')');  // the command name may contain spaces
-  if (close == std::string::npos) throw std::runtime_error("cannot read /proc/<pid>/stat");
-  std::istringstream fields(text.substr(close + 2));
-  std::string field;
-  unsigned long long utime = 0, stime = 0;
-  for (int i = 3; i <= 15 && fields >> field; ++i) {
-    if (i == 14) utime = std::stoull(field);
-    if (i == 15) stime = std::stoull(field);
-  }
-  const double tick = static_cast<double>(::sysconf(_SC_CLK_TCK));
-  return CpuTime{static_cast<double>(utime) / tick, static_cast<double>(stime) / tick,
-                 ubersim::process_cpu_seconds(pid)};
+  const std::optional<ubersim::ProcessStatTimes> times = ubersim::process_stat_times(pid);
+  if (!times) throw std::runtime_error("cannot read /proc/<pid>/stat");
+  return CpuTime{times->user, times->system, ubersim::process_cpu_seconds(pid)};
 }
 
 std::string cpu_model() {

@@ -7,9 +7,10 @@
 // schema's bounds first, so no datagram can make decode allocate more than it
 // could hold); a malformed message is counted, logged (throttled) and dropped.
 // One wakeup handles at most kMaxMessagesPerWakeup messages, so a flood on the
-// bus cannot keep a loop from stepping, answering or seeing its shutdown; LCM
-// bounds what waits (its receive ring buffer and each subscription's queue,
-// where a flooded channel drops its own newest messages, not other channels').
+// bus cannot keep a loop from stepping, answering or seeing its shutdown. What
+// waits is bounded by the kernel's socket buffer (direct subscriptions, below)
+// or by LCM (its receive ring buffer and each subscription's queue, where a
+// flooded channel drops its own newest messages, not other channels').
 //
 // On a udpm:// URL a subscription to a plain channel name is received by the
 // process's own loop (lcm_udpm_receiver.hpp), not by LCM's receive thread,

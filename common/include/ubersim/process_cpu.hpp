@@ -2,7 +2,16 @@
 // CPU time of another process, for the benchmarks and the report.
 #include <sys/types.h>
 
+#include <optional>
+
 namespace ubersim {
+
+// User (utime) and kernel (stime) time of a process in seconds, fields 14 and
+// 15 of /proc/<pid>/stat, in 10 ms ticks; nothing when it cannot be read.
+struct ProcessStatTimes {
+  double user = 0, system = 0;
+};
+std::optional<ProcessStatTimes> process_stat_times(pid_t pid);
 
 // Seconds the process's threads have spent on a CPU, in nanoseconds' resolution
 // (/proc/<pid>/task/<tid>/schedstat): /proc/<pid>/stat counts 10 ms ticks, too
