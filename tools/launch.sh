@@ -28,6 +28,9 @@ usage: tools/launch.sh [options]
   --truth-every-step   physics publishes SIM_STATE after every step (default: only at the
                        instants its consumers ask for: vision captures and releases, radio
                        feedback, viewer frames, bridges; docs/sync.md). Use it to record every step
+  --cpu N|all          the CPU physics, vision and radio share, or all to let the kernel spread
+                       them; default: in real time (up to 4x) the last CPU this script may use,
+                       with --sync, --lockstep or faster speeds all (docs/design.md, "One core")
   --seed N             seed for physics and both emulators
   --duration S         stop everything after S seconds of sim time
   --lcm-url URL        LCM URL for every process (default \$LCM_DEFAULT_URL or LCM's)
@@ -48,7 +51,7 @@ USAGE
 }
 
 scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" truth_every_step=0 seed="" duration=""
-lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix=""
+lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
 referee=0 game_length=""
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port=8080 ssl_bridge=0
 while [ $# -gt 0 ]; do
@@ -65,6 +68,7 @@ while [ $# -gt 0 ]; do
     --game-length) game_length=$2; shift 2 ;;
     --truth-every-step) truth_every_step=1; shift ;;
     --truth-on-demand) shift ;;  # the default; accepted for older scripts
+    --cpu) cpu=$2; shift 2 ;;
     --seed) seed=$2; shift 2 ;;
     --duration) duration=$2; shift 2 ;;
     --lcm-url) lcm_url=$2; shift 2 ;;
@@ -101,6 +105,23 @@ done
 [ -n "$log_dir" ] || log_dir=$(mktemp -d "${TMPDIR:-/tmp}/ubersim-XXXXXX")
 mkdir -p "$log_dir"
 
+# In real time the set uses a few percent of a core, and every message
+# between processes on different cores wakes the other core (an interrupt, in
+# a VM two exits): on one core they cost a quarter less. Spread when they must
+# run in parallel (sync, lockstep, beyond 4x real time).
+if [ -z "$cpu" ]; then
+  cpu=all
+  if [ "$sync" = 0 ] && [ "$lockstep" = 0 ] && awk -v s="$speed" 'BEGIN { exit !(s > 0 && s <= 4) }'; then
+    allowed=$(taskset -cp $$ 2>/dev/null) && allowed=${allowed##*: } && cpu=${allowed##*[,-]}
+  fi
+fi
+placement=()
+if [ "$cpu" != all ]; then
+  [[ "$cpu" =~ ^[0-9]+$ ]] && taskset -c "$cpu" true 2>/dev/null ||
+    { echo "launch: --cpu takes a CPU this script may use, or all (not '$cpu')" >&2; exit 2; }
+  placement=(taskset -c "$cpu")
+fi
+
 common=(--lcm-url "$lcm_url")
 [ -n "$prefix" ] && common+=(--channel-prefix "$prefix")
 [ "$quiet" = 1 ] && common+=(-q)
@@ -120,7 +141,7 @@ start() {  # start NAME COMMAND...
 mode=$speed
 [ "$lockstep" = 1 ] && mode=lockstep
 [ "$sync" = 1 ] && mode=sync
-echo "ubersim: scenario $scenario, profile $profile, speed $mode, LCM $lcm_url"
+echo "ubersim: scenario $scenario, profile $profile, speed $mode, LCM $lcm_url, CPU ${cpu}"
 if [ -n "$log_file" ]; then
   # ubersim_logger, not lcm-logger: lcm-logger 1.3.1 queues only 30 messages
   # per subscription and loses SIM_STATE when physics runs ahead in bursts.
@@ -157,9 +178,9 @@ if [ "$referee" = 1 ] && [ "$sync" = 1 ]; then
   physics_args+=(--sync-referee)
   referee_args+=(--sync)
 fi
-start physics "$bin_dir/ubersim_physics" "${common[@]}" "${physics_args[@]}" "${seed_args[@]}"
-[ "$vision" = 1 ] && start vision "$bin_dir/ubersim_vision" "${common[@]}" --profile "$profile" "${seed_args[@]}"
-[ "$radio" = 1 ] && start radio "$bin_dir/ubersim_radio" "${common[@]}" --profile "$profile" "${seed_args[@]}" "${radio_args[@]}"
+start physics "${placement[@]}" "$bin_dir/ubersim_physics" "${common[@]}" "${physics_args[@]}" "${seed_args[@]}"
+[ "$vision" = 1 ] && start vision "${placement[@]}" "$bin_dir/ubersim_vision" "${common[@]}" --profile "$profile" "${seed_args[@]}"
+[ "$radio" = 1 ] && start radio "${placement[@]}" "$bin_dir/ubersim_radio" "${common[@]}" --profile "$profile" "${seed_args[@]}" "${radio_args[@]}"
 if [ "$referee" = 1 ]; then
   start referee "$bin_dir/ubersim_referee" --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} "${referee_args[@]}"
   # In sync mode the referee must hear the first state: the teams (whose

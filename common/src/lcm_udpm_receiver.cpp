@@ -120,7 +120,8 @@ void LcmUdpmReceiver::want_channels(const std::set<std::string>& channels) {
   }
 }
 
-int LcmUdpmReceiver::receive(int budget, const Deliver& deliver, const Drop& drop) {
+int LcmUdpmReceiver::receive(int budget, const Deliver& deliver, const Drop& drop,
+                             const std::function<void()>& before_delivering) {
   int read = 0;
   std::array<mmsghdr, kBatch> headers{};
   std::array<iovec, kBatch> vectors{};
@@ -140,6 +141,7 @@ int LcmUdpmReceiver::receive(int budget, const Deliver& deliver, const Drop& dro
     if (received <= 0) break;  // nothing more (EAGAIN) or an error the next poll shows
     budget -= received;
     read += received;
+    if (before_delivering) before_delivering();
     for (int i = 0; i < received; ++i) {
       const char* data = static_cast<const char*>(vectors[i].iov_base);
       const std::size_t size = headers[i].msg_len;

@@ -15,9 +15,8 @@ namespace ubersim {
 
 MessageBus::MessageBus(const std::string& url) : lcm_(url) {
   if (!lcm_.good()) throw std::runtime_error("cannot open LCM at '" + url + "'");
-  if (const std::optional<LcmUdpmAddress> address = parse_lcm_udpm_url(url)) {
-    receiver_ = std::make_unique<LcmUdpmReceiver>(*address);
-  }
+  address_ = parse_lcm_udpm_url(url);
+  if (address_) receiver_ = std::make_unique<LcmUdpmReceiver>(*address_);
   poll_fds_.push_back({receiver_ ? receiver_->fd() : -1, POLLIN, 0});
   poll_fds_.push_back({-1, POLLIN, 0});  // LCM's, once a subscription goes through it
   poll_fds_.push_back({-1, POLLIN, 0});  // the shutdown signal, when a wait is given one
@@ -45,6 +44,24 @@ void MessageBus::add_subscription(std::unique_ptr<Subscription> subscription,
   subscriptions_.push_back(std::move(subscription));
 }
 
+void MessageBus::add_unhurried_subscription(std::unique_ptr<Subscription> subscription,
+                                            const std::string& channel) {
+  if (!is_plain_channel_name(channel)) {
+    throw std::invalid_argument("an unhurried subscription needs a plain channel name, not '" +
+                                channel + "'");
+  }
+  if (!receiver_) {  // memq://, file://: LCM delivers it like any other
+    add_subscription(std::move(subscription), channel, 1000);
+    return;
+  }
+  if (!unhurried_receiver_) unhurried_receiver_ = std::make_unique<LcmUdpmReceiver>(*address_);
+  unhurried_[channel].push_back(subscription.get());
+  std::set<std::string> channels;
+  for (const auto& entry : unhurried_) channels.insert(entry.first);
+  unhurried_receiver_->want_channels(channels);
+  subscriptions_.push_back(std::move(subscription));
+}
+
 std::uint64_t MessageBus::kernel_drops() const {
   return receiver_ ? receiver_->kernel_drops() : 0;
 }
@@ -65,24 +82,44 @@ void MessageBus::subscribe_raw(const std::string& channel_regex, RawHandler hand
   add_subscription(std::move(subscription), channel_regex, queue_capacity);
 }
 
+LcmUdpmReceiver::Deliver MessageBus::deliver_to(const DirectSubscriptions& subscriptions) {
+  return [&subscriptions](const char* channel, const void* data, std::size_t size,
+                          std::int64_t received) {
+    const auto found = subscriptions.find(std::string_view(channel));
+    if (found == subscriptions.end()) return;  // only while the filter could not be attached
+    for (Subscription* subscription : found->second) {
+      subscription->deliver(found->first, data, size, received);
+    }
+  };
+}
+
+LcmUdpmReceiver::Drop MessageBus::count_drop() {
+  return [this](const char* why, std::size_t size) {
+    bad_input_.warn(
+        std::string("lcm:") + why,
+        "dropped a datagram of " + std::to_string(size) + " bytes (" + why +
+            (std::string(why) == "fragment" ? ": messages over 64 KB are not received on this bus)"
+                                            : ")"));
+  };
+}
+
 int MessageBus::handle_direct(int budget) {
   if (!receiver_ || budget <= 0) return 0;
-  return receiver_->receive(
-      budget,
-      [this](const char* channel, const void* data, std::size_t size, std::int64_t received) {
-        const auto found = direct_.find(std::string_view(channel));
-        if (found == direct_.end()) return;  // only while the filter could not be attached
-        for (Subscription* subscription : found->second) {
-          subscription->deliver(found->first, data, size, received);
-        }
-      },
-      [this](const char* why, std::size_t size) {
-        bad_input_.warn(std::string("lcm:") + why,
-                        "dropped a datagram of " + std::to_string(size) + " bytes (" + why +
-                            (std::string(why) == "fragment"
-                                 ? ": messages over 64 KB are not received on this bus)"
-                                 : ")"));
-      });
+  const LcmUdpmReceiver::Drop drop = count_drop();
+  int unhurried_budget = budget;
+  bool unhurried_read = false;
+  // After each batch of the polled socket is read and before it is
+  // delivered: whatever was sent before a message of that batch is on the
+  // unhurried socket by then, and is delivered first.
+  const auto read_unhurried = [&] {
+    unhurried_read = true;
+    if (!unhurried_receiver_ || unhurried_budget <= 0) return;
+    unhurried_budget -=
+        unhurried_receiver_->receive(unhurried_budget, deliver_to(unhurried_), drop);
+  };
+  const int prompt = receiver_->receive(budget, deliver_to(direct_), drop, read_unhurried);
+  if (!unhurried_read) read_unhurried();
+  return prompt + (budget - unhurried_budget);
 }
 
 int MessageBus::handle_pending() {
@@ -113,7 +150,9 @@ int MessageBus::wait(const timespec* timeout, const ShutdownSignal* shutdown) {
   if (ready < 0 && errno != EINTR) {
     throw std::runtime_error(std::string("poll: ") + std::strerror(errno));
   }
-  if (ready <= 0) return 0;
+  // A wait that ends with nothing on the polled doors still reads the
+  // unhurried subscriptions: the loop acts after it.
+  if (ready <= 0) return unhurried_receiver_ ? handle_direct(kMaxMessagesPerWakeup) : 0;
   // The watched doors first: their input waited in their own queues (a
   // socket, DDS's reader cache) while LCM's waited in its own.
   for (std::size_t i = 0; i < watches_.size(); ++i) {
@@ -121,7 +160,9 @@ int MessageBus::wait(const timespec* timeout, const ShutdownSignal* shutdown) {
   }
   const bool direct_ready = (poll_fds_[0].revents & POLLIN) != 0;
   const bool lcm_ready = (poll_fds_[1].revents & POLLIN) != 0;
-  if (!direct_ready && !lcm_ready) return 0;
+  if (!direct_ready && !lcm_ready) {
+    return unhurried_receiver_ ? handle_direct(kMaxMessagesPerWakeup) : 0;
+  }
   return handle_pending();
 }
 

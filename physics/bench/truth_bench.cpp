@@ -7,6 +7,10 @@
 //      wall second against the physics alone (ubersim_physics_bench's server);
 //   3. what each extra idle listener on the group adds to physics' CPU share
 //      (and the set's): the slope over 0, L and 2 L listeners.
+// Real-time sets run as tools/launch.sh runs them: physics, vision and radio
+// on one CPU (the last this process may use); figure 1 also shows them spread
+// over every CPU (launch.sh --cpu all).
+#include <sched.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -16,6 +20,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <regex>
 #include <sstream>
@@ -26,7 +31,6 @@
 #include "ubersim/child_process.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/physics/world.hpp"
-#include "ubersim/process_cpu.hpp"
 #include "ubersim/process_cpu.hpp"
 #include "ubersim/process_main.hpp"
 
@@ -66,7 +70,7 @@ double thread_cpu_seconds() {
 // included, took 5-10 times their usual CPU in the same two seconds at load
 // average 0, doing the same syscalls as before): such noise only ever adds,
 // so the least a window took is the cost, for the baseline and the sets alike.
-constexpr int kWindows = 5;
+constexpr int kWindows = 10;
 
 template <class Shares>
 std::vector<Shares> sorted_by_total(std::vector<Shares> windows) {
@@ -109,6 +113,18 @@ WindowedShare stepping_alone(const std::string& scenario, double seconds) {
   return {sorted.front().share, sorted[sorted.size() / 2].share};
 }
 
+// The CPU tools/launch.sh puts physics, vision and radio on in real time: the
+// last one this process may use.
+int last_allowed_cpu() {
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (::sched_getaffinity(0, sizeof allowed, &allowed) != 0) return -1;
+  for (int cpu = CPU_SETSIZE - 1; cpu >= 0; --cpu) {
+    if (CPU_ISSET(cpu, &allowed)) return cpu;
+  }
+  return -1;
+}
+
 struct SetOptions {
   std::string scenario;
   std::string url;
@@ -117,6 +133,7 @@ struct SetOptions {
   bool teams = true;
   int idle_listeners = 0;
   double seconds = 10;
+  int cpu = -1;  // physics, vision and radio on this CPU; -1: wherever the kernel puts them
 };
 
 struct SetResult {
@@ -129,6 +146,19 @@ struct SetResult {
 
 SetResult run_set(const SetOptions& o, const fs::path& work) {
   const std::string url = "--lcm-url=" + o.url;
+  // As launch.sh places them (it uses taskset): a child starts on the CPUs
+  // its parent may use.
+  const auto placed = [&o](const std::function<void()>& start) {
+    cpu_set_t before;
+    CPU_ZERO(&before);
+    if (o.cpu < 0 || ::sched_getaffinity(0, sizeof before, &before) != 0) return start();
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(o.cpu, &one);
+    ::sched_setaffinity(0, sizeof one, &one);
+    start();
+    ::sched_setaffinity(0, sizeof before, &before);
+  };
   std::vector<std::string> physics_argv{
       program("ubersim_physics"), url, "--scenario", o.scenario, "--speed",
       o.real_time ? "1" : "0"};
@@ -136,10 +166,12 @@ SetResult run_set(const SetOptions& o, const fs::path& work) {
   if (!o.real_time)
     physics_argv.insert(physics_argv.end(), {"--duration", std::to_string(o.seconds)});
   std::vector<std::unique_ptr<ChildProcess>> others;
-  others.push_back(std::make_unique<ChildProcess>(
-      std::vector<std::string>{program("ubersim_vision"), url}, (work / "vision.log").string()));
-  others.push_back(std::make_unique<ChildProcess>(
-      std::vector<std::string>{program("ubersim_radio"), url}, (work / "radio.log").string()));
+  placed([&] {
+    others.push_back(std::make_unique<ChildProcess>(
+        std::vector<std::string>{program("ubersim_vision"), url}, (work / "vision.log").string()));
+    others.push_back(std::make_unique<ChildProcess>(
+        std::vector<std::string>{program("ubersim_radio"), url}, (work / "radio.log").string()));
+  });
   if (o.teams) {
     for (const char* team : {"yellow", "blue"}) {
       others.push_back(std::make_unique<ChildProcess>(
@@ -154,7 +186,11 @@ SetResult run_set(const SetOptions& o, const fs::path& work) {
         ""));
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  ChildProcess physics(physics_argv, (work / "physics.log").string());
+  std::unique_ptr<ChildProcess> physics_process;
+  placed([&] {
+    physics_process = std::make_unique<ChildProcess>(physics_argv, (work / "physics.log").string());
+  });
+  ChildProcess& physics = *physics_process;
   SetResult r;
   if (!o.real_time) {
     if (physics.wait(600) != 0) throw std::runtime_error("physics failed: " + physics.log());
@@ -234,14 +270,19 @@ int run(int argc, char** argv) {
   std::printf("ubersim truth benchmark, %g s per figure; load average at start %s\n\n", seconds,
               load_average().c_str());
   // The options of one figure's set of runs; the figure sets what else differs.
+  const int shared_cpu = last_allowed_cpu();
   const auto set_options = [&](const std::string& scenario, bool on_demand, double set_seconds) {
     SetOptions o;
     o.scenario = scenario;
     o.url = url;
     o.on_demand = on_demand;
     o.seconds = set_seconds;
+    o.cpu = shared_cpu;  // set to -1 where a figure runs as fast as possible
     return o;
   };
+  std::printf(
+      "real-time sets: physics, vision and radio on CPU %d, as tools/launch.sh runs them\n\n",
+      shared_cpu);
   for (const std::string& scenario : scenarios) {
     const bool planar = scenario.find("planar") != std::string::npos;
     std::printf("== %s\n", scenario.c_str());
@@ -251,17 +292,22 @@ int run(int argc, char** argv) {
         "1. real time, CPU share of one core (demo teams drive, not counted); quietest of %d "
         "windows (median window in brackets):\n",
         kWindows);
-    std::printf("   stepping the World alone            %6.2f %% [%.2f %%]\n", 100 * alone,
+    std::printf("   stepping the World alone                     %6.2f %% [%.2f %%]\n", 100 * alone,
                 100 * stepping.median);
-    for (bool on_demand : {false, true}) {
-      const SetResult r = run_set(set_options(scenario, on_demand, seconds), work);
+    for (const auto& [on_demand, spread] :
+         {std::pair{false, false}, std::pair{true, false}, std::pair{true, true}}) {
+      SetOptions o = set_options(scenario, on_demand, seconds);
+      if (spread) o.cpu = -1;
+      const SetResult r = run_set(o, work);
       std::printf(
-          "   physics+vision+radio, %-10s     %6.2f %% [%.2f %%] (physics %.2f, vision %.2f, "
+          "   physics+vision+radio, %-19s %6.2f %% [%.2f %%] (physics %.2f, vision %.2f, "
           "radio %.2f) = %.2f x stepping alone [%.2f x]; physics' own stepping %.2f %%: %.2f x "
           "it\n",
-          on_demand ? "on demand" : "every step", 100 * r.total(), 100 * r.median_total,
-          100 * r.physics, 100 * r.vision, 100 * r.radio, r.total() / alone,
-          r.median_total / stepping.median, 100 * r.stepping,
+          spread      ? "on demand, spread"
+          : on_demand ? "on demand"
+                      : "every step",
+          100 * r.total(), 100 * r.median_total, 100 * r.physics, 100 * r.vision, 100 * r.radio,
+          r.total() / alone, r.median_total / stepping.median, 100 * r.stepping,
           r.stepping > 0 ? r.total() / r.stepping : 0.0);
     }
     const std::string alone_scenario = std::regex_replace(scenario, std::regex("_planar$"), "");
@@ -273,6 +319,7 @@ int run(int argc, char** argv) {
       SetOptions o = set_options(scenario, on_demand, 2 * seconds);
       o.real_time = false;
       o.teams = false;
+      o.cpu = -1;  // launch.sh spreads them when they run as fast as possible
       const SetResult r = run_set(o, work);
       std::printf("   physics+vision+radio, %-10s     %6.1f x = %3.0f %% of the physics alone\n",
                   on_demand ? "on demand" : "every step", r.speed, 100 * r.speed / alone_speed);

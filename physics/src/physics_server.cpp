@@ -39,8 +39,12 @@ PhysicsServer::PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNam
   bus_.subscribe<vision_schedule_t>(
       channels.extra(kVisionScheduleChannel),
       [this](const vision_schedule_t&) { core_.on_vision_schedule(); });
-  bus_.subscribe<sim_commands_t>(channels(Channel::SimCommands),
-                                 [this](const sim_commands_t& p) { core_.on_commands(p); });
+  // A command waits in the world until its t_apply, and physics reads the bus
+  // before it runs any step, so a command need not wake it: read it when
+  // something else does (a due state, a demand, a request, a horizon, which
+  // the radio sends after the commands it covers).
+  bus_.subscribe_unhurried<sim_commands_t>(
+      channels(Channel::SimCommands), [this](const sim_commands_t& p) { core_.on_commands(p); });
   bus_.subscribe<sim_control_t>(channels(Channel::SimControl), [this](const sim_control_t& r) {
     publish(core_.on_control(r, bus_.bad_input().counts()));
   });
@@ -181,9 +185,10 @@ void PhysicsServer::wait_at_horizon(const ShutdownSignal* shutdown) {
 }
 
 Clock::time_point PhysicsServer::wake_for(Clock::time_point due) const {
-  // A command waits in the world until its t_apply whenever it arrived, and a
-  // message still wakes physics at once (a new demand may want an earlier
-  // state), so only the wall time at which unseen steps run changes. At most
+  // A command waits in the world until its t_apply whenever it arrived (and
+  // is read at the latest when this wait ends), and any other message still
+  // wakes physics at once (a new demand may want an earlier state), so only
+  // the wall time at which unseen steps run changes. At most
   // 50 ms of steps at once, well within the pacing lag.
   const World& world = core_.world();
   const double window = std::min(0.05, world.setup().physics.max_pacing_lag / 2);

@@ -121,3 +121,74 @@ TEST(MulticastBus, HandMadeDatagramsAreDroppedAndCounted) {
   EXPECT_EQ(receiver.bad_input().count("decode:VISION"), 1u);
   EXPECT_EQ(receiver.malformed_count(), 2u);
 }
+
+// An unhurried subscription (physics' SIM_COMMANDS) never wakes the loop: its
+// messages are read when the wait ends for another reason, and never after a
+// message sent after them on a channel that does wake the loop (a horizon is
+// never handled before the commands it lets physics pass).
+TEST(MulticastBus, UnhurriedMessagesWaitForTheNextWakeupAndPrecedeWhatWasSentAfterThem) {
+  const std::string url = ubersim::with_receive_buffer(ubersim::default_lcm_url());
+  ubersim::MessageBus sender(url);
+  ubersim::MessageBus receiver(url);
+  std::vector<int64_t> order;  // frame numbers in the order handled
+  receiver.subscribe_unhurried<ubersim::vision_frame_t>(
+      "UNHURRIED", [&](const ubersim::vision_frame_t& f) { order.push_back(f.frame_number); });
+  receiver.subscribe<ubersim::vision_frame_t>(
+      "PROMPT", [&](const ubersim::vision_frame_t& f) { order.push_back(f.frame_number); });
+  ubersim::vision_frame_t frame{};
+  for (int64_t i = 0; i < 3; ++i) {
+    frame.frame_number = i;
+    sender.publish("UNHURRIED", frame);
+  }
+  // They wait in the socket: the wait runs to its end (a wakeup would end it
+  // within milliseconds), and they are handled then.
+  const auto start = std::chrono::steady_clock::now();
+  const int handled = receiver.wait_and_handle(300);
+  EXPECT_GE(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(250));
+  EXPECT_EQ(handled, 3);
+  EXPECT_EQ(order, (std::vector<int64_t>{0, 1, 2}));
+
+  // Interleaved: each prompt message comes after every unhurried one sent
+  // before it, whatever else is waiting when the loop wakes.
+  order.clear();
+  constexpr int64_t kMessages = 400;
+  for (int64_t i = 0; i < kMessages; ++i) {
+    frame.frame_number = i;
+    sender.publish(i % 3 == 2 ? "PROMPT" : "UNHURRIED", frame);
+  }
+  handle_until(receiver, [&] { return order.size() >= static_cast<std::size_t>(kMessages); });
+  ASSERT_EQ(order.size(), static_cast<std::size_t>(kMessages));
+  std::vector<bool> seen(kMessages, false);
+  for (const int64_t number : order) {
+    seen[static_cast<std::size_t>(number)] = true;
+    if (number % 3 != 2) continue;
+    for (int64_t earlier = 0; earlier < number; ++earlier) {
+      ASSERT_TRUE(seen[static_cast<std::size_t>(earlier)])
+          << "prompt message " << number << " handled before unhurried message " << earlier;
+    }
+  }
+  // handle_pending reads them too, with nothing on the prompt channel.
+  order.clear();
+  frame.frame_number = 7;
+  sender.publish("UNHURRIED", frame);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (order.empty() && std::chrono::steady_clock::now() < deadline) receiver.handle_pending();
+  EXPECT_EQ(order, (std::vector<int64_t>{7}));
+}
+
+// On a provider without sockets of ubersim's own (memq://, in-process) an
+// unhurried subscription is an ordinary one.
+TEST(MulticastBus, UnhurriedIsOrdinaryOnMemq) {
+  ubersim::MessageBus bus("memq://");
+  std::vector<int64_t> frames;
+  bus.subscribe_unhurried<ubersim::vision_frame_t>(
+      "UNHURRIED", [&](const ubersim::vision_frame_t& f) { frames.push_back(f.frame_number); });
+  ubersim::vision_frame_t frame{};
+  frame.frame_number = 5;
+  bus.publish("UNHURRIED", frame);
+  handle_until(bus, [&] { return !frames.empty(); });
+  EXPECT_EQ(frames, (std::vector<int64_t>{5}));
+  EXPECT_THROW(bus.subscribe_unhurried<ubersim::vision_frame_t>(
+                   "UN.*", [](const ubersim::vision_frame_t&) {}),
+               std::invalid_argument);
+}

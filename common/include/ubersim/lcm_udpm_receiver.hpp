@@ -57,7 +57,11 @@ class LcmUdpmReceiver {
 
   // Reads what waits, at most `budget` datagrams, and delivers each LCM short
   // message; returns how many datagrams it read. Never blocks.
-  int receive(int budget, const Deliver& deliver, const Drop& drop);
+  // before_delivering, when given, runs after each batch is read and before
+  // any of it is delivered (MessageBus reads its unhurried socket there, so
+  // that what was sent before a message here is delivered before it).
+  int receive(int budget, const Deliver& deliver, const Drop& drop,
+              const std::function<void()>& before_delivering = {});
 
   // Datagrams the kernel dropped: other channels (the filter) and overflow.
   std::uint64_t kernel_drops() const;
