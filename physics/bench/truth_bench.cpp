@@ -10,7 +10,6 @@
 // Real-time sets run as tools/launch.sh runs them: physics, vision and radio
 // on one CPU (the last this process may use); figure 1 also shows them spread
 // over every CPU (launch.sh --cpu all).
-#include <sched.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -20,7 +19,6 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <memory>
 #include <regex>
 #include <sstream>
@@ -30,6 +28,7 @@
 #include "temp_folder.hpp"
 #include "ubersim/child_process.hpp"
 #include "ubersim/config_paths.hpp"
+#include "ubersim/cpu_placement.hpp"
 #include "ubersim/physics/world.hpp"
 #include "ubersim/process_cpu.hpp"
 #include "ubersim/process_main.hpp"
@@ -113,18 +112,6 @@ WindowedShare stepping_alone(const std::string& scenario, double seconds) {
   return {sorted.front().share, sorted[sorted.size() / 2].share};
 }
 
-// The CPU tools/launch.sh puts physics, vision and radio on in real time: the
-// last one this process may use.
-int last_allowed_cpu() {
-  cpu_set_t allowed;
-  CPU_ZERO(&allowed);
-  if (::sched_getaffinity(0, sizeof allowed, &allowed) != 0) return -1;
-  for (int cpu = CPU_SETSIZE - 1; cpu >= 0; --cpu) {
-    if (CPU_ISSET(cpu, &allowed)) return cpu;
-  }
-  return -1;
-}
-
 struct SetOptions {
   std::string scenario;
   std::string url;
@@ -146,19 +133,6 @@ struct SetResult {
 
 SetResult run_set(const SetOptions& o, const fs::path& work) {
   const std::string url = "--lcm-url=" + o.url;
-  // As launch.sh places them (it uses taskset): a child starts on the CPUs
-  // its parent may use.
-  const auto placed = [&o](const std::function<void()>& start) {
-    cpu_set_t before;
-    CPU_ZERO(&before);
-    if (o.cpu < 0 || ::sched_getaffinity(0, sizeof before, &before) != 0) return start();
-    cpu_set_t one;
-    CPU_ZERO(&one);
-    CPU_SET(o.cpu, &one);
-    ::sched_setaffinity(0, sizeof one, &one);
-    start();
-    ::sched_setaffinity(0, sizeof before, &before);
-  };
   std::vector<std::string> physics_argv{
       program("ubersim_physics"), url, "--scenario", o.scenario, "--speed",
       o.real_time ? "1" : "0"};
@@ -166,12 +140,13 @@ SetResult run_set(const SetOptions& o, const fs::path& work) {
   if (!o.real_time)
     physics_argv.insert(physics_argv.end(), {"--duration", std::to_string(o.seconds)});
   std::vector<std::unique_ptr<ChildProcess>> others;
-  placed([&] {
+  {
+    const ubersim::OnOneCpu placed(o.cpu);  // as launch.sh places them (with taskset)
     others.push_back(std::make_unique<ChildProcess>(
         std::vector<std::string>{program("ubersim_vision"), url}, (work / "vision.log").string()));
     others.push_back(std::make_unique<ChildProcess>(
         std::vector<std::string>{program("ubersim_radio"), url}, (work / "radio.log").string()));
-  });
+  }
   if (o.teams) {
     for (const char* team : {"yellow", "blue"}) {
       others.push_back(std::make_unique<ChildProcess>(
@@ -187,9 +162,10 @@ SetResult run_set(const SetOptions& o, const fs::path& work) {
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   std::unique_ptr<ChildProcess> physics_process;
-  placed([&] {
+  {
+    const ubersim::OnOneCpu placed(o.cpu);
     physics_process = std::make_unique<ChildProcess>(physics_argv, (work / "physics.log").string());
-  });
+  }
   ChildProcess& physics = *physics_process;
   SetResult r;
   if (!o.real_time) {
@@ -270,7 +246,7 @@ int run(int argc, char** argv) {
   std::printf("ubersim truth benchmark, %g s per figure; load average at start %s\n\n", seconds,
               load_average().c_str());
   // The options of one figure's set of runs; the figure sets what else differs.
-  const int shared_cpu = last_allowed_cpu();
+  const int shared_cpu = ubersim::last_allowed_cpu();
   const auto set_options = [&](const std::string& scenario, bool on_demand, double set_seconds) {
     SetOptions o;
     o.scenario = scenario;

@@ -5,6 +5,7 @@
 #include <signal.h>
 
 #include <cmath>
+#include <fstream>
 #include <regex>
 #include <thread>
 #include <ubersim/radio_packet_t.hpp>
@@ -39,6 +40,16 @@ std::pair<int, std::string> run(const std::vector<std::string>& argv, const Temp
   ChildProcess process(argv, dir.path("run" + std::to_string(counter++) + ".out"));
   const int status = process.wait(timeout_s);
   return {status, process.log()};
+}
+
+// The CPUs a process may run on, as the kernel lists them ("1", "0-1").
+std::string allowed_cpus(pid_t pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("Cpus_allowed_list:", 0) == 0) return line.substr(line.find_last_of(" \t") + 1);
+  }
+  return "";
 }
 
 }  // namespace
@@ -109,8 +120,7 @@ TEST_F(DemoGame, SigintStopsEveryProcessWithinTwoSeconds) {
   // launch.sh kills (and reports) anything still running 2 s after it asked.
   EXPECT_EQ(output_.find("did not stop within 2 s"), std::string::npos) << output_;
   EXPECT_LT(stop_seconds_, 5.0);
-  for (const char* name :
-       {"physics", "vision", "radio", "demo_yellow", "demo_blue", "logger"}) {
+  for (const char* name : {"physics", "vision", "radio", "demo_yellow", "demo_blue", "logger"}) {
     ASSERT_TRUE(pids_.count(name)) << name << " not started: " << output_;
     EXPECT_FALSE(process_alive(pids_.at(name))) << name << " left running";
   }
@@ -153,11 +163,25 @@ TEST(Launch, KillingOneProcessStopsTheRestAndFails) {
   const auto pids = launch.processes();
   ASSERT_TRUE(listener.run_until([&] { return listener.frames().size() > 5; }, 30))
       << launch.output();
+  // In real time physics, vision and radio share one CPU (docs/design.md, "One core in real time").
+  const std::string cpu = allowed_cpus(pids.at("physics"));
+  EXPECT_TRUE(std::regex_match(cpu, std::regex("[0-9]+"))) << cpu;
+  EXPECT_EQ(allowed_cpus(pids.at("vision")), cpu);
+  EXPECT_EQ(allowed_cpus(pids.at("radio")), cpu);
   ::kill(pids.at("radio"), SIGKILL);
   const int status = launch.script().wait(10);
   EXPECT_NE(status, 0) << launch.output();
   EXPECT_NE(launch.output().find("radio exited"), std::string::npos) << launch.output();
   for (const auto& [name, pid] : pids) EXPECT_FALSE(process_alive(pid)) << name << " left running";
+}
+
+TEST(Launch, CpuAllLeavesThePlacementToTheKernel) {
+  TempDir dir;
+  Launch launch({"--cpu", "all", "--no-vision", "--no-radio"}, dir);
+  const auto pids = launch.processes();
+  ASSERT_TRUE(pids.count("physics")) << launch.output();
+  EXPECT_EQ(allowed_cpus(pids.at("physics")), allowed_cpus(::getpid()));
+  launch.script().stop(10, SIGINT);
 }
 
 TEST(Launch, RefereePlacementsShowInVision) {

@@ -1,7 +1,8 @@
 // ubersim_report_cpu: the share of one CPU core the whole process set uses in
 // real time (the paper's figure: 60 % of a 1 GHz Pentium for 2 x 5 robots).
 // For each scenario it starts ubersim_physics (real time), ubersim_vision and
-// ubersim_radio with their default profiles as a user would, plus a demo team
+// ubersim_radio with their default profiles as a user would (on one CPU, as
+// tools/launch.sh places them in real time), plus a demo team
 // on each side so that the robots move and the radio carries traffic; after a
 // warm-up it reads each process's CPU time (utime + stime, /proc/<pid>/stat)
 // at the start and the end of a window of wall-clock time. The demo teams are
@@ -26,6 +27,7 @@
 #include "ubersim/child_process.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/config_paths.hpp"
+#include "ubersim/cpu_placement.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/process_cpu.hpp"
@@ -127,6 +129,8 @@ int run(int argc, char** argv) {
           ubersim::ChannelNames()(ubersim::Channel::SimState),
           [&](const ubersim::sim_state_t& s) { sim_time = s.sim_time; });
       const std::string cd = "--config-dir=" + config_dir;
+      // On one CPU, as tools/launch.sh runs them in real time.
+      std::optional<ubersim::OnOneCpu> placed(std::in_place, ubersim::last_allowed_cpu());
       auto physics = std::make_unique<ChildProcess>(
           std::vector<std::string>{program("ubersim_physics"), "--scenario", scenario, cd},
           log("physics"));
@@ -134,6 +138,7 @@ int run(int argc, char** argv) {
           std::vector<std::string>{program("ubersim_vision"), cd}, log("vision"));
       auto radio = std::make_unique<ChildProcess>(
           std::vector<std::string>{program("ubersim_radio"), cd}, log("radio"));
+      placed.reset();  // the teams are the user's programs: wherever the kernel puts them
       std::vector<std::unique_ptr<ChildProcess>> teams;
       if (demo_teams) {
         for (const char* team : {"yellow", "blue"}) {
