@@ -1,18 +1,10 @@
 #include "ubersim/physics/physics_core.hpp"
 
-#include <time.h>
-
 #include <cmath>
 #include <limits>
 
 namespace ubersim::physics {
 namespace {
-
-double thread_cpu_seconds() {
-  timespec t{};
-  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 const char* action_name(int action) {
   switch (action) {
@@ -128,14 +120,7 @@ const PhysicsCore::Output& PhysicsCore::step() {
 }
 
 void PhysicsCore::step_once(bool publish_every_step) {
-  if (pacer_.paced() && !sync_) {
-    // Two system calls a step: measured only where steps are few (paced).
-    const double cpu = thread_cpu_seconds();
-    world_.step();
-    step_cpu_seconds_ += thread_cpu_seconds() - cpu;
-  } else {
-    world_.step();
-  }
+  world_.step();
   ++steps_;
   const double rate = world_.setup().physics.state_publish_rate;
   if (options_.truth_on_demand && !publish_every_step && !demand_.empty()) {

@@ -218,7 +218,8 @@ int run(int argc, char** argv) {
     md << fmt::format(
         "### CPU share of the process set in real time\n\n"
         "`ubersim_physics` in real time with `ubersim_vision` and `ubersim_radio` (default "
-        "profiles: `cmdragons02`), started as a user starts them, plus `ubersim_demo_team` on "
+        "profiles: `cmdragons02`), started as a user starts them (on one CPU, as `tools/launch.sh` "
+        "places them in real time), plus `ubersim_demo_team` on "
         "each side so the robots move and the radio carries traffic. CPU time (each thread's "
         "time on a CPU, `/proc/<pid>/task/*/schedstat`), the quietest of 5 windows over {:g} s of "
         "wall time after {:g} s of warm-up, as a share "

@@ -104,9 +104,7 @@ class PhysicsCore {
   bool duration_reached() const;
   // Sync mode: every frame published up to the current state has its answers
   // from every client (the radio emulator says so), so a run may end here.
-  bool last_frames_answered() const {
-    return answered_until_ > world_.time() + world_.dt() * 1e-6;
-  }
+  bool last_frames_answered() const { return answered_until_ > world_.time() + world_.dt() * 1e-6; }
   double answered_until() const { return answered_until_; }
 
   World& world() { return world_; }
@@ -121,7 +119,6 @@ class PhysicsCore {
   std::uint64_t demand_late() const { return demand_.late(); }
   // Paced modes: CPU time of this thread spent in World::step (s), so that
   // the cost of everything else (messages, waiting) can be told from stepping.
-  double step_cpu_seconds() const { return step_cpu_seconds_; }
 
  private:
   // Empties out_, keeping its states' memory in spare_ for the next ones.
@@ -141,9 +138,9 @@ class PhysicsCore {
   ThrottledLog log_;
   bool sync_ = false;
   TruthDemand demand_;
-  double horizon_ = 0;      // s, from SIM_SYNC_HORIZON
+  double horizon_ = 0;         // s, from SIM_SYNC_HORIZON
   double answered_until_ = 0;  // s, from SIM_SYNC_HORIZON: frames published before it are answered
-  double referee_horizon_;  // s, from REFEREE (+inf without --sync-referee)
+  double referee_horizon_;     // s, from REFEREE (+inf without --sync-referee)
   std::string horizon_bound_ = "the radio emulator (no SIM_SYNC_HORIZON yet)";
   bool vision_heard_ = false;
   bool radio_ready_ = false;
@@ -151,7 +148,6 @@ class PhysicsCore {
   std::int64_t states_published_ = 0;
   std::int64_t controls_handled_ = 0;
   std::int64_t packets_received_ = 0;
-  double step_cpu_seconds_ = 0;
 };
 
 }  // namespace ubersim::physics

@@ -20,6 +20,7 @@
 #include "ubersim/channels.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/physics/physics_core.hpp"
+#include "ubersim/physics/stepping_clock.hpp"
 
 namespace ubersim {
 class ShutdownSignal;
@@ -79,6 +80,7 @@ class PhysicsServer {
   ServerOptions options_;
   std::vector<uint8_t> state_buffer_;  // encoded SIM_STATE, reused every step
   ServerStats stats_;                  // the loop's own figures (wall clock, sync waits)
+  SteppingClock stepping_clock_;       // CPU time of the steps in real time
   bool first_state_sent_ = false;
   Pacer::Clock::time_point first_state_wall_{};
 };
