@@ -5,7 +5,6 @@
 #include <signal.h>
 
 #include <cmath>
-#include <fstream>
 #include <regex>
 #include <thread>
 #include <ubersim/radio_packet_t.hpp>
@@ -13,11 +12,13 @@
 #include <ubersim/sim_state_t.hpp>
 #include <ubersim/team_t.hpp>
 
+#include "allowed_cpus.hpp"
 #include "e2e_support.hpp"
 #include "lockstep_replay.hpp"
 #include "ubersim/cli.hpp"
 
 using namespace e2e;
+using ubersim::test::allowed_cpus;
 using ubersim::test::ChildProcess;
 using ubersim::test::process_alive;
 
@@ -40,16 +41,6 @@ std::pair<int, std::string> run(const std::vector<std::string>& argv, const Temp
   ChildProcess process(argv, dir.path("run" + std::to_string(counter++) + ".out"));
   const int status = process.wait(timeout_s);
   return {status, process.log()};
-}
-
-// The CPUs a process may run on, as the kernel lists them ("1", "0-1").
-std::string allowed_cpus(pid_t pid) {
-  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
-  std::string line;
-  while (std::getline(status, line)) {
-    if (line.rfind("Cpus_allowed_list:", 0) == 0) return line.substr(line.find_last_of(" \t") + 1);
-  }
-  return "";
 }
 
 }  // namespace

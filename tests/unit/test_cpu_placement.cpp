@@ -3,24 +3,13 @@
 #include <gtest/gtest.h>
 #include <sched.h>
 
-#include <fstream>
 #include <string>
 
+#include "allowed_cpus.hpp"
 #include "ubersim/child_process.hpp"
 #include "ubersim/cpu_placement.hpp"
 
-namespace {
-
-std::string allowed_cpus(pid_t pid) {
-  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
-  std::string line;
-  while (std::getline(status, line)) {
-    if (line.rfind("Cpus_allowed_list:", 0) == 0) return line.substr(line.find_last_of(" \t") + 1);
-  }
-  return "";
-}
-
-}  // namespace
+using ubersim::test::allowed_cpus;
 
 TEST(CpuPlacement, AChildStartedInTheScopeRunsOnThatCpuAndTheStarterGetsItsCpusBack) {
   const int cpu = ubersim::last_allowed_cpu();
