@@ -114,10 +114,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
   const Fixture& f = fixture();
-  const auto channel =
-      static_cast<EmulatorChannel>(data[0] % static_cast<int>(EmulatorChannel::Count));
-  const std::uint8_t* bytes = data + 1;
-  const std::size_t length = size - 1;
+  const auto [channel, bytes, length] = ubersim::fuzz::channel_input<EmulatorChannel>(data, size);
 
   ubersim::vision::VisionEmulator vision(f.vision_profile, f.robot_sizes);
   ubersim::radio::RadioEmulator radio({f.radio_profile, f.radio_profile}, std::nullopt);

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <string>
 
@@ -23,6 +24,22 @@ std::string encode_or_abort(const Msg& message) {
   std::string bytes(static_cast<std::size_t>(size), '\0');
   if (message.encode(bytes.data(), 0, size) != size) std::abort();
   return bytes;
+}
+
+// An input of a target that takes one datagram on one of several channels:
+// the first byte picks the channel (modulo Channel::Count), the rest is the datagram.
+template <class Channel>
+struct ChannelInput {
+  Channel channel;
+  const std::uint8_t* bytes;
+  std::size_t length;
+};
+
+// Needs size >= 1.
+template <class Channel>
+ChannelInput<Channel> channel_input(const std::uint8_t* data, std::size_t size) {
+  const int count = static_cast<int>(Channel::Count);
+  return {static_cast<Channel>(data[0] % count), data + 1, size - 1};
 }
 
 }  // namespace ubersim::fuzz

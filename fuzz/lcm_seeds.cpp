@@ -14,6 +14,7 @@
 #include <ubersim/emulator_realism_t.hpp>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/referee_t.hpp>
+#include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/sim_commands_t.hpp>
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
@@ -22,6 +23,7 @@
 #include <ubersim/vision_schedule_t.hpp>
 #include <utility>
 
+#include "consumer_inputs.hpp"
 #include "emulator_inputs.hpp"
 #include "fuzz_support.hpp"
 #include "physics_inputs.hpp"
@@ -220,11 +222,44 @@ void write_emulator_seeds(const fs::path& dir) {
   write(dir, "realism", on(EmulatorChannel::EmulatorRealism), encode_or_abort(realism()));
 }
 
+void write_consumer_seeds(const fs::path& dir) {
+  const auto on = [](ConsumerChannel channel) { return static_cast<std::uint8_t>(channel); };
+  const ConsumerTraffic traffic = division_b_traffic();
+  write(dir, "state", on(ConsumerChannel::SimState), encode_or_abort(division_b_state()));
+  sim_state_t out_of_field = traffic.states.back();
+  out_of_field.ball.position[0] = 7.0;  // over the goal line: the referee stops the game
+  write(dir, "state_ball_out", on(ConsumerChannel::SimState), encode_or_abort(out_of_field));
+  sim_state_t not_finite = traffic.states.back();
+  not_finite.ball.position[1] = std::numeric_limits<double>::quiet_NaN();
+  not_finite.robots[0].x = std::numeric_limits<double>::infinity();
+  write(dir, "state_not_finite", on(ConsumerChannel::SimState), encode_or_abort(not_finite));
+  sim_state_t not_utf8 = traffic.states.back();  // once stopped the viewer (docs/fuzzing.md)
+  not_utf8.robots[0].robot_type = "omni\xff";
+  write(dir, "state_type_not_utf8", on(ConsumerChannel::SimState), encode_or_abort(not_utf8));
+  write(dir, "geometry", on(ConsumerChannel::SimGeometry), encode_or_abort(traffic.field));
+  for (std::size_t i = 0; i < traffic.frames.size() && i < 2; ++i) {
+    write(dir, "vision_" + std::to_string(i), on(ConsumerChannel::Vision),
+          encode_or_abort(traffic.frames[i]));
+  }
+  write(dir, "vision_geometry", on(ConsumerChannel::VisionGeometry),
+        encode_or_abort(traffic.vision_geometry));
+  write(dir, "radio_yellow", on(ConsumerChannel::RadioYellow), encode_or_abort(radio_packet(0)));
+  write(dir, "radio_blue", on(ConsumerChannel::RadioBlue), encode_or_abort(radio_packet(1)));
+  sim_control_ack_t ack{};
+  ack.request_id = 2;
+  ack.sender = "viewer";
+  ack.ok = false;
+  ack.message = "unknown robot";
+  write(dir, "ack", on(ConsumerChannel::SimControlAck), encode_or_abort(ack));
+  write(dir, "referee", on(ConsumerChannel::Referee), encode_or_abort(referee()));
+}
+
 }  // namespace
 
 void write_lcm_seeds(const fs::path& decode_dir, const fs::path& physics_dir,
-                     const fs::path& emulators_dir) {
+                     const fs::path& emulators_dir, const fs::path& consumers_dir) {
   write_emulator_seeds(emulators_dir);
+  write_consumer_seeds(consumers_dir);
   write_decode_seed(decode_dir, "radio_packet", radio_packet(1));
   write_decode_seed(decode_dir, "emulator_realism", realism());
   write_default_seeds(decode_dir, AllLcmTypes{});

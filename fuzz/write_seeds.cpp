@@ -212,7 +212,7 @@ int main(int argc, char** argv) {
     ssl_robot_control_seeds(dir / "fuzz_ssl_robot_control");
     viewer_seeds(dir / "fuzz_viewer_http", dir / "fuzz_viewer_control");
     ubersim::fuzz::write_lcm_seeds(dir / "fuzz_lcm_decode", dir / "fuzz_lcm_physics",
-                                   dir / "fuzz_lcm_emulators");
+                                   dir / "fuzz_lcm_emulators", dir / "fuzz_lcm_consumers");
   } catch (const std::exception& error) {
     std::fprintf(stderr, "ubersim_fuzz_seeds: %s\n", error.what());
     return 1;

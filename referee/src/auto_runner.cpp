@@ -10,15 +10,14 @@
 #include "ubersim/config.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/referee/referee_message.hpp"
-#include "ubersim/referee/scene_io.hpp"
 #include "ubersim/referee/sim_link.hpp"
+#include "ubersim/referee/state_judge.hpp"
 #include "ubersim/robot_config.hpp"
 #include "ubersim/shutdown.hpp"
 
 namespace ubersim::referee {
 namespace {
 
-constexpr double kPublishPeriod = 0.1;       // s of sim time between unchanged referee_t
 constexpr double kFallbackRadius = 0.09;     // m, SSL maximum, for a type with no config
 constexpr std::int64_t kRequestBase = 7LL << 56;  // our request ids, apart from the CLI's
 // SIM_TRUTH_DEMAND is repeated this often (physics forgets a demand after 3 s).
@@ -41,7 +40,9 @@ class Runner {
     const std::chrono::milliseconds timeout(static_cast<long>(options_.timeout_s * 1000));
     SimLink link(bus_, channels_, "ubersim_referee auto");
     field_ = link.geometry(timeout);
-    referee_.emplace(options_.game, field_, options_.sides);
+    judge_.emplace(JudgeOptions{options_.game, options_.sides, options_.sync,
+                                options_.judge_every_step},
+                   field_, [this](const std::string& type) { return radius_of(type); });
     bus_.subscribe<sim_state_t>(
         channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 100000);
     if (options_.start_physics) {
@@ -84,20 +85,6 @@ class Runner {
     if (log_.is_open()) log_ << line << "\n" << std::flush;
   }
 
-  void place(const SituationRequest& request, const sim_state_t& state) {
-    const auto before = scene_from_state(state, field_.ball_radius,
-                                         [this](const std::string& t) { return radius_of(t); });
-    try {
-      const auto planned = plan_situation(request, before, field_, options_.sides);
-      auto control = place_request(before, planned, true, true);
-      control.request_id = kRequestBase + next_request_++;
-      control.sender = "ubersim_referee auto";
-      bus_.publish(channels_(Channel::SimControl), control);
-    } catch (const std::exception& error) {
-      spdlog::warn("cannot place the restart: {}", error.what());
-    }
-  }
-
   // Physics (ground truth on demand, its default) sends only the states someone asked for.
   // In sync mode physics stops at the state the referee judges next
   // (REFEREE.next_judge_time) and sends it: that is the referee's demand.
@@ -114,45 +101,22 @@ class Runner {
     bus_.publish(channels_.extra(kTruthDemandChannel), demand);
   }
 
-  // Whether the referee judges this state: the first at or after the time it
-  // named (physics in sync mode sends that one), or after a reset.
-  bool judges(const sim_state_t& state) const {
-    if (options_.judge_every_step || !judged_any_) return true;
-    if (state.sim_time < last_time_) return true;  // physics was reset
-    return state.sim_time >= next_judge_ - 1e-6 * std::max(state.dt, 1e-6);
-  }
-
   void on_state(const sim_state_t& state) {
-    if (over_ || !judges(state)) return;
-    ++judged_;
-    judged_any_ = true;
+    if (over_) return;
+    auto out = judge_->on_state(state);
+    if (!out.judged) return;
     if (!started_) {
       started_ = true;
       wall_start_ = std::chrono::steady_clock::now();
     }
-    const auto decision = referee_->update(state);
-    const auto& s = referee_->state();
-    for (const auto& e : decision.events) {
-      spdlog::info("{:.2f} s: {} ({})", e.sim_time, event_name(e.type), e.description);
-      write(event_line(e));
+    for (const std::string& line : out.log_lines) write(line);
+    if (out.placement) {
+      out.placement->request_id = kRequestBase + next_request_++;
+      out.placement->sender = "ubersim_referee auto";
+      bus_.publish(channels_(Channel::SimControl), *out.placement);
     }
-    if (decision.placement) place(*decision.placement, state);
-    if (decision.command_changed) {
-      spdlog::info("{:.2f} s: {} [{}] {}:{}", state.sim_time, command_name(s.command),
-                   stage_name(s.stage), s.yellow.goals, s.blue.goals);
-      write(command_line(s, state.sim_time));
-    }
-    next_judge_ = options_.judge_every_step ? state.sim_time + state.dt
-                                            : referee_->next_judge_time(state);
-    if (options_.sync || decision.command_changed || !decision.events.empty() ||
-        state.sim_time - last_publish_ >= kPublishPeriod || state.sim_time < last_publish_) {
-      auto message = to_message(s, options_.game, options_.sides, state.sim_time);
-      message.next_judge_time = next_judge_;
-      bus_.publish(channels_.referee(), message);
-      last_publish_ = state.sim_time;
-    }
-    last_time_ = state.sim_time;
-    if (decision.game_over) finish();
+    if (out.referee) bus_.publish(channels_.referee(), *out.referee);
+    if (out.game_over) finish();
   }
 
   void finish() {
@@ -162,11 +126,13 @@ class Runner {
                        .count()
                  : 0.0;
     const RefereeState empty;
-    const auto& s = referee_ ? referee_->state() : empty;
-    write(result_line(s, last_time_, wall));
+    const auto& s = judge_ ? judge_->state() : empty;
+    const double last_time = judge_ ? judge_->last_time() : 0.0;
+    write(result_line(s, last_time, wall));
     std::cout << "result: yellow " << s.yellow.goals << " : " << s.blue.goals << " blue ("
-              << (s.game_over ? "game over" : "stopped") << " at " << last_time_ << " s sim time, "
-              << wall << " s wall time, " << judged_ << " states judged)" << std::endl;
+              << (s.game_over ? "game over" : "stopped") << " at " << last_time << " s sim time, "
+              << wall << " s wall time, " << (judge_ ? judge_->judged() : 0)
+              << " states judged)" << std::endl;
   }
 
   const AutoOptions& options_;
@@ -175,14 +141,9 @@ class Runner {
   MessageBus bus_;
   std::ofstream log_;
   field_geometry_t field_{};
-  std::optional<AutoReferee> referee_;
+  std::optional<StateJudge> judge_;
   std::map<std::string, double> radii_;
   std::int64_t next_request_ = 0;
-  double last_publish_ = -1e9;
-  double last_time_ = 0;
-  double next_judge_ = 0;      // s: the state to judge next
-  std::uint64_t judged_ = 0;   // states judged
-  bool judged_any_ = false;
   std::chrono::steady_clock::time_point last_demand_{};
   bool started_ = false;
   bool over_ = false;

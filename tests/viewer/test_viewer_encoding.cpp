@@ -316,6 +316,30 @@ TEST(ViewerModelTest, RatesPerChannelUseTheActualChannelNames) {
   EXPECT_DOUBLE_EQ(rates["VISION"].get<double>(), 0.0);
 }
 
+// LCM strings are bytes: a robot type, field name or ack message that is not
+// UTF-8 made nlohmann's dump() throw, and the viewer stopped (fuzz_lcm_consumers).
+TEST(ViewerModelTest, StringsThatAreNotUtf8DoNotStopTheSnapshot) {
+  ViewerModel model;
+  const auto t0 = ViewerModel::Clock::now();
+  sim_state_t state = two_robot_state(1);
+  state.robots[0].robot_type = "omni\xff\xfe";
+  model.on_sim_state(state, t0);
+  field_geometry_t field{};
+  field.name = "div\xc3";
+  model.on_sim_geometry(field, t0);
+  sim_control_ack_t ack{};
+  ack.message = "\x80ok";
+  model.on_ack(ack);
+  std::string text;
+  ASSERT_NO_THROW(text = model.snapshot(t0, {}));
+  const json snapshot = json::parse(text);
+  EXPECT_EQ(snapshot["state"]["robots"][0]["type"], "omni\xef\xbf\xbd\xef\xbf\xbd")
+      << "each bad byte becomes U+FFFD";
+  EXPECT_EQ(snapshot["geometry"]["name"], "div\xef\xbf\xbd");
+  EXPECT_EQ(snapshot["ack"]["message"], "\xef\xbf\xbdok");
+  EXPECT_EQ(snapshot["state"]["robots"][1]["type"], "omni4_ssl");
+}
+
 TEST(RateMeterTest, CountsPerWindowAndFallsToZeroWhenQuiet) {
   RateMeter meter;
   const auto t0 = RateMeter::Clock::now();

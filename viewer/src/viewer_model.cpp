@@ -69,7 +69,10 @@ std::string ViewerModel::snapshot(Clock::time_point now, const nlohmann::json& s
       {"geometry", geometry_}, {"cameras", cameras_},
       {"rates", rates},        {"ack", ack_},
       {"server", server_info}};
-  return frame.dump();
+  // LCM strings (robot types, the field's name, ack messages) are bytes from
+  // anyone on the bus: dump() throws on one that is not UTF-8, which stopped
+  // the viewer while a page was open. Such bytes become U+FFFD instead (fuzz_lcm_consumers).
+  return frame.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 }  // namespace ubersim::viewer

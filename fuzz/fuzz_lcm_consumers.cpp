@@ -1,0 +1,200 @@
+// Fuzz target: what the automatic referee, the viewer and the SSL bridge do
+// with their LCM input. Each input is one datagram on one channel
+// (consumer_inputs.hpp), decoded as the processes decode it (decode_bounded)
+// and given to every one of the three that reads that channel, between real
+// Division B traffic before it and after it:
+//  * referee: StateJudge, what `ubersim_referee auto` does with each
+//    SIM_STATE (the AutoReferee, REFEREE, the restart's placement, the event
+//    log), on the field SIM_GEOMETRY gave it;
+//  * viewer: ViewerModel and the snapshot text it pushes to pages;
+//  * SSL bridge: detection and geometry packets, tracked frames (TrackedFrames)
+//    and the game controller's Referee packet (RefereeTranslator).
+// What must hold for every input: nothing crashes, throws, leaks or allocates
+// beyond the fuzz build's limits; what goes out on LCM encodes and is finite;
+// the viewer's snapshot is JSON; every SSL packet serializes.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <ubersim/radio_packet_t.hpp>
+#include <ubersim/referee_t.hpp>
+#include <ubersim/sim_control_ack_t.hpp>
+
+#include "consumer_inputs.hpp"
+#include "fuzz_support.hpp"
+#include "ubersim/bounded_decode.hpp"
+#include "ubersim/referee/state_judge.hpp"
+#include "ubersim/ssl_bridge/referee_translation.hpp"
+#include "ubersim/ssl_bridge/tracked_frames.hpp"
+#include "ubersim/ssl_bridge/vision_translation.hpp"
+#include "ubersim/viewer/viewer_model.hpp"
+
+namespace {
+
+using ubersim::fuzz::ConsumerChannel;
+using Clock = ubersim::viewer::ViewerModel::Clock;
+
+constexpr double kRobotRadius = 0.09;  // m, what the referee assumes for any robot type
+
+bool finite(double value) { return std::isfinite(value); }
+
+void check(const ubersim::referee_t& message) {
+  if (!finite(message.sim_time) || !finite(message.stage_time_left) ||
+      !finite(message.next_judge_time) || !finite(message.command_time) ||
+      !finite(message.action_time_left) || !finite(message.designated_position[0]) ||
+      !finite(message.designated_position[1])) {
+    std::abort();
+  }
+  ubersim::fuzz::encode_or_abort(message);
+}
+
+void check(const ubersim::sim_control_t& placement) {
+  bool ok = true;
+  for (const ubersim::robot_placement_t& r : placement.robots) {
+    ok = ok && finite(r.x) && finite(r.y) && finite(r.orientation) && finite(r.vx) &&
+         finite(r.vy) && finite(r.omega);
+  }
+  for (double v : placement.ball.position) ok = ok && finite(v);
+  for (double v : placement.ball.linear_velocity) ok = ok && finite(v);
+  if (!ok) std::abort();
+  ubersim::fuzz::encode_or_abort(placement);
+}
+
+void check(const google::protobuf::Message& packet) {
+  if (!packet.IsInitialized()) std::abort();
+  (void)packet.SerializeAsString();
+}
+
+// The three consumers, fresh for each input.
+struct Consumers {
+  std::optional<ubersim::referee::StateJudge> judge;
+  ubersim::viewer::ViewerModel viewer;
+  ubersim::ssl::TrackedFrames tracked{ubersim::ssl::TrackedSettings{60, std::nullopt, "fuzz"}};
+  ubersim::ssl::RefereeTranslator referee_packets{"fuzz"};
+  ubersim::ssl::GeometryExtras extras;
+  Clock::time_point now{};
+
+  void field(const ubersim::field_geometry_t& field) {
+    judge.emplace(ubersim::referee::JudgeOptions{}, field,
+                  [](const std::string&) { return kRobotRadius; });
+    viewer.on_sim_geometry(field, tick());
+  }
+  // The viewer keeps only the newest state: it is given the last state before
+  // the input and the last after (encoding each one costs most of the time).
+  void state(const ubersim::sim_state_t& state, bool to_viewer = true) {
+    const auto out = judge->on_state(state);
+    if (out.referee) {
+      check(*out.referee);
+      // The bridge forwards what the referee publishes.
+      check(referee_packets.translate(*out.referee, 1'700'000'000'000'000));
+    }
+    if (out.placement) check(*out.placement);
+    if (to_viewer) viewer.on_sim_state(state, tick());
+    for (const auto& packet : tracked.on_state(state)) check(packet);
+  }
+  void vision(const ubersim::vision_frame_t& frame) {
+    viewer.on_vision(frame, tick());
+    check(ubersim::ssl::detection_packet(frame));
+  }
+  void vision_geometry(const ubersim::vision_geometry_t& geometry) {
+    viewer.on_vision_geometry(geometry, tick());
+    check(ubersim::ssl::geometry_packet(geometry, extras));
+  }
+  void snapshot() {
+    const std::string text = viewer.snapshot(tick(), nlohmann::json::object());
+    if (nlohmann::json::parse(text, nullptr, false).is_discarded()) std::abort();
+  }
+  Clock::time_point tick() { return now += std::chrono::milliseconds(4); }
+};
+
+const ubersim::fuzz::ConsumerTraffic& traffic() {
+  static const ubersim::fuzz::ConsumerTraffic instance = ubersim::fuzz::division_b_traffic();
+  return instance;
+}
+
+// One input: the fuzzed datagram amid real traffic, every output checked.
+void run(const ubersim::fuzz::ChannelInput<ConsumerChannel>& input) {
+  const auto& t = traffic();
+  const ConsumerChannel channel = input.channel;
+  const auto decode = [&input](auto& message) {
+    return ubersim::decode_bounded(input.bytes, input.length, message);
+  };
+
+  Consumers c;
+  c.extras.max_robot_radius = kRobotRadius;
+  c.vision_geometry(t.vision_geometry);
+  // The referee starts on the field SIM_GEOMETRY gives it (it asks once).
+  ubersim::field_geometry_t field;
+  if (channel == ConsumerChannel::SimGeometry && decode(field)) {
+    c.field(field);
+  } else {
+    c.field(t.field);
+  }
+  const std::size_t half = t.states.size() / 2;
+  for (std::size_t i = 0; i < half; ++i) c.state(t.states[i], i + 1 == half);
+  if (!t.frames.empty()) c.vision(t.frames.front());
+
+  switch (channel) {
+    case ConsumerChannel::SimState: {
+      ubersim::sim_state_t state;
+      if (decode(state)) c.state(state);
+      break;
+    }
+    case ConsumerChannel::SimGeometry:
+      if (decode(field)) c.viewer.on_sim_geometry(field, c.tick());
+      break;
+    case ConsumerChannel::Vision: {
+      ubersim::vision_frame_t frame;
+      if (decode(frame)) c.vision(frame);
+      break;
+    }
+    case ConsumerChannel::VisionGeometry: {
+      ubersim::vision_geometry_t geometry;
+      if (decode(geometry)) c.vision_geometry(geometry);
+      break;
+    }
+    case ConsumerChannel::RadioYellow:
+    case ConsumerChannel::RadioBlue: {
+      ubersim::radio_packet_t packet;
+      if (decode(packet)) {
+        c.viewer.on_radio(channel == ConsumerChannel::RadioYellow ? 0 : 1, packet, c.tick());
+      }
+      break;
+    }
+    case ConsumerChannel::SimControlAck: {
+      ubersim::sim_control_ack_t ack;
+      if (decode(ack)) c.viewer.on_ack(ack);
+      break;
+    }
+    case ConsumerChannel::Referee:
+    case ConsumerChannel::Count: {
+      ubersim::referee_t referee;
+      if (decode(referee)) {
+        check(c.referee_packets.translate(referee, 1'700'000'000'000'000));
+      }
+      break;
+    }
+  }
+  c.snapshot();
+  for (std::size_t i = half; i < t.states.size(); ++i) {
+    c.state(t.states[i], i + 1 == t.states.size());
+  }
+  for (std::size_t i = 1; i < t.frames.size(); ++i) c.vision(t.frames[i]);
+  c.snapshot();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size > 0) run(ubersim::fuzz::channel_input<ConsumerChannel>(data, size));
+  return 0;
+}
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  ubersim::fuzz::quiet_logging();
+  traffic();
+  return 0;
+}
