@@ -68,6 +68,24 @@ void check(const google::protobuf::Message& packet) {
   (void)packet.SerializeAsString();
 }
 
+// NaN or infinity must not reach SSL software.
+void check_finite(const SSL_WrapperPacket& packet) {
+  const SSL_DetectionFrame& d = packet.detection();
+  bool ok = finite(d.t_capture()) && finite(d.t_sent());
+  for (const SSL_DetectionBall& b : d.balls()) {
+    ok = ok && finite(b.confidence()) && finite(b.x()) && finite(b.y()) && finite(b.pixel_x()) &&
+         finite(b.pixel_y());
+  }
+  for (const auto* robots : {&d.robots_yellow(), &d.robots_blue()}) {
+    for (const SSL_DetectionRobot& r : *robots) {
+      ok = ok && finite(r.confidence()) && finite(r.x()) && finite(r.y()) &&
+           finite(r.orientation()) && finite(r.pixel_x()) && finite(r.pixel_y());
+    }
+  }
+  if (!ok) std::abort();
+  check(packet);
+}
+
 // The three consumers, fresh for each input.
 struct Consumers {
   std::optional<ubersim::referee::StateJudge> judge;
@@ -97,7 +115,8 @@ struct Consumers {
   }
   void vision(const ubersim::vision_frame_t& frame) {
     viewer.on_vision(frame, tick());
-    check(ubersim::ssl::detection_packet(frame));
+    // The bridge forwards only these (SslBridge::on_vision).
+    if (ubersim::ssl::forwardable(frame)) check_finite(ubersim::ssl::detection_packet(frame));
   }
   void vision_geometry(const ubersim::vision_geometry_t& geometry) {
     viewer.on_vision_geometry(geometry, tick());

@@ -241,6 +241,11 @@ void write_consumer_seeds(const fs::path& dir) {
     write(dir, "vision_" + std::to_string(i), on(ConsumerChannel::Vision),
           encode_or_abort(traffic.frames[i]));
   }
+  if (!traffic.frames.empty() && !traffic.frames[0].robots_blue.empty()) {
+    vision_frame_t huge = traffic.frames[0];  // the SSL bridge drops it
+    huge.robots_blue[0].x = 1e300;
+    write(dir, "vision_huge", on(ConsumerChannel::Vision), encode_or_abort(huge));
+  }
   write(dir, "vision_geometry", on(ConsumerChannel::VisionGeometry),
         encode_or_abort(traffic.vision_geometry));
   write(dir, "radio_yellow", on(ConsumerChannel::RadioYellow), encode_or_abort(radio_packet(0)));

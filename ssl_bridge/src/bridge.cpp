@@ -101,6 +101,11 @@ void SslBridge::send_vision(const SSL_WrapperPacket& packet) {
 }
 
 void SslBridge::on_vision(const vision_frame_t& frame) {
+  if (!forwardable(frame)) {
+    ++counters_["vision frames dropped (not finite)"];
+    bad_input_.warn("vision_not_finite", "dropped a VISION frame with a number not finite or beyond 1e9");
+    return;
+  }
   send_vision(detection_packet(frame));
   // Owed before the team can answer: the answer comes back through our own poll loop.
   if (options_.sync) {

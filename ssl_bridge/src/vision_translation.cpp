@@ -1,6 +1,7 @@
 #include "ubersim/ssl_bridge/vision_translation.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -103,6 +104,23 @@ void fill_calibration(const camera_calibration_t& in, SSL_GeometryCameraCalibrat
 }
 
 }  // namespace
+
+bool forwardable(const vision_frame_t& frame) {
+  // m, px, rad or s: far beyond any field, far within float mm.
+  constexpr double kLargest = 1e9;
+  const auto fits = [](double v) { return std::isfinite(v) && std::abs(v) <= kLargest; };
+  bool ok = fits(frame.t_capture) && fits(frame.t_sent);
+  for (const vision_ball_t& b : frame.balls) {
+    ok = ok && fits(b.confidence) && fits(b.x) && fits(b.y) && fits(b.pixel_x) && fits(b.pixel_y);
+  }
+  for (const auto* robots : {&frame.robots_yellow, &frame.robots_blue}) {
+    for (const vision_robot_t& r : *robots) {
+      ok = ok && fits(r.confidence) && fits(r.x) && fits(r.y) && fits(r.orientation) &&
+           fits(r.pixel_x) && fits(r.pixel_y);
+    }
+  }
+  return ok;
+}
 
 SSL_WrapperPacket detection_packet(const vision_frame_t& frame) {
   SSL_WrapperPacket packet;

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "ubersim/ssl_bridge/vision_translation.hpp"
 
@@ -49,6 +50,26 @@ TEST(SslVisionTranslation, RobotInMillimetresWithOrientationInRadians) {
   EXPECT_FLOAT_EQ(out.robots_blue(0).orientation(), -2.0f);
   EXPECT_FLOAT_EQ(out.robots_blue(0).pixel_x(), 320.5f);
   EXPECT_FLOAT_EQ(out.robots_blue(0).pixel_y(), 240.25f);
+}
+
+// Anyone on the bus may send VISION; NaN or a number too large for SSL's
+// float millimetres must not reach SSL software (the bridge drops the frame).
+TEST(SslVisionTranslation, AFrameWithANumberNotFiniteOrHugeIsNotForwarded) {
+  vision_frame_t frame{};
+  frame.robots_blue.push_back(vision_robot_t{});
+  frame.balls.push_back(vision_ball_t{});
+  EXPECT_TRUE(forwardable(frame));
+  vision_frame_t bad = frame;
+  bad.robots_blue[0].orientation = std::nan("");
+  EXPECT_FALSE(forwardable(bad));
+  bad = frame;
+  bad.balls[0].x = 1e300;  // finite, but infinite as float mm
+  EXPECT_FALSE(forwardable(bad));
+  EXPECT_TRUE(std::isinf(detection_packet(bad).detection().balls(0).x()))
+      << "what would have gone out";
+  bad = frame;
+  bad.t_capture = -std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(forwardable(bad));
 }
 
 namespace {

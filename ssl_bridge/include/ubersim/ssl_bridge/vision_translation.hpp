@@ -27,6 +27,11 @@ struct GeometryExtras {
 // programs' behaviour, so OTHER is the honest value.
 inline constexpr SSL_Source kPacketSource = SSL_SOURCE_OTHER;
 
+// Whether a VISION frame may go out as a detection packet: every number finite
+// and small enough to stay finite as SSL's float millimetres. ubersim's vision
+// never sends another, but anyone on the bus may, and SSL software is not
+// written for NaN; the bridge counts and drops such frames (fuzz_lcm_consumers).
+bool forwardable(const vision_frame_t& frame);
 SSL_WrapperPacket detection_packet(const vision_frame_t& frame);
 SSL_WrapperPacket geometry_packet(const vision_geometry_t& geometry, const GeometryExtras& extras);
 
