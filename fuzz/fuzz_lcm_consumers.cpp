@@ -68,6 +68,44 @@ void check(const google::protobuf::Message& packet) {
   (void)packet.SerializeAsString();
 }
 
+// The bridge's default ball (its --ball), for kick predictions and geometry.
+const ubersim::ssl::BallModel& ball_model() {
+  static const ubersim::ssl::BallModel model =
+      ubersim::ssl::load_ball_model(UBERSIM_FUZZ_CONFIG_DIR, "ssl_golf_ball");
+  return model;
+}
+
+void check_finite(const Vector2& v) {
+  if (!finite(v.x()) || !finite(v.y())) std::abort();
+}
+void check_finite(const Vector3& v) {
+  if (!finite(v.x()) || !finite(v.y()) || !finite(v.z())) std::abort();
+}
+
+// Tracked frames: the same for ground truth.
+void check_finite(const TrackerWrapperPacket& packet) {
+  const TrackedFrame& f = packet.tracked_frame();
+  if (!finite(f.timestamp())) std::abort();
+  for (const TrackedBall& b : f.balls()) {
+    check_finite(b.pos());
+    if (b.has_vel()) check_finite(b.vel());
+  }
+  for (const TrackedRobot& r : f.robots()) {
+    check_finite(r.pos());
+    if (!finite(r.orientation()) || !finite(r.vel_angular())) std::abort();
+    if (r.has_vel()) check_finite(r.vel());
+  }
+  if (f.has_kicked_ball()) {
+    const KickedBall& k = f.kicked_ball();
+    check_finite(k.pos());
+    check_finite(k.vel());
+    if (!finite(k.start_timestamp())) std::abort();
+    if (k.has_stop_timestamp() && !finite(k.stop_timestamp())) std::abort();
+    if (k.has_stop_pos()) check_finite(k.stop_pos());
+  }
+  check(packet);
+}
+
 // NaN or infinity must not reach SSL software.
 void check_finite(const SSL_WrapperPacket& packet) {
   const SSL_DetectionFrame& d = packet.detection();
@@ -90,7 +128,7 @@ void check_finite(const SSL_WrapperPacket& packet) {
 struct Consumers {
   std::optional<ubersim::referee::StateJudge> judge;
   ubersim::viewer::ViewerModel viewer;
-  ubersim::ssl::TrackedFrames tracked{ubersim::ssl::TrackedSettings{60, std::nullopt, "fuzz"}};
+  ubersim::ssl::TrackedFrames tracked{ubersim::ssl::TrackedSettings{60, ball_model(), "fuzz"}};
   ubersim::ssl::RefereeTranslator referee_packets{"fuzz"};
   ubersim::ssl::GeometryExtras extras;
   Clock::time_point now{};
@@ -111,7 +149,7 @@ struct Consumers {
     }
     if (out.placement) check(*out.placement);
     if (to_viewer) viewer.on_sim_state(state, tick());
-    for (const auto& packet : tracked.on_state(state)) check(packet);
+    for (const auto& packet : tracked.on_state(state)) check_finite(packet);
   }
   void vision(const ubersim::vision_frame_t& frame) {
     viewer.on_vision(frame, tick());
@@ -144,6 +182,7 @@ void run(const ubersim::fuzz::ChannelInput<ConsumerChannel>& input) {
 
   Consumers c;
   c.extras.max_robot_radius = kRobotRadius;
+  c.extras.ball_model = ball_model();
   c.vision_geometry(t.vision_geometry);
   // The referee starts on the field SIM_GEOMETRY gives it (it asks once).
   ubersim::field_geometry_t field;
@@ -215,5 +254,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   ubersim::fuzz::quiet_logging();
   traffic();
+  ball_model();
   return 0;
 }

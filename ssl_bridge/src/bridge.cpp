@@ -125,7 +125,14 @@ void SslBridge::on_vision(const vision_frame_t& frame) {
 void SslBridge::on_state(const sim_state_t& state) {
   state_ = state;
   if (!tracked_) return;
-  for (const TrackerWrapperPacket& packet : tracked_->on_state(state)) {
+  const std::uint64_t refused = tracked_->refused();
+  const auto packets = tracked_->on_state(state);
+  if (tracked_->refused() > refused) {
+    ++counters_["states without tracked frames (not finite)"];
+    bad_input_.warn("state_not_finite",
+                    "no tracked frame from a SIM_STATE with a number not finite or beyond 1e9");
+  }
+  for (const TrackerWrapperPacket& packet : packets) {
     std::string bytes;
     packet.SerializeToString(&bytes);
     if (tracked_socket_->send_to(bytes, tracked_destination_)) {

@@ -22,15 +22,6 @@ struct Options {
   std::string ball = "ssl_golf_ball";
 };
 
-ubersim::ssl::BallModel load_ball_model(const std::string& config_dir, const std::string& name) {
-  const auto config = ubersim::ConfigFile::load(ubersim::resolve_config(config_dir, "balls", name));
-  ubersim::ssl::BallModel model;
-  model.sliding_deceleration = config.real_in("SLIDING_DECELERATION", 0, 100);
-  model.rolling_deceleration = config.real_in("ROLLING_DECELERATION", 0, 100);
-  model.slide_to_roll_ratio = config.real_in("SLIDE_TO_ROLL_RATIO", 0, 1);
-  return model;  // the physics keys of the ball config are not ours to check
-}
-
 int run(Options& options) {
   using namespace ubersim;
   const std::string config_dir = options.common.config_root();
@@ -43,7 +34,7 @@ int run(Options& options) {
   options.bridge.sim_control.robot_radius = robot.radius;
   options.bridge.wheels = ssl::wheel_mapping(robot);
   options.bridge.geometry.max_robot_radius = robot.radius;
-  options.bridge.geometry.ball_model = load_ball_model(config_dir, options.ball);
+  options.bridge.geometry.ball_model = ssl::load_ball_model(config_dir, options.ball);
   if (!options.bridge.wheels) {
     spdlog::warn(
         "robot type {} has no wheel in each quadrant: wheel_velocity commands will be "

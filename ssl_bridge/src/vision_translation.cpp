@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <string>
 
+#include "ubersim/config.hpp"
+#include "ubersim/config_paths.hpp"
 #include "ubersim/ssl_bridge/units.hpp"
 
 namespace ubersim::ssl {
@@ -105,10 +107,17 @@ void fill_calibration(const camera_calibration_t& in, SSL_GeometryCameraCalibrat
 
 }  // namespace
 
+BallModel load_ball_model(const std::string& config_dir, const std::string& name) {
+  const auto config = ConfigFile::load(resolve_config(config_dir, "balls", name));
+  BallModel model;
+  model.sliding_deceleration = config.real_in("SLIDING_DECELERATION", 0, 100);
+  model.rolling_deceleration = config.real_in("ROLLING_DECELERATION", 0, 100);
+  model.slide_to_roll_ratio = config.real_in("SLIDE_TO_ROLL_RATIO", 0, 1);
+  return model;  // the physics keys of the ball config are not ours to check
+}
+
 bool forwardable(const vision_frame_t& frame) {
-  // m, px, rad or s: far beyond any field, far within float mm.
-  constexpr double kLargest = 1e9;
-  const auto fits = [](double v) { return std::isfinite(v) && std::abs(v) <= kLargest; };
+  const auto fits = [](double v) { return fits_ssl(v); };
   bool ok = fits(frame.t_capture) && fits(frame.t_sent);
   for (const vision_ball_t& b : frame.balls) {
     ok = ok && fits(b.confidence) && fits(b.x) && fits(b.y) && fits(b.pixel_x) && fits(b.pixel_y);

@@ -78,3 +78,25 @@ TEST(SslTrackedFrames, AKickNextToARobotIsTheKickedBallWithItsStop) {
   ASSERT_EQ(frames.size(), 1u);
   EXPECT_FALSE(frames[0].tracked_frame().has_kicked_ball());
 }
+
+// Anyone on the bus may send SIM_STATE: a state with NaN or a number beyond
+// 1e9 makes no tracked frame (SSL software is not written for NaN) and does
+// not disturb the frames of the states around it.
+TEST(SslTrackedFrames, AStateWithANumberNotFiniteOrHugeIsRefused) {
+  TrackedSettings settings;
+  settings.rate = 240;
+  TrackedFrames tracked(settings);
+  EXPECT_EQ(tracked.on_state(state_at(0, 0)).size(), 1u);
+  sim_state_t bad = state_at(1.0 / 240, 0);
+  bad.robots[0].omega = std::nan("");
+  EXPECT_TRUE(tracked.on_state(bad).empty());
+  bad = state_at(1.0 / 240, 0);
+  bad.ball.linear_velocity[1] = 1e300;
+  EXPECT_TRUE(tracked.on_state(bad).empty());
+  bad = state_at(1e300, 0);
+  EXPECT_TRUE(tracked.on_state(bad).empty());
+  EXPECT_EQ(tracked.refused(), 3u);
+  const auto next = tracked.on_state(state_at(1.0 / 240, 0));
+  ASSERT_EQ(next.size(), 1u) << "the states around it are framed as before";
+  EXPECT_EQ(next[0].tracked_frame().frame_number(), 1u);
+}

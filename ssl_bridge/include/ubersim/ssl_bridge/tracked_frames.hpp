@@ -27,8 +27,11 @@ class TrackedFrames {
  public:
   explicit TrackedFrames(TrackedSettings settings);
 
-  // A new SIM_STATE; returns the packets due now (oldest first).
+  // A new SIM_STATE; returns the packets due now (oldest first). A state with
+  // a number that is not finite or beyond 1e9 (fits_ssl) is refused: counted
+  // in refused(), never sent, and it changes nothing.
   std::vector<TrackerWrapperPacket> on_state(const sim_state_t& state);
+  std::uint64_t refused() const { return refused_; }
   // The latency vision frames show (s, sim time): tracked frames wait as long.
   void set_latency(double latency) { latency_ = latency; }
   double latency() const { return latency_; }
@@ -45,6 +48,7 @@ class TrackedFrames {
   std::optional<KickedBall> kick_;
   double previous_ball_speed_ = 0;
   double previous_time_ = -1;
+  std::uint64_t refused_ = 0;
 };
 
 // A random version-4 UUID (the source's id for this run).

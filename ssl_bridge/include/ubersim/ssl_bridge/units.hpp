@@ -2,6 +2,8 @@
 // Exact unit conversions between ubersim (SI: m, rad, rad/s) and the SSL
 // protocols (SSL-Vision: mm; simulation protocol: degrees for kick angles, rpm
 // for the dribbler). One place, so every conversion is tested once.
+#include <cmath>
+
 namespace ubersim::ssl {
 
 inline constexpr double kPi = 3.14159265358979323846;
@@ -25,6 +27,11 @@ constexpr double rpm_to_rad_per_s(double rpm) {
 constexpr double rad_per_s_to_rpm(double rad_per_s) {
   return rad_per_s * (60.0 / (2.0 * kPi));
 }
+
+// A number from LCM the bridge may put in an SSL packet: finite, and at most
+// 1e9 (m, px, rad, s, m/s), far beyond any field and far within SSL's float
+// millimetres. ubersim's own processes never send another; anyone on the bus may.
+inline bool fits_ssl(double value) { return std::isfinite(value) && std::abs(value) <= 1e9; }
 
 // Field sizes in SSL geometry are whole millimetres (int32).
 int m_to_whole_mm(double metres);

@@ -3,6 +3,7 @@
 #include <messages_robocup_ssl_wrapper.pb.h>
 
 #include <optional>
+#include <string>
 #include <ubersim/vision_frame_t.hpp>
 #include <ubersim/vision_geometry_t.hpp>
 
@@ -14,6 +15,9 @@ struct BallModel {
   double rolling_deceleration = 0;  // m/s^2, positive
   double slide_to_roll_ratio = 0;   // unitless
 };
+
+// The model of a ball config (config/balls/NAME.cfg); throws ConfigError.
+BallModel load_ball_model(const std::string& config_dir, const std::string& name);
 
 struct GeometryExtras {
   std::optional<BallModel> ball_model;
