@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -44,4 +45,10 @@ double process_cpu_seconds(pid_t pid) {
   const std::optional<ProcessStatTimes> times = process_stat_times(pid);
   return times ? times->user + times->system : 0;
 }
+double thread_cpu_seconds() {
+  timespec t{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 }  // namespace ubersim

@@ -57,11 +57,7 @@ std::string read_file(const fs::path& path) {
 
 using ubersim::process_cpu_seconds;
 
-double thread_cpu_seconds() {
-  timespec t{};
-  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
+using ubersim::thread_cpu_seconds;
 
 // Real-time shares are measured in kWindows windows; the quietest window is
 // the figure, the median is printed next to it. On this VM the host slows every

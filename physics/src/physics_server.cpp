@@ -147,7 +147,7 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
     // Measured only where steps are few (paced), per run of steps.
     stepping_clock_.step_begins();
     const PhysicsCore::Output& out = core_.step();
-    if (!out.states.empty() || out.geometry || out.ack) stepping_clock_.run_ends();
+    if (!out.states.empty()) stepping_clock_.run_ends();  // publishing comes next
     publish(out);
   }
   stepping_clock_.run_ends();

@@ -1,17 +1,8 @@
 #include "ubersim/physics/stepping_clock.hpp"
 
-#include <time.h>
+#include "ubersim/process_cpu.hpp"
 
 namespace ubersim::physics {
-namespace {
-
-double thread_cpu_seconds() {
-  timespec t{};
-  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-}  // namespace
 
 void SteppingClock::step_begins() {
   if (in_run_) return;

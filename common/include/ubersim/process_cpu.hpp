@@ -1,5 +1,6 @@
 #pragma once
-// CPU time of another process, for the benchmarks and the report.
+// CPU time of another process, for the benchmarks and the report, and of the
+// calling thread.
 #include <sys/types.h>
 
 #include <optional>
@@ -18,5 +19,9 @@ std::optional<ProcessStatTimes> process_stat_times(pid_t pid);
 // coarse for windows of a few seconds of a process using 1 % of a core. Falls
 // back to /proc/<pid>/stat's utime + stime when schedstat is not there.
 double process_cpu_seconds(pid_t pid);
+
+// Seconds the calling thread has spent on a CPU (CLOCK_THREAD_CPUTIME_ID: a
+// system call, there is no vDSO for it).
+double thread_cpu_seconds();
 
 }  // namespace ubersim
