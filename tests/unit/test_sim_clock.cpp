@@ -17,6 +17,8 @@ TEST(SimClock, AdvancesRejectsStaleAndDetectsReset) {
   EXPECT_EQ(clock.update(std::numeric_limits<double>::quiet_NaN(), 241),
             SimClock::Update::Rejected);
   EXPECT_EQ(clock.update(-1.0, 241), SimClock::Update::Rejected);
+  EXPECT_EQ(clock.update(SimClock::kMaxSimTime * 2, 241), SimClock::Update::Rejected);
+  EXPECT_DOUBLE_EQ(clock.now(), 1.0);
   EXPECT_EQ(clock.update(0.0, 0), SimClock::Update::Reset);
   EXPECT_DOUBLE_EQ(clock.now(), 0.0);
   EXPECT_EQ(clock.update(1.0 / 240, 1), SimClock::Update::Advanced);

@@ -201,9 +201,13 @@ TEST(VisionEmulatorCore, BadOldAndRepeatedStatesAreSkipped) {
   bad.num_robots = 9;  // a local message can disagree with itself
   EXPECT_EQ(emulator.on_sim_state(bad).verdict, Verdict::Invalid);
   EXPECT_EQ(emulator.on_sim_state(world(50)).verdict, Verdict::OutOfOrder);
+  // Finite but beyond any run (fuzz finding 12): its capture instant would not fit a 64-bit count.
+  bad = world(101);
+  bad.sim_time = 1.6e39;
+  EXPECT_EQ(emulator.on_sim_state(bad).verdict, Verdict::OutOfOrder);
   EXPECT_EQ(emulator.on_sim_state(world(100)).verdict, Verdict::Repeated);
   EXPECT_EQ(emulator.stats().states_invalid, 5u);
-  EXPECT_EQ(emulator.stats().states_out_of_order, 1u);
+  EXPECT_EQ(emulator.stats().states_out_of_order, 2u);
   EXPECT_EQ(emulator.stats().states_repeated, 1u);
   EXPECT_DOUBLE_EQ(emulator.sim_time(), 100 * kDt);
   // And on it goes, with nothing non-finite in any frame.

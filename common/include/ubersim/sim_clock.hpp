@@ -12,10 +12,19 @@ class SimClock {
  public:
   enum class Update { Advanced, Reset, Rejected };
 
-  // Feed each SIM_STATE's (sim_time, step). Rejected: non-finite, negative, or
-  // older than what was seen (an out-of-order message), and the clock is unchanged.
+  // Beyond any game or batch run (about 31 years): a later time comes only from
+  // a forged or corrupt message. Bounding it here keeps every schedule that
+  // counts instants in sim time (camera frames at 1/frame_rate, radio cycles)
+  // inside a 64-bit count.
+  static constexpr double kMaxSimTime = 1e9;  // s
+
+  // Feed each SIM_STATE's (sim_time, step). Rejected: non-finite, negative,
+  // beyond kMaxSimTime, or older than what was seen (an out-of-order message),
+  // and the clock is unchanged.
   Update update(double sim_time, std::int64_t step) {
-    if (!std::isfinite(sim_time) || sim_time < 0 || step < 0) return Update::Rejected;
+    if (!std::isfinite(sim_time) || sim_time < 0 || sim_time > kMaxSimTime || step < 0) {
+      return Update::Rejected;
+    }
     if (!started_) {
       started_ = true;
       time_ = sim_time;
