@@ -36,9 +36,17 @@ PhysicsServer::PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNam
         channels.extra(kTruthDemandChannel),
         [this](const truth_demand_t& d) { core_.on_truth_demand(d, Clock::now()); });
   }
-  bus_.subscribe<vision_schedule_t>(
-      channels.extra(kVisionScheduleChannel),
-      [this](const vision_schedule_t&) { core_.on_vision_schedule(); });
+  // Physics only needs to know that a vision emulator is listening, before
+  // its first state in sync mode. Started in real time it need not wake for
+  // each of the vision's 30-60 schedules a second: it reads them when it
+  // wakes anyway (for its next state), long before a switch to sync.
+  const auto on_schedule = [this](const vision_schedule_t&) { core_.on_vision_schedule(); };
+  if (options_.sync) {
+    bus_.subscribe<vision_schedule_t>(channels.extra(kVisionScheduleChannel), on_schedule);
+  } else {
+    bus_.subscribe_unhurried<vision_schedule_t>(channels.extra(kVisionScheduleChannel),
+                                                on_schedule);
+  }
   // A command waits in the world until its t_apply, and physics reads the bus
   // before it runs any step, so a command need not wake it: read it when
   // something else does (a due state, a demand, a request, a horizon, which

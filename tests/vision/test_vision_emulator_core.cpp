@@ -2,6 +2,7 @@
 // skipped states and the geometry message.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <ubersim/team_t.hpp>
@@ -149,6 +150,46 @@ TEST(VisionEmulatorCore, FramesLeaveAtTheFirstStepAfterTheirLatency) {
     }
   }
   EXPECT_GT(checked, 100);
+}
+
+// As the vision process uses it: one demand at the first state, the next at
+// the first state at or after demand_renewal_time(). Physics publishes states
+// only at what was demanded, so every frame's publication instant must have
+// been announced before the step that publishes it, while a demand goes out
+// only every few frames (each wakes physics).
+TEST(VisionEmulatorCore, EachDemandCoversTheFramesUntilTheNext) {
+  VisionEmulator emulator(profile(), sizes());
+  std::vector<double> announced;
+  double renewal = 0;
+  int demands = 0;
+  int frames = 0;
+  for (std::int64_t step = 0; step < 960; ++step) {
+    const double now = static_cast<double>(step) * kDt;
+    for (const auto& f : emulator.on_sim_state(world(step)).frames) {
+      ++frames;
+      // Published at the first step at or after an announced instant.
+      const bool covered = std::any_of(announced.begin(), announced.end(), [&](double t) {
+        return t <= now + 1e-6 && t > now - kDt + 1e-6;
+      });
+      EXPECT_TRUE(covered) << "frame " << f.frame_number << " of camera " << f.camera_id
+                           << " published at " << now << " s was not demanded";
+    }
+    if (now >= renewal - 1e-6) {
+      const ubersim::truth_demand_t demand = emulator.truth_demand();
+      ++demands;
+      EXPECT_EQ(demand.num_periodic, 2);
+      for (double t : demand.instants) {
+        EXPECT_GT(t, now);  // only what is still to come
+        announced.push_back(t);
+      }
+      renewal = emulator.demand_renewal_time();
+      EXPECT_GT(renewal, now);
+    }
+  }
+  EXPECT_GT(frames, 400);  // 2 cameras x 60 Hz x 4 s, less the latency tail
+  // Renewed every kFramesAhead - 2 = 6 frames of a camera (its phase apart from the other's).
+  EXPECT_LE(demands, 4 * 60 / 6 + 2);
+  EXPECT_GE(demands, 4 * 60 / 8);
 }
 
 TEST(VisionEmulatorCore, ResetDropsPendingFramesAndKeepsNumbersIncreasing) {

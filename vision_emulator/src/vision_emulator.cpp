@@ -35,8 +35,11 @@ VisionEmulator::VisionEmulator(VisionProfile profile, RobotSizes robot_sizes)
     cameras_.push_back(Camera{CameraDetector(c, profile_, profile_.seed),
                               CaptureSchedule(c.frame_rate, c.phase),
                               RandomSource(profile_.seed, 2 * static_cast<std::uint64_t>(c.id) + 1),
-                              0.0, DelayLine<vision_frame_t>{}, c});
-    cameras_.back().next_jitter = cameras_.back().latency_random.gaussian();
+                              std::deque<double>{}, DelayLine<vision_frame_t>{}, c});
+    Camera& camera = cameras_.back();
+    while (camera.upcoming_jitter.size() < kFramesAhead) {
+      camera.upcoming_jitter.push_back(camera.latency_random.gaussian());
+    }
   }
 }
 
@@ -89,15 +92,17 @@ const WorldSnapshot& VisionEmulator::snapshot(const sim_state_t& state) {
   return world_;
 }
 
-double VisionEmulator::latency_of(const Camera& camera) {
+double VisionEmulator::latency_of(const Camera& camera, std::size_t ahead) {
   // Jitter never makes a frame leave before it was processed.
-  return std::max(camera.timing.processing_time,
-                  camera.timing.latency + camera.timing.latency_jitter * camera.next_jitter);
+  return std::max(
+      camera.timing.processing_time,
+      camera.timing.latency + camera.timing.latency_jitter * camera.upcoming_jitter.at(ahead));
 }
 
 double VisionEmulator::release_time(Camera& camera, double t_capture) {
   const double latency = latency_of(camera);
-  camera.next_jitter = camera.latency_random.gaussian();
+  camera.upcoming_jitter.pop_front();
+  camera.upcoming_jitter.push_back(camera.latency_random.gaussian());
   return t_capture + latency;
 }
 
@@ -117,13 +122,27 @@ truth_demand_t VisionEmulator::truth_demand() const {
     demand.phase.push_back(camera.timing.phase);
     for (double t : camera.pending.release_times()) demand.instants.push_back(t);
     // Before the first state the first capture is at the phase (a run starts at 0).
-    const double next =
-        camera.schedule.started() ? camera.schedule.next_instant() : camera.schedule.instant(0);
-    demand.instants.push_back(next + latency_of(camera));
+    const std::int64_t next = camera.schedule.started() ? camera.schedule.next_index() : 0;
+    for (std::size_t ahead = 0; ahead < kFramesAhead; ++ahead) {
+      demand.instants.push_back(camera.schedule.instant(next + static_cast<std::int64_t>(ahead)) +
+                                latency_of(camera, ahead));
+    }
   }
   demand.num_periodic = static_cast<std::int32_t>(demand.period.size());
   demand.num_instants = static_cast<std::int32_t>(demand.instants.size());
   return demand;
+}
+
+double VisionEmulator::demand_renewal_time() const {
+  double renewal = std::numeric_limits<double>::infinity();
+  for (const Camera& camera : cameras_) {
+    if (!camera.schedule.started()) return 0;
+    // Once this capture is done, one announced frame is left ahead.
+    renewal =
+        std::min(renewal, camera.schedule.instant(camera.schedule.next_index() +
+                                                  static_cast<std::int64_t>(kFramesAhead) - 2));
+  }
+  return renewal;
 }
 
 double VisionEmulator::next_publication() const {

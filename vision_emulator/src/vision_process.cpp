@@ -84,13 +84,28 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
   schedule.next_publication = schedule.next_capture = std::numeric_limits<double>::infinity();
   double announced_next = -1;
   Clock::time_point last_schedule{};
+  // What ground truth it needs: said again only when the frames it announced
+  // run low (every kFramesAhead - 2 frames of a camera), after a reset or a
+  // realism change, and once a second. Each demand wakes physics, and one per
+  // frame was a third of what physics woke for in real time (docs/sync.md).
+  double demand_renewal = 0;  // sim time
+  Clock::time_point last_demand{};
+  auto announce_demand = [&](bool now, double sim_time) {
+    if (!now && sim_time < demand_renewal - CaptureSchedule::kTolerance &&
+        Clock::now() - last_demand < std::chrono::seconds(1)) {
+      return;
+    }
+    bus.publish(demand_channel, emulator.truth_demand());
+    demand_renewal = emulator.demand_renewal_time();
+    last_demand = Clock::now();
+  };
   auto publish_schedule = [&](const sim_state_t& state, const std::vector<vision_frame_t>& frames,
                               bool always) {
+    // The demand before the schedule (physics in sync mode starts on the
+    // schedule, and must know the demand by then).
+    announce_demand(always, state.sim_time);
     const double next = emulator.next_publication();
     if (!always && frames.empty() && next == announced_next) return;
-    // What ground truth it needs next, before the schedule (physics in sync
-    // mode starts on the schedule, and must know the demand by then).
-    bus.publish(demand_channel, emulator.truth_demand());
     announced_next = next;
     schedule.t_state = state.sim_time;
     schedule.step = state.step;
@@ -117,7 +132,7 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
     schedule.camera_id.clear();
     schedule.frame_number.clear();
     schedule.t_capture.clear();
-    bus.publish(demand_channel, emulator.truth_demand());
+    announce_demand(true, emulator.sim_time());
     bus.publish(schedule_channel, schedule);
     last_schedule = Clock::now();
   };
@@ -192,6 +207,7 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
                            "ignored a realism change from '" + realism.sender + "': " + problem);
           return;
         }
+        demand_renewal = 0;  // the latency changed: so did the frames' publication times
         const VisionProfile& p = emulator.profile();
         spdlog::info(
             "realism from '{}': robot sigma {} m / {} rad, ball sigma {} m, detection {} / {}, "

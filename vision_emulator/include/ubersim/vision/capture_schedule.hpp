@@ -37,6 +37,7 @@ class CaptureSchedule {
   // Once a state was seen: the next instant not yet captured.
   bool started() const { return started_; }
   double next_instant() const { return instant(next_index_); }
+  std::int64_t next_index() const { return next_index_; }
 
  private:
   double frame_rate_;

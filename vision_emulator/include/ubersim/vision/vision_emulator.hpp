@@ -11,6 +11,7 @@
 // release every frame whose publication time has come (camera by camera in id
 // order, each camera's frames oldest first).
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <string>
 #include <ubersim/emulator_realism_t.hpp>
@@ -86,8 +87,15 @@ class VisionEmulator {
   double next_capture() const;
   // The ground truth this emulator needs (SIM_TRUTH_DEMAND, for physics
   // --truth-on-demand): each camera's capture instants, the publication
-  // times of the frames waiting, and that of each camera's next frame.
+  // times of the frames waiting, and those of each camera's next
+  // kFramesAhead frames (their latency jitter is drawn that far ahead), so
+  // that one demand holds for several frames.
   truth_demand_t truth_demand() const;
+  // Sim time from which a demand made now no longer covers two frames ahead
+  // of some camera: the process announces the next one at the first state at
+  // or after it. 0 before the first state (renew at once).
+  double demand_renewal_time() const;
+  static constexpr std::size_t kFramesAhead = 8;
 
   const VisionProfile& profile() const { return profile_; }
   const VisionStats& stats() const { return stats_; }
@@ -100,16 +108,19 @@ class VisionEmulator {
     CameraDetector detector;
     CaptureSchedule schedule;
     RandomSource latency_random;
-    // The next frame's latency jitter (standard normal), drawn one frame ahead
-    // so that its publication time is known before its capture.
-    double next_jitter = 0;
+    // The latency jitter (standard normal) of the next kFramesAhead frames,
+    // the next one first: drawn ahead so that their publication times are
+    // known before their capture. Drawn in capture order from one source,
+    // so the jitter of each frame does not depend on how far ahead it is.
+    std::deque<double> upcoming_jitter;
     DelayLine<vision_frame_t> pending;
     CameraProfile timing;  // rate, phase, latency of this camera
   };
 
   const WorldSnapshot& snapshot(const sim_state_t& state);
   double release_time(Camera& camera, double t_capture);
-  static double latency_of(const Camera& camera);
+  // Latency of the camera's frame `ahead` captures from now (0: the next).
+  static double latency_of(const Camera& camera, std::size_t ahead = 0);
   void restart_after_reset();
   void check_step_fits(const sim_state_t& state);
 
