@@ -122,6 +122,11 @@ int MessageBus::handle_direct(int budget) {
   return prompt + (budget - unhurried_budget);
 }
 
+int MessageBus::handle_unhurried(int budget) {
+  if (!unhurried_receiver_ || budget <= 0) return 0;
+  return unhurried_receiver_->receive(budget, deliver_to(unhurried_), count_drop());
+}
+
 int MessageBus::handle_pending() {
   int handled = handle_direct(kMaxMessagesPerWakeup);
   if (lcm_receives_) {
@@ -152,7 +157,7 @@ int MessageBus::wait(const timespec* timeout, const ShutdownSignal* shutdown) {
   }
   // A wait that ends with nothing on the polled doors still reads the
   // unhurried subscriptions: the loop acts after it.
-  if (ready <= 0) return unhurried_receiver_ ? handle_direct(kMaxMessagesPerWakeup) : 0;
+  if (ready <= 0) return handle_unhurried(kMaxMessagesPerWakeup);
   // The watched doors first: their input waited in their own queues (a
   // socket, DDS's reader cache) while LCM's waited in its own.
   for (std::size_t i = 0; i < watches_.size(); ++i) {
@@ -160,9 +165,7 @@ int MessageBus::wait(const timespec* timeout, const ShutdownSignal* shutdown) {
   }
   const bool direct_ready = (poll_fds_[0].revents & POLLIN) != 0;
   const bool lcm_ready = (poll_fds_[1].revents & POLLIN) != 0;
-  if (!direct_ready && !lcm_ready) {
-    return unhurried_receiver_ ? handle_direct(kMaxMessagesPerWakeup) : 0;
-  }
+  if (!direct_ready && !lcm_ready) return handle_unhurried(kMaxMessagesPerWakeup);
   return handle_pending();
 }
 

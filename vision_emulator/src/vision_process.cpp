@@ -120,6 +120,10 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
       schedule.frame_number.push_back(frame.frame_number);
       schedule.t_capture.push_back(frame.t_capture);
     }
+    // Only sync mode (speed 0 in the state) waits for frames; in real time
+    // the schedule's one reader is physics, which wants to know that vision
+    // listens: the repetition below says so 10 times a second.
+    if (!always && state.speed_factor > 0) return;
     bus.publish(schedule_channel, schedule);
     last_schedule = Clock::now();
   };
