@@ -39,7 +39,9 @@ using Clock = ubersim::viewer::ViewerModel::Clock;
 
 constexpr double kRobotRadius = 0.09;  // m, what the referee assumes for any robot type
 
-bool finite(double value) { return std::isfinite(value); }
+bool finite(double value) {
+  return std::isfinite(value);
+}
 
 void check(const ubersim::referee_t& message) {
   if (!finite(message.sim_time) || !finite(message.stage_time_left) ||
@@ -124,6 +126,34 @@ void check_finite(const SSL_WrapperPacket& packet) {
   check(packet);
 }
 
+// Geometry: every number, and field sizes that were whole millimetres of a
+// length (not an int32 that wrapped).
+void check_finite_geometry(const SSL_WrapperPacket& packet) {
+  const SSL_GeometryData& g = packet.geometry();
+  const SSL_GeometryFieldSize& f = g.field();
+  bool ok = f.field_length() >= 0 && f.field_width() >= 0 && f.goal_width() >= 0 &&
+            f.goal_depth() >= 0 && f.boundary_width() >= 0 && f.penalty_area_depth() >= 0 &&
+            f.penalty_area_width() >= 0 && f.center_circle_radius() >= 0 &&
+            f.line_thickness() >= 0 && f.goal_center_to_penalty_mark() >= 0 &&
+            f.goal_height() >= 0 && finite(f.ball_radius()) && finite(f.max_robot_radius());
+  for (const SSL_FieldLineSegment& line : f.field_lines()) {
+    ok = ok && finite(line.p1().x()) && finite(line.p1().y()) && finite(line.p2().x()) &&
+         finite(line.p2().y()) && finite(line.thickness());
+  }
+  for (const SSL_FieldCircularArc& arc : f.field_arcs()) {
+    ok = ok && finite(arc.radius()) && finite(arc.thickness());
+  }
+  for (const SSL_GeometryCameraCalibration& c : g.calib()) {
+    for (float v : {c.focal_length(), c.principal_point_x(), c.principal_point_y(), c.q0(), c.q1(),
+                    c.q2(), c.q3(), c.tx(), c.ty(), c.tz(), c.derived_camera_world_tx(),
+                    c.derived_camera_world_ty(), c.derived_camera_world_tz()}) {
+      ok = ok && finite(v);
+    }
+  }
+  if (!ok) std::abort();
+  check(packet);
+}
+
 // The three consumers, fresh for each input.
 struct Consumers {
   std::optional<ubersim::referee::StateJudge> judge;
@@ -158,7 +188,10 @@ struct Consumers {
   }
   void vision_geometry(const ubersim::vision_geometry_t& geometry) {
     viewer.on_vision_geometry(geometry, tick());
-    check(ubersim::ssl::geometry_packet(geometry, extras));
+    // The bridge sends only these (SslBridge::on_geometry).
+    if (ubersim::ssl::forwardable(geometry)) {
+      check_finite_geometry(ubersim::ssl::geometry_packet(geometry, extras));
+    }
   }
   void snapshot() {
     const std::string text = viewer.snapshot(tick(), nlohmann::json::object());

@@ -248,6 +248,12 @@ void write_consumer_seeds(const fs::path& dir) {
   }
   write(dir, "vision_geometry", on(ConsumerChannel::VisionGeometry),
         encode_or_abort(traffic.vision_geometry));
+  vision_geometry_t bad_geometry = traffic.vision_geometry;  // the SSL bridge drops it
+  bad_geometry.field.ball_radius = std::numeric_limits<double>::quiet_NaN();
+  bad_geometry.field.field_length = 1e7;  // 1e10 mm: beyond int32
+  if (!bad_geometry.cameras.empty()) bad_geometry.cameras[0].position[2] = 1e300;
+  write(dir, "vision_geometry_not_finite", on(ConsumerChannel::VisionGeometry),
+        encode_or_abort(bad_geometry));
   write(dir, "radio_yellow", on(ConsumerChannel::RadioYellow), encode_or_abort(radio_packet(0)));
   write(dir, "radio_blue", on(ConsumerChannel::RadioBlue), encode_or_abort(radio_packet(1)));
   sim_control_ack_t ack{};

@@ -1,7 +1,5 @@
 #include "ubersim/ssl_bridge/bridge.hpp"
 
-#include "ubersim/ssl_bridge/datagram_decoding.hpp"
-
 #include <google/protobuf/stubs/logging.h>
 
 #include <algorithm>
@@ -9,6 +7,8 @@
 #include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/sync_client_t.hpp>
 #include <ubersim/team_t.hpp>
+
+#include "ubersim/ssl_bridge/datagram_decoding.hpp"
 
 namespace ubersim::ssl {
 namespace {
@@ -103,7 +103,8 @@ void SslBridge::send_vision(const SSL_WrapperPacket& packet) {
 void SslBridge::on_vision(const vision_frame_t& frame) {
   if (!forwardable(frame)) {
     ++counters_["vision frames dropped (not finite)"];
-    bad_input_.warn("vision_not_finite", "dropped a VISION frame with a number not finite or beyond 1e9");
+    bad_input_.warn("vision_not_finite",
+                    "dropped a VISION frame with a number not finite or beyond 1e9");
     return;
   }
   send_vision(detection_packet(frame));
@@ -169,6 +170,13 @@ double SslBridge::max_robot_radius() const {
 }
 
 void SslBridge::on_geometry(const vision_geometry_t& geometry) {
+  if (!forwardable(geometry)) {
+    ++counters_["vision geometry dropped (not finite or out of range)"];
+    bad_input_.warn("geometry_not_finite",
+                    "dropped a VISION_GEOMETRY with a number not finite or out of range; the "
+                    "last good geometry stays");
+    return;
+  }
   current_field_ = geometry.field;
   GeometryExtras extras = options_.geometry;
   if (extras.max_robot_radius > 0) extras.max_robot_radius = max_robot_radius();
@@ -242,7 +250,8 @@ void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
   SimulatorCommand command;
   if (pending_by_request_.size() >= kMaxPendingRequests) {
     ++counters_["control datagrams refused (busy)"];
-    bad_input_.warn("control_busy", "simulation control commands arrive faster than physics answers");
+    bad_input_.warn("control_busy",
+                    "simulation control commands arrive faster than physics answers");
     add_error(errors, kErrorBusy,
               std::to_string(pending_by_request_.size()) +
                   " requests already wait for physics; this command was not applied");
@@ -338,7 +347,8 @@ std::optional<double> SslBridge::sync_datagram(Team team) {
                           " RobotControl: every detection frame sent had its answer already "
                           "(sync mode: one RobotControl per detection packet)");
       return std::nullopt;
-    case SyncAnswers::Kind::Answer: break;
+    case SyncAnswers::Kind::Answer:
+      break;
   }
   return datagram.t_capture;
 }

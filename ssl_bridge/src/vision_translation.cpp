@@ -131,6 +131,25 @@ bool forwardable(const vision_frame_t& frame) {
   return ok;
 }
 
+bool forwardable(const vision_geometry_t& geometry) {
+  // 1e6 m = 1e9 mm: whole millimetres stay within int32 (m_to_whole_mm).
+  const auto size = [](double metres) {
+    return std::isfinite(metres) && metres >= 0 && metres <= 1e6;
+  };
+  const field_geometry_t& f = geometry.field;
+  bool ok = size(f.field_length) && size(f.field_width) && size(f.boundary_width) &&
+            size(f.line_width) && size(f.goal_width) && size(f.goal_depth) && size(f.goal_height) &&
+            size(f.center_circle_radius) && size(f.penalty_area_depth) &&
+            size(f.penalty_area_width) && size(f.ball_radius) && size(f.penalty_mark_distance);
+  for (const camera_calibration_t& c : geometry.cameras) {
+    ok = ok && fits_ssl(c.focal_length) && fits_ssl(c.principal_x) && fits_ssl(c.principal_y) &&
+         c.image_width >= 0 && c.image_height >= 0;
+    for (double v : c.position) ok = ok && fits_ssl(v);
+    for (double v : c.orientation) ok = ok && fits_ssl(v);
+  }
+  return ok;
+}
+
 SSL_WrapperPacket detection_packet(const vision_frame_t& frame) {
   SSL_WrapperPacket packet;
   packet.set_source(kPacketSource);

@@ -110,6 +110,48 @@ vision_geometry_t division_b_like() {
 
 }  // namespace
 
+TEST(SslVisionTranslation, AGeometryWithANumberNotFiniteOrOutOfRangeIsNotForwarded) {
+  const vision_geometry_t good = division_b_like();
+  EXPECT_TRUE(forwardable(good));
+  vision_geometry_t bad = good;
+  bad.field.ball_radius = std::nan("");
+  EXPECT_FALSE(forwardable(bad));
+  EXPECT_TRUE(std::isnan(geometry_packet(bad, {}).geometry().field().ball_radius()))
+      << "what would have gone out";
+  bad = good;
+  bad.field.field_length = 1e7;  // 1e10 mm: not an int32 of whole millimetres
+  EXPECT_FALSE(forwardable(bad));
+  bad = good;
+  bad.field.goal_width = -1.0;
+  EXPECT_FALSE(forwardable(bad));
+  bad = good;
+  bad.cameras[0].position[2] = 1e300;  // infinite as float mm
+  EXPECT_FALSE(forwardable(bad));
+  EXPECT_TRUE(std::isinf(geometry_packet(bad, {}).geometry().calib(0).derived_camera_world_tz()));
+  bad = good;
+  bad.cameras[0].orientation[0] = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(forwardable(bad));
+  bad = good;
+  bad.cameras[0].focal_length = -std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(forwardable(bad));
+  bad = good;
+  bad.cameras[0].image_width = -1;  // 4294967295 px as SSL's uint32
+  EXPECT_FALSE(forwardable(bad));
+  // The largest numbers let through stay finite in the packet.
+  vision_geometry_t large = good;
+  large.field.field_length = 1e6;
+  for (double& v : large.cameras[0].position) v = 1e9;
+  for (double& v : large.cameras[0].orientation) v = -1e9;
+  large.cameras[0].focal_length = 1e9;
+  ASSERT_TRUE(forwardable(large));
+  const SSL_WrapperPacket packet = geometry_packet(large, {});
+  EXPECT_EQ(packet.geometry().field().field_length(), 1'000'000'000);
+  const auto& c = packet.geometry().calib(0);
+  for (float v : {c.tx(), c.ty(), c.tz(), c.derived_camera_world_tx(), c.q0(), c.focal_length()}) {
+    EXPECT_TRUE(std::isfinite(v));
+  }
+}
+
 TEST(SslVisionTranslation, GeometryFieldInWholeMillimetresWithMarkings) {
   GeometryExtras extras;
   extras.max_robot_radius = 0.09;

@@ -36,6 +36,11 @@ inline constexpr SSL_Source kPacketSource = SSL_SOURCE_OTHER;
 // never sends another, but anyone on the bus may, and SSL software is not
 // written for NaN; the bridge counts and drops such frames (fuzz_lcm_consumers).
 bool forwardable(const vision_frame_t& frame);
+// The same for VISION_GEOMETRY: every number the geometry packet carries fits
+// (fits_ssl), field sizes are lengths from 0 to 1e6 m (SSL sends them as int32
+// whole millimetres) and image sizes are not negative. The bridge counts and
+// drops another and keeps the last good geometry.
+bool forwardable(const vision_geometry_t& geometry);
 SSL_WrapperPacket detection_packet(const vision_frame_t& frame);
 SSL_WrapperPacket geometry_packet(const vision_geometry_t& geometry, const GeometryExtras& extras);
 
