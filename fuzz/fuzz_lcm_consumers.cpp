@@ -7,8 +7,9 @@
 //    SIM_STATE (the AutoReferee, REFEREE, the restart's placement, the event
 //    log), on the field SIM_GEOMETRY gave it;
 //  * viewer: ViewerModel and the snapshot text it pushes to pages;
-//  * SSL bridge: detection and geometry packets, tracked frames (TrackedFrames)
-//    and the game controller's Referee packet (RefereeTranslator).
+//  * SSL bridge: detection and geometry packets, tracked frames (TrackedFrames),
+//    the state it keeps (LatestState) and the game controller's Referee packet
+//    (RefereeTranslator).
 // What must hold for every input: nothing crashes, throws, leaks or allocates
 // beyond the fuzz build's limits; what goes out on LCM encodes and is finite;
 // the viewer's snapshot is JSON; every SSL packet serializes.
@@ -27,6 +28,8 @@
 #include "fuzz_support.hpp"
 #include "ubersim/bounded_decode.hpp"
 #include "ubersim/referee/state_judge.hpp"
+#include "ubersim/sim_clock.hpp"
+#include "ubersim/ssl_bridge/latest_state.hpp"
 #include "ubersim/ssl_bridge/referee_translation.hpp"
 #include "ubersim/ssl_bridge/tracked_frames.hpp"
 #include "ubersim/ssl_bridge/vision_translation.hpp"
@@ -161,6 +164,7 @@ struct Consumers {
   ubersim::ssl::TrackedFrames tracked{ubersim::ssl::TrackedSettings{60, ball_model(), "fuzz"}};
   ubersim::ssl::RefereeTranslator referee_packets{"fuzz"};
   ubersim::ssl::GeometryExtras extras;
+  ubersim::ssl::LatestState latest;
   Clock::time_point now{};
 
   void field(const ubersim::field_geometry_t& field) {
@@ -180,6 +184,9 @@ struct Consumers {
     if (out.placement) check(*out.placement);
     if (to_viewer) viewer.on_sim_state(state, tick());
     for (const auto& packet : tracked.on_state(state)) check_finite(packet);
+    // The state the bridge keeps for radio packets' t_sent and teleports.
+    latest.update(state);
+    if (!ubersim::SimClock::valid_time(latest.sim_time())) std::abort();
   }
   void vision(const ubersim::vision_frame_t& frame) {
     viewer.on_vision(frame, tick());

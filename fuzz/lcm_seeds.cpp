@@ -14,8 +14,8 @@
 #include <ubersim/emulator_realism_t.hpp>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/referee_t.hpp>
-#include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/sim_commands_t.hpp>
+#include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
 #include <ubersim/sync_horizon_t.hpp>
@@ -233,6 +233,8 @@ void write_consumer_seeds(const fs::path& dir) {
   not_finite.ball.position[1] = std::numeric_limits<double>::quiet_NaN();
   not_finite.robots[0].x = std::numeric_limits<double>::infinity();
   write(dir, "state_not_finite", on(ConsumerChannel::SimState), encode_or_abort(not_finite));
+  not_finite.sim_time = std::numeric_limits<double>::quiet_NaN();  // the SSL bridge drops it
+  write(dir, "state_time_not_finite", on(ConsumerChannel::SimState), encode_or_abort(not_finite));
   sim_state_t not_utf8 = traffic.states.back();  // once stopped the viewer (docs/fuzzing.md)
   not_utf8.robots[0].robot_type = "omni\xff";
   write(dir, "state_type_not_utf8", on(ConsumerChannel::SimState), encode_or_abort(not_utf8));

@@ -118,13 +118,18 @@ void SslBridge::on_vision(const vision_frame_t& frame) {
     }
   }
   // Tracked frames wait as long as this frame did: capture -> now (sim time).
-  if (tracked_ && state_ && state_->sim_time >= frame.t_capture) {
-    tracked_->set_latency(std::min(1.0, state_->sim_time - frame.t_capture));
+  if (tracked_ && state_.get() && state_.sim_time() >= frame.t_capture) {
+    tracked_->set_latency(std::min(1.0, state_.sim_time() - frame.t_capture));
   }
 }
 
 void SslBridge::on_state(const sim_state_t& state) {
-  state_ = state;
+  if (!state_.update(state)) {
+    ++counters_["states dropped (sim time not finite, negative or beyond 1e9 s)"];
+    bad_input_.warn("state_bad_time",
+                    "dropped a SIM_STATE whose sim time is not finite, negative or beyond 1e9 s");
+    return;
+  }
   if (!tracked_) return;
   const std::uint64_t refused = tracked_->refused();
   const auto packets = tracked_->on_state(state);
@@ -160,8 +165,8 @@ void SslBridge::on_referee(const referee_t& referee) {
 
 double SslBridge::max_robot_radius() const {
   double largest = 0;
-  if (state_) {
-    for (const robot_state_t& robot : state_->robots) {
+  if (const sim_state_t* state = state_.get()) {
+    for (const robot_state_t& robot : state->robots) {
       const auto found = type_radius_.find(robot.robot_type);
       if (found != type_radius_.end()) largest = std::max(largest, found->second);
     }
@@ -258,7 +263,7 @@ void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
   } else if (decoded(bytes, command, errors, "control")) {
     options_.sim_control.current_field = current_field_ ? &*current_field_ : nullptr;
     SimControlTranslation translation =
-        translate_simulator_command(command, state_ ? &*state_ : nullptr, options_.sim_control);
+        translate_simulator_command(command, state_.get(), options_.sim_control);
     errors.insert(errors.end(), translation.errors.begin(), translation.errors.end());
     for (const DefinedRobotType& type : translation.defined_types) {
       options_.sim_control.spec_types.record(type);
@@ -312,7 +317,7 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
   const bool publish = options_.sync ? answers.has_value() : packet.num_commands > 0;
   if (publish) {
     packet.sequence = ++radio_sequence_[static_cast<int>(team)];
-    packet.t_sent = answers ? *answers : (state_ ? state_->sim_time : 0.0);
+    packet.t_sent = answers ? *answers : state_.sim_time();
     bus_.publish(channels_.radio(team), packet);
   }
   for (const SimulatorError& error : errors) *response.add_errors() = error;

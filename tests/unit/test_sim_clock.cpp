@@ -22,6 +22,10 @@ TEST(SimClock, AdvancesRejectsStaleAndDetectsReset) {
   EXPECT_EQ(clock.update(0.0, 0), SimClock::Update::Reset);
   EXPECT_DOUBLE_EQ(clock.now(), 0.0);
   EXPECT_EQ(clock.update(1.0 / 240, 1), SimClock::Update::Advanced);
+  EXPECT_TRUE(SimClock::valid_time(0.0));
+  EXPECT_TRUE(SimClock::valid_time(SimClock::kMaxSimTime));
+  EXPECT_FALSE(SimClock::valid_time(-1e-9));
+  EXPECT_FALSE(SimClock::valid_time(std::numeric_limits<double>::infinity()));
 }
 
 TEST(DelayLine, ReleasesInOrderAtTheirTime) {

@@ -18,13 +18,16 @@ class SimClock {
   // inside a 64-bit count.
   static constexpr double kMaxSimTime = 1e9;  // s
 
+  // A time physics could have sent: finite, not negative, at most kMaxSimTime.
+  static bool valid_time(double sim_time) {
+    return std::isfinite(sim_time) && sim_time >= 0 && sim_time <= kMaxSimTime;
+  }
+
   // Feed each SIM_STATE's (sim_time, step). Rejected: non-finite, negative,
   // beyond kMaxSimTime, or older than what was seen (an out-of-order message),
   // and the clock is unchanged.
   Update update(double sim_time, std::int64_t step) {
-    if (!std::isfinite(sim_time) || sim_time < 0 || sim_time > kMaxSimTime || step < 0) {
-      return Update::Rejected;
-    }
+    if (!valid_time(sim_time) || step < 0) return Update::Rejected;
     if (!started_) {
       started_ = true;
       time_ = sim_time;

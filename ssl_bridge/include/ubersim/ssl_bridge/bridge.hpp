@@ -11,6 +11,11 @@
 #include <string>
 #include <ubersim/sim_control_ack_t.hpp>
 
+#include "ubersim/channels.hpp"
+#include "ubersim/logging.hpp"
+#include "ubersim/message_bus.hpp"
+#include "ubersim/shutdown.hpp"
+#include "ubersim/ssl_bridge/latest_state.hpp"
 #include "ubersim/ssl_bridge/referee_translation.hpp"
 #include "ubersim/ssl_bridge/robot_control_translation.hpp"
 #include "ubersim/ssl_bridge/sim_control_translation.hpp"
@@ -18,10 +23,6 @@
 #include "ubersim/ssl_bridge/tracked_frames.hpp"
 #include "ubersim/ssl_bridge/udp_socket.hpp"
 #include "ubersim/ssl_bridge/vision_translation.hpp"
-#include "ubersim/channels.hpp"
-#include "ubersim/logging.hpp"
-#include "ubersim/message_bus.hpp"
-#include "ubersim/shutdown.hpp"
 #include "ubersim/truth_demand_announcer.hpp"
 
 namespace ubersim::ssl {
@@ -107,7 +108,7 @@ class SslBridge {
   UdpSocket blue_socket_;
   UdpSocket yellow_socket_;
   bool watching_sockets_ = false;  // run() registers the sockets with the bus once
-  std::optional<sim_state_t> state_;
+  LatestState state_;              // the newest SIM_STATE with a valid sim time
   std::map<Team, radio_feedback_t> feedback_;
   std::map<std::string, double> type_radius_;      // m, robot type name -> radius
   std::optional<field_geometry_t> current_field_;  // from the latest VISION_GEOMETRY
@@ -120,7 +121,7 @@ class SslBridge {
   std::map<int64_t, std::shared_ptr<PendingResponse>> pending_by_request_;
   int64_t next_request_id_ = 1;
   std::array<int64_t, 2> radio_sequence_{};  // per team: each RADIO_<TEAM> on its own
-  std::array<SyncAnswers, 2> sync_;           // by Team
+  std::array<SyncAnswers, 2> sync_;          // by Team
   std::chrono::steady_clock::time_point next_sync_hello_{};
   ThrottledLog bad_input_;
   std::map<std::string, uint64_t> counters_;
