@@ -4,8 +4,9 @@
 // and given to every one of the three that reads that channel, between real
 // Division B traffic before it and after it:
 //  * referee: StateJudge, what `ubersim_referee auto` does with each
-//    SIM_STATE (the AutoReferee, REFEREE, the restart's placement, the event
-//    log), on the field SIM_GEOMETRY gave it;
+//    SIM_STATE (the AutoReferee, REFEREE, the restart's placement with the
+//    radius of each robot type, RobotRadii, the event log), on the field
+//    SIM_GEOMETRY gave it;
 //  * viewer: ViewerModel and the snapshot text it pushes to pages;
 //  * SSL bridge: detection and geometry packets, tracked frames (TrackedFrames),
 //    the state it keeps (LatestState) and the game controller's Referee packet
@@ -27,6 +28,7 @@
 #include "consumer_inputs.hpp"
 #include "fuzz_support.hpp"
 #include "ubersim/bounded_decode.hpp"
+#include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/state_judge.hpp"
 #include "ubersim/sim_clock.hpp"
 #include "ubersim/ssl_bridge/latest_state.hpp"
@@ -40,7 +42,7 @@ namespace {
 using ubersim::fuzz::ConsumerChannel;
 using Clock = ubersim::viewer::ViewerModel::Clock;
 
-constexpr double kRobotRadius = 0.09;  // m, what the referee assumes for any robot type
+constexpr double kRobotRadius = 0.09;  // m, the bridge's geometry: the largest SSL robot
 
 bool finite(double value) {
   return std::isfinite(value);
@@ -167,9 +169,19 @@ struct Consumers {
   ubersim::ssl::LatestState latest;
   Clock::time_point now{};
 
+  // The referee's radius per robot type of the state (names from the wire),
+  // read from the shipped robot configs as `ubersim_referee auto` does.
+  ubersim::referee::RobotRadii radii{UBERSIM_FUZZ_CONFIG_DIR};
+
   void field(const ubersim::field_geometry_t& field) {
-    judge.emplace(ubersim::referee::JudgeOptions{}, field,
-                  [](const std::string&) { return kRobotRadius; });
+    judge.emplace(ubersim::referee::JudgeOptions{}, field, [this](const std::string& type) {
+      const double radius = radii(type);
+      if (!(radius > 0 && radius <= 1) ||
+          radii.cached() > ubersim::referee::RobotRadii::kMaxTypes) {
+        std::abort();
+      }
+      return radius;
+    });
     viewer.on_sim_geometry(field, tick());
   }
   // The viewer keeps only the newest state: it is given the last state before

@@ -229,6 +229,32 @@ void write_consumer_seeds(const fs::path& dir) {
   sim_state_t out_of_field = traffic.states.back();
   out_of_field.ball.position[0] = 7.0;  // over the goal line: the referee stops the game
   write(dir, "state_ball_out", on(ConsumerChannel::SimState), encode_or_abort(out_of_field));
+  // The referee looks up each robot type's radius for the restart's placement:
+  // names that are no config name (empty, long, not UTF-8, paths), or unknown.
+  sim_state_t odd_types = out_of_field;
+  odd_types.sim_time = 60;  // past the first stop: the referee places the kick-off
+  const char* const names[] = {"",          "omni\xff\xfe",  "../robots/omni4_ssl",
+                               "/dev/zero", "omni4_ssl.cfg", "no_such_type"};
+  for (std::size_t i = 0; i < odd_types.robots.size(); ++i) {
+    odd_types.robots[i].robot_type = i < std::size(names) ? names[i] : std::string(300, 'x');
+  }
+  write(dir, "state_ball_out_odd_types", on(ConsumerChannel::SimState), encode_or_abort(odd_types));
+  // More type names than the referee keeps (RobotRadii::kMaxTypes).
+  sim_state_t many_types = odd_types;
+  while (many_types.robots.size() < 80) {
+    robot_state_t robot =
+        out_of_field.robots[many_types.robots.size() % out_of_field.robots.size()];
+    robot.robot_id = static_cast<std::int32_t>(many_types.robots.size());
+    robot.x = -4.0 + 0.25 * static_cast<double>(many_types.robots.size() % 32);
+    robot.y = -2.5 + 1.0 * static_cast<double>(many_types.robots.size() / 32);
+    many_types.robots.push_back(robot);
+  }
+  for (std::size_t i = 0; i < many_types.robots.size(); ++i) {
+    many_types.robots[i].robot_type = "type_" + std::to_string(i);
+  }
+  many_types.num_robots = static_cast<std::int32_t>(many_types.robots.size());
+  write(dir, "state_ball_out_many_types", on(ConsumerChannel::SimState),
+        encode_or_abort(many_types));
   sim_state_t not_finite = traffic.states.back();
   not_finite.ball.position[1] = std::numeric_limits<double>::quiet_NaN();
   not_finite.robots[0].x = std::numeric_limits<double>::infinity();

@@ -6,17 +6,14 @@
 #include "ubersim/config.hpp"
 
 namespace ubersim {
-namespace {
 
-bool valid_name(const std::string& name) {
+bool valid_robot_type_name(const std::string& name) {
   if (name.empty() || name.size() > kMaxRobotTypeNameLength) return false;
   for (char c : name) {
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') return false;
   }
   return true;
 }
-
-}  // namespace
 
 bool names_a_base_file(const std::string& text) {
   std::istringstream lines(text);
@@ -31,7 +28,7 @@ bool names_a_base_file(const std::string& text) {
 }
 
 RobotTypeConfig parse_robot_type_definition(const std::string& name, const std::string& text) {
-  if (!valid_name(name)) {
+  if (!valid_robot_type_name(name)) {
     throw ConfigError(name.substr(0, kMaxRobotTypeNameLength), 0,
                       "robot type name must be 1..64 letters, digits, '_' or '-'");
   }

@@ -3,22 +3,20 @@
 #include <chrono>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <ubersim/referee_t.hpp>
 #include <ubersim/truth_demand_t.hpp>
 
 #include "ubersim/config.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/referee/referee_message.hpp"
+#include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/sim_link.hpp"
 #include "ubersim/referee/state_judge.hpp"
-#include "ubersim/robot_config.hpp"
 #include "ubersim/shutdown.hpp"
 
 namespace ubersim::referee {
 namespace {
 
-constexpr double kFallbackRadius = 0.09;     // m, SSL maximum, for a type with no config
 constexpr std::int64_t kRequestBase = 7LL << 56;  // our request ids, apart from the CLI's
 // SIM_TRUTH_DEMAND is repeated this often (physics forgets a demand after 3 s).
 constexpr auto kDemandRepeat = std::chrono::seconds(1);
@@ -42,7 +40,7 @@ class Runner {
     field_ = link.geometry(timeout);
     judge_.emplace(JudgeOptions{options_.game, options_.sides, options_.sync,
                                 options_.judge_every_step},
-                   field_, [this](const std::string& type) { return radius_of(type); });
+                   field_, [this](const std::string& type) { return radii_(type); });
     bus_.subscribe<sim_state_t>(
         channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 100000);
     if (options_.start_physics) {
@@ -70,17 +68,6 @@ class Runner {
   }
 
  private:
-  double radius_of(const std::string& type) {
-    if (auto found = radii_.find(type); found != radii_.end()) return found->second;
-    double radius = kFallbackRadius;
-    try {
-      radius = load_robot_config(options_.common.config_root(), type).radius;
-    } catch (const ConfigError& error) {
-      spdlog::warn("robot type '{}': {}; assuming radius {} m", type, error.what(), radius);
-    }
-    return radii_[type] = radius;
-  }
-
   void write(const std::string& line) {
     if (log_.is_open()) log_ << line << "\n" << std::flush;
   }
@@ -142,7 +129,7 @@ class Runner {
   std::ofstream log_;
   field_geometry_t field_{};
   std::optional<StateJudge> judge_;
-  std::map<std::string, double> radii_;
+  RobotRadii radii_{options_.common.config_root()};  // robot types from SIM_STATE
   std::int64_t next_request_ = 0;
   std::chrono::steady_clock::time_point last_demand_{};
   bool started_ = false;

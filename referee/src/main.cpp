@@ -8,6 +8,7 @@
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/referee/auto_runner.hpp"
+#include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/scene_io.hpp"
 #include "ubersim/referee/sim_link.hpp"
 #include "ubersim/referee/situations.hpp"
@@ -15,7 +16,6 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/logging.hpp"
-#include "ubersim/robot_config.hpp"
 #include "ubersim/scenario_config.hpp"
 #include "ubersim/shutdown.hpp"
 
@@ -25,7 +25,6 @@ using namespace ubersim;
 using namespace ubersim::referee;
 using std::chrono::milliseconds;
 
-constexpr double kFallbackRadius = 0.09;  // m, SSL maximum, for a type whose config is missing
 
 int8_t wire_team(Team team) {
   return team == Team::Blue ? team_t::BLUE : team_t::YELLOW;
@@ -92,16 +91,7 @@ class Referee {
     return team;
   }
 
-  double radius_of(const std::string& type) {
-    if (auto found = radii_.find(type); found != radii_.end()) return found->second;
-    double radius = kFallbackRadius;
-    try {
-      radius = load_robot_config(options_.common.config_root(), type).radius;
-    } catch (const ConfigError& error) {
-      spdlog::warn("robot type '{}': {}; assuming radius {} m", type, error.what(), radius);
-    }
-    return radii_[type] = radius;
-  }
+  double radius_of(const std::string& type) { return radii_(type); }
 
   int send(sim_control_t control, milliseconds extra = milliseconds(0)) {
     const auto ack = link_.request(std::move(control), timeout() + extra);
@@ -308,7 +298,7 @@ class Referee {
   const Options& options_;
   MessageBus bus_;
   SimLink link_;
-  std::map<std::string, double> radii_;
+  RobotRadii radii_{options_.common.config_root()};
 };
 
 }  // namespace

@@ -13,6 +13,10 @@ namespace ubersim {
 inline constexpr std::size_t kMaxRobotTypeNameLength = 64;
 inline constexpr std::size_t kMaxRobotTypeText = 16 * 1024;  // bytes; a robot file is ~3 KB
 
+// 1..64 letters, digits, '_' or '-': a name, never a path. Robot type names
+// from the network (a definition, a SIM_STATE's robot_type) must be one.
+bool valid_robot_type_name(const std::string& name);
+
 // True when the text has a "BASE = ..." line, which the config reader would
 // follow to a file: texts from the network are checked with it before parsing.
 bool names_a_base_file(const std::string& text);
