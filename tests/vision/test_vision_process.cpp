@@ -6,14 +6,19 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <memory>
 #include <numeric>
 #include <set>
+#include <thread>
 #include <ubersim/team_t.hpp>
+#include <ubersim/truth_demand_t.hpp>
+#include <ubersim/vision_schedule_t.hpp>
 
 #include "ubersim/angles.hpp"
+#include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/robot_config.hpp"
 #include "vision_test_support.hpp"
@@ -837,4 +842,61 @@ TEST_F(VisionProcess, SameSeedGivesIdenticalFrames) {
   ASSERT_GE(a.size(), 2 * 70u);
   EXPECT_EQ(a, b);
   EXPECT_NE(a, c);
+}
+
+// What the vision says to physics besides frames (issue 18): in real time
+// (states with speed 1, paced at 240 Hz of wall time) its truth demand every
+// few frames (it announces 8 frames' release times at once) and its schedule
+// only as the 10 Hz repetition, listing no frame; in sync mode (speed 0) a
+// schedule lists every frame before it goes out.
+TEST_F(VisionProcess, InRealTimeDemandsComeEveryFewFramesAndSchedulesOnlyAsRepetitions) {
+  start("cmdragons02");
+  ubersim::MessageBus spy(ubersim::with_receive_buffer(ubersim::default_lcm_url()));
+  const ubersim::ChannelNames channels;
+  int demands = 0;
+  int schedules = 0;
+  int frames_listed = 0;
+  spy.subscribe<ubersim::truth_demand_t>(channels.extra(ubersim::kTruthDemandChannel),
+                                         [&](const ubersim::truth_demand_t&) { ++demands; });
+  spy.subscribe<ubersim::vision_schedule_t>(channels.extra(ubersim::kVisionScheduleChannel),
+                                            [&](const ubersim::vision_schedule_t& s) {
+                                              ++schedules;
+                                              frames_listed += s.num_frames;
+                                            });
+  const auto pace_start = std::chrono::steady_clock::now();
+  constexpr std::int64_t kRealTimeSteps = 480;  // 2 s
+  for (std::int64_t step = 0; step <= kRealTimeSteps; ++step) {
+    ubersim::sim_state_t state =
+        make_state(step, moving_robots(static_cast<double>(step) * kDt, true));
+    state.speed_factor = 1;
+    std::this_thread::sleep_until(pace_start + std::chrono::microseconds(step * 1000000 / 240));
+    driver->publish_state(state);
+    spy.handle_pending();
+  }
+  driver->listen(0.3);
+  spy.handle_pending();
+  // A loaded machine stretches the run: what comes by the wall clock is
+  // bounded by the wall time it took.
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - pace_start).count();
+  const std::size_t real_time_frames = driver->frames(0).size();
+  EXPECT_GE(real_time_frames, 55u);  // 30 Hz for 2 s, less the 66 ms latency
+  // One at the first state, then every 6 frames, plus the once-a-second refresh.
+  EXPECT_LE(demands, static_cast<int>(real_time_frames) / 6 + static_cast<int>(wall) + 3);
+  EXPECT_GE(demands, static_cast<int>(real_time_frames) / 8);
+  EXPECT_LE(schedules, static_cast<int>(10 * wall) + 3);  // the 10 Hz repetition
+  EXPECT_EQ(frames_listed, 0);
+
+  frames_listed = 0;
+  for (std::int64_t step = kRealTimeSteps + 1; step <= kRealTimeSteps + 240; ++step) {
+    driver->publish_state(make_state(step, moving_robots(static_cast<double>(step) * kDt, true)));
+    spy.handle_pending();
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+  driver->listen(0.3);
+  spy.handle_pending();
+  const std::size_t sync_frames = driver->frames(0).size() - real_time_frames;
+  EXPECT_GE(sync_frames, 25u);
+  EXPECT_EQ(frames_listed, static_cast<int>(sync_frames));
+  stop();
 }

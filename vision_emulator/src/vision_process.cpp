@@ -136,7 +136,10 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
     schedule.camera_id.clear();
     schedule.frame_number.clear();
     schedule.t_capture.clear();
-    announce_demand(true, emulator.sim_time());
+    // Not forced: in real time this repetition runs 10 times a second, and
+    // the demand's own rules (renewal, once a second; at once before the
+    // first state) already put one out before any schedule physics waits for.
+    announce_demand(false, emulator.sim_time());
     bus.publish(schedule_channel, schedule);
     last_schedule = Clock::now();
   };
