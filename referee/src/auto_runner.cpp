@@ -9,6 +9,7 @@
 #include "ubersim/config.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/referee/referee_message.hpp"
+#include "ubersim/logging.hpp"
 #include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/sim_link.hpp"
 #include "ubersim/referee/state_judge.hpp"
@@ -90,7 +91,13 @@ class Runner {
 
   void on_state(const sim_state_t& state) {
     if (over_) return;
+    const std::uint64_t refused = judge_->refused();
     auto out = judge_->on_state(state);
+    if (judge_->refused() > refused) {
+      bad_input_.warn("state_not_finite",
+                      "not judged: a SIM_STATE with a sim time that is not valid or a number "
+                      "not finite or beyond 1e9");
+    }
     if (!out.judged) return;
     if (!started_) {
       started_ = true;
@@ -131,6 +138,7 @@ class Runner {
   std::optional<StateJudge> judge_;
   RobotRadii radii_{options_.common.config_root()};  // robot types from SIM_STATE
   std::int64_t next_request_ = 0;
+  ThrottledLog bad_input_;
   std::chrono::steady_clock::time_point last_demand_{};
   bool started_ = false;
   bool over_ = false;

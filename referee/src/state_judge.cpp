@@ -1,16 +1,39 @@
 #include "ubersim/referee/state_judge.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 
 #include "ubersim/logging.hpp"
 #include "ubersim/referee/referee_message.hpp"
 #include "ubersim/referee/scene_io.hpp"
+#include "ubersim/sim_clock.hpp"
 
 namespace ubersim::referee {
 namespace {
 
 constexpr double kPublishPeriod = 0.1;  // s of sim time between unchanged referee_t
+
+// A number the referee may judge and place with: finite and at most 1e9 (m,
+// m/s, rad, rad/s), far beyond any field.
+bool fits(double value) {
+  return std::isfinite(value) && std::abs(value) <= 1e9;
+}
+
+// A state physics could have sent: a valid sim time and every number it judges
+// and places with within fits(). Anyone on the bus may send another.
+bool judgeable(const sim_state_t& state) {
+  bool ok = SimClock::valid_time(state.sim_time) && fits(state.dt);
+  for (int i = 0; i < 3; ++i) {
+    ok = ok && fits(state.ball.position[i]) && fits(state.ball.linear_velocity[i]) &&
+         fits(state.ball.angular_velocity[i]);
+  }
+  for (const robot_state_t& r : state.robots) {
+    ok = ok && fits(r.x) && fits(r.y) && fits(r.orientation) && fits(r.vx) && fits(r.vy) &&
+         fits(r.omega);
+  }
+  return ok;
+}
 
 }  // namespace
 
@@ -41,6 +64,10 @@ std::optional<sim_control_t> StateJudge::place(const SituationRequest& request,
 
 JudgeOutput StateJudge::on_state(const sim_state_t& state) {
   JudgeOutput out;
+  if (!judgeable(state)) {
+    ++refused_;
+    return out;
+  }
   if (!judges(state)) return out;
   out.judged = true;
   ++judged_;
@@ -57,8 +84,8 @@ JudgeOutput StateJudge::on_state(const sim_state_t& state) {
                  stage_name(s.stage), s.yellow.goals, s.blue.goals);
     out.log_lines.push_back(command_line(s, state.sim_time));
   }
-  next_judge_ = options_.judge_every_step ? state.sim_time + state.dt
-                                          : referee_.next_judge_time(state);
+  next_judge_ =
+      options_.judge_every_step ? state.sim_time + state.dt : referee_.next_judge_time(state);
   if (options_.sync || decision.command_changed || !decision.events.empty() ||
       state.sim_time - last_publish_ >= kPublishPeriod || state.sim_time < last_publish_) {
     out.referee = to_message(s, options_.game, options_.sides, state.sim_time);

@@ -39,11 +39,15 @@ class StateJudge {
   StateJudge(JudgeOptions options, field_geometry_t field,
              std::function<double(const std::string&)> radius_of);
 
+  // A state with a sim time that is not valid (SimClock::valid_time) or a
+  // number that is not finite or beyond 1e9 is not judged (refused()): what
+  // it holds would go out in REFEREE or a placement.
   JudgeOutput on_state(const sim_state_t& state);
 
   const RefereeState& state() const { return referee_.state(); }
   double last_time() const { return last_time_; }  // s, of the last state judged
   std::uint64_t judged() const { return judged_; }
+  std::uint64_t refused() const { return refused_; }
 
  private:
   // Whether this state is judged: the first at or after the time the referee
@@ -59,6 +63,7 @@ class StateJudge {
   double last_time_ = 0;
   double next_judge_ = 0;  // s: the state to judge next
   std::uint64_t judged_ = 0;
+  std::uint64_t refused_ = 0;
   bool judged_any_ = false;
 };
 
