@@ -7,32 +7,17 @@
 #include "ubersim/logging.hpp"
 #include "ubersim/referee/referee_message.hpp"
 #include "ubersim/referee/scene_io.hpp"
-#include "ubersim/sim_clock.hpp"
+#include "ubersim/sim_state_numbers.hpp"
 
 namespace ubersim::referee {
 namespace {
 
 constexpr double kPublishPeriod = 0.1;  // s of sim time between unchanged referee_t
 
-// A number the referee may judge and place with: finite and at most 1e9 (m,
-// m/s, rad, rad/s), far beyond any field.
-bool fits(double value) {
-  return std::isfinite(value) && std::abs(value) <= 1e9;
-}
-
-// A state physics could have sent: a valid sim time and every number it judges
-// and places with within fits(). Anyone on the bus may send another.
+// A state physics could have sent (sim_state_numbers.hpp), with a step that
+// is a number too: anyone on the bus may send another.
 bool judgeable(const sim_state_t& state) {
-  bool ok = SimClock::valid_time(state.sim_time) && fits(state.dt);
-  for (int i = 0; i < 3; ++i) {
-    ok = ok && fits(state.ball.position[i]) && fits(state.ball.linear_velocity[i]) &&
-         fits(state.ball.angular_velocity[i]);
-  }
-  for (const robot_state_t& r : state.robots) {
-    ok = ok && fits(r.x) && fits(r.y) && fits(r.orientation) && fits(r.vx) && fits(r.vy) &&
-         fits(r.omega);
-  }
-  return ok;
+  return sim_state_numbers_fit(state) && state_number_fits(state.dt);
 }
 
 }  // namespace

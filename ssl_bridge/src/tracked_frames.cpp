@@ -5,6 +5,7 @@
 #include <random>
 #include <ubersim/team_t.hpp>
 
+#include "ubersim/sim_state_numbers.hpp"
 #include "ubersim/ssl_bridge/units.hpp"
 
 namespace ubersim::ssl {
@@ -24,20 +25,6 @@ void set(Vector3& out, const double v[3]) {
   out.set_x(static_cast<float>(v[0]));
   out.set_y(static_cast<float>(v[1]));
   out.set_z(static_cast<float>(v[2]));
-}
-
-bool fits(const sim_state_t& state) {
-  bool ok = fits_ssl(state.sim_time);
-  if (state.ball_present) {
-    for (int i = 0; i < 3; ++i) {
-      ok = ok && fits_ssl(state.ball.position[i]) && fits_ssl(state.ball.linear_velocity[i]);
-    }
-  }
-  for (const robot_state_t& r : state.robots) {
-    ok = ok && fits_ssl(r.x) && fits_ssl(r.y) && fits_ssl(r.orientation) && fits_ssl(r.vx) &&
-         fits_ssl(r.vy) && fits_ssl(r.omega);
-  }
-  return ok;
 }
 
 }  // namespace
@@ -61,7 +48,7 @@ TrackedFrames::TrackedFrames(TrackedSettings settings) : settings_(std::move(set
 
 std::vector<TrackerWrapperPacket> TrackedFrames::on_state(const sim_state_t& state) {
   std::vector<TrackerWrapperPacket> due;
-  if (!fits(state)) {
+  if (!sim_state_numbers_fit(state)) {
     ++refused_;
     return due;
   }

@@ -28,7 +28,8 @@ class TrackedFrames {
   explicit TrackedFrames(TrackedSettings settings);
 
   // A new SIM_STATE; returns the packets due now (oldest first). A state with
-  // a number that is not finite or beyond 1e9 (fits_ssl) is refused: counted
+  // a number that is not finite or beyond 1e9, or a time not valid
+  // (sim_state_numbers_fit), is refused: counted
   // in refused(), never sent, and it changes nothing.
   std::vector<TrackerWrapperPacket> on_state(const sim_state_t& state);
   std::uint64_t refused() const { return refused_; }
