@@ -2,7 +2,7 @@
 // Exact unit conversions between ubersim (SI: m, rad, rad/s) and the SSL
 // protocols (SSL-Vision: mm; simulation protocol: degrees for kick angles, rpm
 // for the dribbler). One place, so every conversion is tested once.
-#include <cmath>
+#include "ubersim/sim_state_numbers.hpp"
 
 namespace ubersim::ssl {
 
@@ -30,8 +30,9 @@ constexpr double rad_per_s_to_rpm(double rad_per_s) {
 
 // A number from LCM the bridge may put in an SSL packet: finite, and at most
 // 1e9 (m, px, rad, s, m/s), far beyond any field and far within SSL's float
-// millimetres. ubersim's own processes never send another; anyone on the bus may.
-inline bool fits_ssl(double value) { return std::isfinite(value) && std::abs(value) <= 1e9; }
+// millimetres. ubersim's own processes never send another; anyone on the bus
+// may. The same bound as a SIM_STATE's numbers (sim_state_numbers.hpp).
+inline bool fits_ssl(double value) { return state_number_fits(value); }
 
 // Field sizes in SSL geometry are whole millimetres (int32).
 int m_to_whole_mm(double metres);
