@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs a command so that its LCM multicast traffic can reach nothing else:
-#   * in a network namespace of its own (loopback up, multicast routed to lo)
+#   * in a network namespace of its own (loopback up with the MULTICAST flag,
+#     which the official SSL programs look for, and multicast routed to lo)
 #     when this user may create one (root, or unprivileged user namespaces);
 #   * otherwise on a UDP port of its own, derived from the test name.
 # Either way LCM_DEFAULT_URL is set with ttl=0, so nothing leaves the host.
@@ -22,7 +23,7 @@ if [ "${UBERSIM_NO_NETNS:-0}" != 1 ] && namespace_ok; then
   flag=-n
   unshare -n true 2>/dev/null || flag=-rn
   exec unshare "$flag" bash -c '
-    ip link set lo up
+    ip link set lo up multicast on
     ip route add 224.0.0.0/4 dev lo
     exec "$@"' isolated "$@"
 fi

@@ -22,8 +22,13 @@ usage: tools/launch.sh [options]
   --sync-strict        in sync mode, a client that misses the timeout fails the run
   --sync-clients N     clients physics waits for at the start (default: the demo teams started;
                        with --ssl-bridge, 2: each colour no demo team plays is an SSL team's)
-  --referee            start the automatic referee (ubersim_referee auto, docs/autoref.md): it runs
-                       the game and everything stops when it is over; with --sync, reproducibly
+  --referee [builtin|official]
+                       builtin (the default with no value): start ubersim's automatic referee
+                       (ubersim_referee auto, docs/autoref.md): it runs the game and everything
+                       stops when it is over; with --sync, reproducibly.
+                       official: the official ssl-game-controller you run referees (its Referee
+                       messages on 224.5.23.1:10003); implies --ssl-bridge, which forwards them to
+                       REFEREE and sends no Referee of ubersim's (docs/official_stack.md)
   --game-length S      the refereed game's length in s of sim time (default: config/referee)
   --truth-every-step   physics publishes SIM_STATE after every step (default: only at the
                        instants its consumers ask for: vision captures and releases, radio
@@ -43,16 +48,18 @@ usage: tools/launch.sh [options]
   --log-dir DIR        where process logs go (default: a new folder under $TMPDIR or /tmp)
   --viewer             start the browser viewer (ubersim_viewer) and print its address
   --viewer-port P      the viewer's port on 127.0.0.1 (default 8080)
-  --ssl-bridge         start the SSL protocol bridge (SSL-Vision on 224.5.23.2:10020, simulation
-                       control on 10300, robot control on 10301 blue / 10302 yellow); with --sync
-                       an SSL team answers every detection packet with one RobotControl
+  --ssl-bridge         start the SSL protocol bridge (SSL-Vision on 224.5.23.2:10020, tracked
+                       frames on 224.5.23.2:10010, simulation control on 10300, robot control on
+                       10301 blue / 10302 yellow); with --sync an SSL team answers every detection
+                       packet with one RobotControl
+  --no-tracked         with --ssl-bridge: send no tracked frames
   --quiet              less process log output
 USAGE
 }
 
 scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" truth_every_step=0 seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
-referee=0 game_length=""
+referee=none game_length="" tracked=1
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port=8080 ssl_bridge=0
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -64,7 +71,9 @@ while [ $# -gt 0 ]; do
     --sync) sync=1; shift ;;
     --sync-strict) sync=1; sync_strict=1; shift ;;
     --sync-clients) sync_clients=$2; shift 2 ;;
-    --referee) referee=1; shift ;;
+    --referee)
+      case "${2:-}" in builtin|official) referee=$2; shift 2 ;; *) referee=builtin; shift ;; esac ;;
+    --no-tracked) tracked=0; shift ;;
     --game-length) game_length=$2; shift 2 ;;
     --truth-every-step) truth_every_step=1; shift ;;
     --truth-on-demand) shift ;;  # the default; accepted for older scripts
@@ -87,6 +96,9 @@ while [ $# -gt 0 ]; do
     *) echo "launch: unknown option '$1'" >&2; usage >&2; exit 2 ;;
   esac
 done
+
+# The official game controller reaches ubersim only through the SSL bridge.
+[ "$referee" = official ] && ssl_bridge=1
 
 if [ -z "$scenario" ]; then
   case "${field:-division_b}" in
@@ -173,7 +185,9 @@ fi
 [ -n "$duration" ] && physics_args+=(--duration "$duration")
 referee_args=(auto --events "$log_dir/events.jsonl")
 [ -n "$game_length" ] && referee_args+=(--game-length "$game_length")
-if [ "$referee" = 1 ] && [ "$sync" = 1 ]; then
+[ "$tracked" = 1 ] && bridge_args+=(--tracked)
+[ "$referee" = official ] && bridge_args+=(--official-referee)
+if [ "$referee" = builtin ] && [ "$sync" = 1 ]; then
   # Physics steps only past states the referee judged (docs/autoref.md).
   physics_args+=(--sync-referee)
   referee_args+=(--sync)
@@ -181,7 +195,7 @@ fi
 start physics "${placement[@]}" "$bin_dir/ubersim_physics" "${common[@]}" "${physics_args[@]}" "${seed_args[@]}"
 [ "$vision" = 1 ] && start vision "${placement[@]}" "$bin_dir/ubersim_vision" "${common[@]}" --profile "$profile" "${seed_args[@]}"
 [ "$radio" = 1 ] && start radio "${placement[@]}" "$bin_dir/ubersim_radio" "${common[@]}" --profile "$profile" "${seed_args[@]}" "${radio_args[@]}"
-if [ "$referee" = 1 ]; then
+if [ "$referee" = builtin ]; then
   start referee "$bin_dir/ubersim_referee" --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} "${referee_args[@]}"
   # In sync mode the referee must hear the first state: the teams (whose
   # registration lets physics start) come once it listens (at most 20 s).
@@ -198,8 +212,13 @@ physics_pid=${pids[1]:-}
 [ -n "$log_file" ] || physics_pid=${pids[0]}
 echo "channels: ${prefix}VISION ${prefix}VISION_GEOMETRY ${prefix}RADIO_YELLOW ${prefix}RADIO_BLUE ${prefix}RADIO_FEEDBACK_YELLOW ${prefix}RADIO_FEEDBACK_BLUE ${prefix}SIM_STATE ${prefix}SIM_CONTROL"
 echo "watch:    tools/lcm-spy.sh -l '$lcm_url'      control: build/bin/ubersim_referee --help"
-[ "$referee" = 1 ] && echo "referee:  automatic, on ${prefix}REFEREE; event log $log_dir/events.jsonl"
-[ "$ssl_bridge" = 1 ] && echo "ssl:      SSL-Vision 224.5.23.2:10020, simulation control 127.0.0.1:10300, robot control 10301 (blue) / 10302 (yellow)"
+[ "$referee" = builtin ] && echo "referee:  automatic, on ${prefix}REFEREE; event log $log_dir/events.jsonl"
+[ "$referee" = official ] && echo "referee:  the official game controller's Referee on 224.5.23.1:10003, forwarded to ${prefix}REFEREE"
+if [ "$ssl_bridge" = 1 ]; then
+  tracked_note=", tracked frames 224.5.23.2:10010"
+  [ "$tracked" = 1 ] || tracked_note=""
+  echo "ssl:      SSL-Vision 224.5.23.2:10020${tracked_note}, simulation control 127.0.0.1:10300, robot control 10301 (blue) / 10302 (yellow)"
+fi
 [ "$viewer" = 1 ] && echo "viewer:   http://127.0.0.1:$viewer_port/   (open it in a browser)"
 [ "$vision" = 0 ] && echo "vision:   not started: a real vision server must publish ${prefix}VISION"
 [ "$radio" = 0 ] && echo "radio:    not started: a real radio server must listen on ${prefix}RADIO_YELLOW / ${prefix}RADIO_BLUE"

@@ -51,7 +51,8 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
       yellow_socket_(UdpSocket::bound(options_.listen_address, options_.yellow_port)),
       referee_socket_(UdpSocket::multicast_sender(options_.referee_ttl, options_.vision_interface)),
       referee_destination_(make_address(options_.referee_address, options_.referee_port)),
-      referee_translator_("ubersim-" + random_uuid()),
+      referee_source_("ubersim-" + random_uuid()),
+      referee_translator_(referee_source_),
       sync_{{SyncAnswers(options_.sync_timeout), SyncAnswers(options_.sync_timeout)}},
       truth_demand_(bus, channels, "ssl_bridge") {
   // protobuf logs every datagram that misses a required field to stderr, one
@@ -80,9 +81,23 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
       channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 10);
   bus_.subscribe<sim_control_ack_t>(channels_(Channel::SimControlAck),
                                     [this](const sim_control_ack_t& a) { on_ack(a); });
-  bus_.subscribe<referee_t>(channels_.referee(), [this](const referee_t& r) { on_referee(r); });
-  spdlog::info("referee messages from {} to {}:{} (ttl {})", channels_.referee(),
-               options_.referee_address, options_.referee_port, options_.referee_ttl);
+  try {
+    referee_listener_.emplace(UdpSocket::multicast_receiver(
+        options_.referee_address, options_.referee_port, options_.vision_interface));
+  } catch (const std::exception& e) {
+    if (options_.official_referee) throw;  // the official referee is what was asked for
+    spdlog::warn("cannot listen on the referee group ({}): a game controller there goes unnoticed",
+                 e.what());
+  }
+  if (options_.official_referee) {
+    spdlog::info("official referee: Referee messages on {}:{} go to {}; ubersim sends none",
+                 options_.referee_address, options_.referee_port, channels_.referee());
+  } else {
+    bus_.subscribe<referee_t>(channels_.referee(),
+                              [this](const referee_t& r) { on_referee(r); });
+    spdlog::info("referee messages from {} to {}:{} (ttl {})", channels_.referee(),
+                 options_.referee_address, options_.referee_port, options_.referee_ttl);
+  }
   for (Team team : kTeams) {
     bus_.subscribe<radio_feedback_t>(
         channels_.radio_feedback(team),
@@ -150,6 +165,10 @@ void SslBridge::on_state(const sim_state_t& state) {
 }
 
 void SslBridge::on_referee(const referee_t& referee) {
+  if (foreign_referee_heard_) {
+    ++counters_["referee packets held back (another game controller sends)"];
+    return;
+  }
   const auto now_us = std::chrono::duration_cast<std::chrono::microseconds>(
                           std::chrono::system_clock::now().time_since_epoch())
                           .count();
@@ -161,6 +180,28 @@ void SslBridge::on_referee(const referee_t& referee) {
   } else {
     bad_input_.warn("referee_send", "could not send a referee packet");
   }
+}
+
+void SslBridge::on_referee_datagram(const std::vector<uint8_t>& bytes) {
+  Referee referee;
+  Errors errors;
+  if (!decoded(bytes, referee, errors, "referee")) return;
+  if (referee.source_identifier() == referee_source_) return;  // our own, looped back
+  if (!options_.official_referee) {
+    if (!foreign_referee_heard_) {
+      spdlog::error(
+          "another game controller ('{}') sends Referee messages to {}:{}: ubersim's REFEREE is "
+          "no longer sent there; start the bridge with --official-referee (launch.sh --referee "
+          "official) to forward that game controller to {} instead",
+          referee.source_identifier(), options_.referee_address, options_.referee_port,
+          channels_.referee());
+    }
+    foreign_referee_heard_ = true;
+    ++counters_["foreign referee packets heard"];
+    return;
+  }
+  bus_.publish(channels_.referee(), official_referee_.translate(referee, state_.get()));
+  ++counters_["official referee packets forwarded"];
 }
 
 double SslBridge::max_robot_radius() const {
@@ -412,6 +453,13 @@ void SslBridge::run(const ShutdownSignal& shutdown) {
         handle_robot_datagram(Team::Blue, bytes, from);
       });
     });
+    if (referee_listener_) {
+      bus_.watch(referee_listener_->fd(), [this] {
+        drain(*referee_listener_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in&) {
+          on_referee_datagram(bytes);
+        });
+      });
+    }
     bus_.watch(yellow_socket_.fd(), [this] {
       drain(yellow_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
         handle_robot_datagram(Team::Yellow, bytes, from);

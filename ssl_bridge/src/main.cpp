@@ -89,6 +89,9 @@ int parse_and_run(int argc, char** argv) {
   app.add_option("--referee-port", b.referee_port, "referee messages port")->capture_default_str();
   app.add_option("--referee-ttl", b.referee_ttl, "referee multicast TTL (0: this host only)")
       ->capture_default_str();
+  app.add_flag("--official-referee", b.official_referee,
+               "the official ssl-game-controller referees: its Referee messages on the referee "
+               "address go to REFEREE, and ubersim sends none there");
   app.add_flag("--tracked", b.tracked,
                "also send SSL tracked frames (TrackerWrapperPacket) built from ground truth");
   app.add_option("--tracked-address", b.tracked_address, "tracked frames multicast group")

@@ -65,6 +65,29 @@ UdpSocket UdpSocket::multicast_sender(int ttl, const std::string& interface_ip) 
   return UdpSocket(fd);
 }
 
+UdpSocket UdpSocket::multicast_receiver(const std::string& group, int port,
+                                        const std::string& interface_ip) {
+  const sockaddr_in address = make_address(group, port);
+  const in_addr interface_address = make_address(interface_ip, 1).sin_addr;
+  const int fd = open_socket();
+  const int yes = 1;
+  if (::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes) != 0) fail(fd, "SO_REUSEADDR");
+  // Bound to the group's address, the socket hears that group only, not every
+  // group another program uses on the same port.
+  if (::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
+    fail(fd, "bind " + group + ":" + std::to_string(port));
+  }
+  if (IN_MULTICAST(ntohl(address.sin_addr.s_addr))) {
+    ip_mreq membership{};
+    membership.imr_multiaddr = address.sin_addr;
+    membership.imr_interface = interface_address;
+    if (::setsockopt(fd, IPPROTO_IP, IP_ADD_MEMBERSHIP, &membership, sizeof membership) != 0) {
+      fail(fd, "join " + group + " on " + interface_ip);
+    }
+  }
+  return UdpSocket(fd);
+}
+
 UdpSocket::UdpSocket(UdpSocket&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
 
 UdpSocket& UdpSocket::operator=(UdpSocket&& other) noexcept {

@@ -79,6 +79,26 @@ VisionReceiver::VisionReceiver(const std::string& group, int port) {
   }
 }
 
+void send_to_group(const std::string& group, int port, const std::string& bytes) {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd < 0) throw std::runtime_error("socket");
+  const unsigned char ttl = 0;
+  const unsigned char loop = 1;
+  in_addr loopback{};
+  ::inet_pton(AF_INET, "127.0.0.1", &loopback);
+  ::setsockopt(fd, IPPROTO_IP, IP_MULTICAST_TTL, &ttl, sizeof ttl);
+  ::setsockopt(fd, IPPROTO_IP, IP_MULTICAST_LOOP, &loop, sizeof loop);
+  ::setsockopt(fd, IPPROTO_IP, IP_MULTICAST_IF, &loopback, sizeof loopback);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<uint16_t>(port));
+  ::inet_pton(AF_INET, group.c_str(), &to.sin_addr);
+  const ssize_t sent =
+      ::sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
+  ::close(fd);
+  if (sent != static_cast<ssize_t>(bytes.size())) throw std::runtime_error("send to group");
+}
+
 VisionReceiver::~VisionReceiver() {
   ::close(fd_);
 }

@@ -62,6 +62,10 @@ class UdpClient {
   int port_;
 };
 
+// One datagram to a multicast group on the loopback interface (TTL 0), as the
+// game controller sends its Referee messages.
+void send_to_group(const std::string& group, int port, const std::string& bytes);
+
 std::optional<SimulatorResponse> command(UdpClient& client, const SimulatorCommand& request,
                                          double timeout_s = 3);
 std::optional<RobotControlResponse> control(UdpClient& client, const RobotControl& request,

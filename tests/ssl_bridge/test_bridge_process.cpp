@@ -73,6 +73,7 @@ class SslBridgeProcess : public ::testing::Test {
   void SetUp() override {
     std::vector<std::string> argv{UBERSIM_SSL_BRIDGE_EXE, "--ack-timeout", "0.3"};
     for (const std::string& option : ports_.bridge_options()) argv.push_back(option);
+    for (const std::string& option : extra_options()) argv.push_back(option);
     bridge_ = std::make_unique<ChildProcess>(argv, ::testing::TempDir() + "ssl_bridge_process.log");
     ASSERT_TRUE(bridge_->wait_for_output("vision to", 10)) << bridge_->log();
     bus_.subscribe<ubersim::radio_packet_t>(
@@ -83,6 +84,8 @@ class SslBridgeProcess : public ::testing::Test {
       EXPECT_EQ(bridge_->stop(10), 0) << bridge_->log();
     }
   }
+
+  virtual std::vector<std::string> extra_options() const { return {}; }
 
   // Publishes on LCM until the bridge's packet arrives (it may still be subscribing).
   template <class Msg>
@@ -389,4 +392,90 @@ TEST_F(SslBridgeProcess, ExitsZeroOnSigint) {
   EXPECT_EQ(bridge_->stop(10, 2 /* SIGINT */), 0) << bridge_->log();
   EXPECT_NE(bridge_->log().find("summary:"), std::string::npos);
   bridge_.reset();
+}
+
+namespace {
+
+// What the official game controller sends: a Referee of another source.
+std::string game_controller_referee(Referee::Command command, std::uint32_t counter) {
+  Referee r;
+  r.set_source_identifier("official-game-controller");
+  r.set_packet_timestamp(1);
+  r.set_stage(Referee::NORMAL_FIRST_HALF_PRE);
+  r.set_command(command);
+  r.set_command_counter(counter);
+  r.set_command_timestamp(1);
+  for (Referee::TeamInfo* team : {r.mutable_yellow(), r.mutable_blue()}) {
+    team->set_name("ER-Force");
+    team->set_score(1);
+    team->set_red_cards(0);
+    team->set_yellow_cards(0);
+    team->set_timeouts(4);
+    team->set_timeout_time(300'000'000);
+    team->set_goalkeeper(2);
+  }
+  r.mutable_designated_position()->set_x(-1200);
+  r.mutable_designated_position()->set_y(300);
+  return r.SerializeAsString();
+}
+
+// Our own Referee packets on the group, over `seconds` (the game controller's are not ours).
+int ubersim_referee_packets(ssl_test::VisionReceiver& receiver, double seconds) {
+  int ours = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (auto bytes = receiver.receive_bytes(0.05)) {
+      Referee m;
+      if (m.ParseFromString(*bytes) && m.source_identifier().rfind("ubersim-", 0) == 0) ++ours;
+    }
+  }
+  return ours;
+}
+
+class SslBridgeOfficialReferee : public SslBridgeProcess {
+ protected:
+  std::vector<std::string> extra_options() const override { return {"--official-referee"}; }
+};
+
+}  // namespace
+
+TEST_F(SslBridgeOfficialReferee, TheGameControllersRefereeGoesToRefereeAndNothingOfOursOut) {
+  std::vector<ubersim::referee_t> seen;
+  bus_.subscribe<ubersim::referee_t>("REFEREE",
+                                     [&](const ubersim::referee_t& r) { seen.push_back(r); });
+  for (int attempt = 0; attempt < 50 && seen.empty(); ++attempt) {
+    ssl_test::send_to_group("224.5.23.1", ports_.referee,
+                            game_controller_referee(Referee::BALL_PLACEMENT_BLUE, 3));
+    bus_.wait_and_handle(100);
+  }
+  ASSERT_FALSE(seen.empty()) << bridge_->log();
+  EXPECT_EQ(seen.back().command, +ubersim::referee_t::BALL_PLACEMENT_BLUE);
+  EXPECT_EQ(seen.back().stage, +ubersim::referee_t::STAGE_FIRST_HALF_PRE);
+  EXPECT_EQ(seen.back().command_counter, 3);
+  EXPECT_EQ(seen.back().yellow_goalkeeper, 2);
+  ASSERT_TRUE(seen.back().has_designated_position);
+  EXPECT_DOUBLE_EQ(seen.back().designated_position[0], -1.2);
+  // ubersim's own referee, if one ran, must not reach the group.
+  ssl_test::VisionReceiver referee_receiver("224.5.23.1", ports_.referee);
+  ubersim::referee_t ours{};
+  ours.command = ubersim::referee_t::STOP;
+  for (int i = 0; i < 5; ++i) bus_.publish("REFEREE", ours);
+  EXPECT_EQ(ubersim_referee_packets(referee_receiver, 1.0), 0);
+}
+
+TEST_F(SslBridgeProcess, AnotherGameControllerOnTheGroupStopsOursBeingSent) {
+  ssl_test::VisionReceiver referee_receiver("224.5.23.1", ports_.referee);
+  ubersim::referee_t ours{};
+  ours.command = ubersim::referee_t::STOP;
+  int sent_before = 0;
+  for (int attempt = 0; attempt < 50 && sent_before == 0; ++attempt) {
+    bus_.publish("REFEREE", ours);
+    sent_before = ubersim_referee_packets(referee_receiver, 0.1);
+  }
+  ASSERT_GT(sent_before, 0) << bridge_->log();
+  ssl_test::send_to_group("224.5.23.1", ports_.referee,
+                          game_controller_referee(Referee::HALT, 1));
+  ASSERT_TRUE(bridge_->wait_for_output("another game controller", 5)) << bridge_->log();
+  for (int i = 0; i < 5; ++i) bus_.publish("REFEREE", ours);
+  EXPECT_EQ(ubersim_referee_packets(referee_receiver, 1.0), 0) << bridge_->log();
 }

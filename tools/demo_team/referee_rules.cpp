@@ -45,7 +45,13 @@ GameMode RefereeFollower::mode() const {
   if (!last_) return GameMode::Play;
   const auto& r = *last_;
   switch (r.command) {
-    case referee_t::HALT: return GameMode::Halt;
+    case referee_t::HALT:
+    case referee_t::TIMEOUT_YELLOW:
+    case referee_t::TIMEOUT_BLUE: return GameMode::Halt;
+    // The demo team does not place the ball: it keeps away as at a stop, and the
+    // official game controller moves on when the placement fails.
+    case referee_t::BALL_PLACEMENT_YELLOW:
+    case referee_t::BALL_PLACEMENT_BLUE:
     case referee_t::STOP: return GameMode::Stop;
     case referee_t::PREPARE_KICKOFF_YELLOW:
     case referee_t::PREPARE_KICKOFF_BLUE:

@@ -16,6 +16,7 @@
 #include "ubersim/message_bus.hpp"
 #include "ubersim/shutdown.hpp"
 #include "ubersim/ssl_bridge/latest_state.hpp"
+#include "ubersim/ssl_bridge/official_referee.hpp"
 #include "ubersim/ssl_bridge/referee_translation.hpp"
 #include "ubersim/ssl_bridge/robot_control_translation.hpp"
 #include "ubersim/ssl_bridge/sim_control_translation.hpp"
@@ -47,10 +48,14 @@ struct BridgeOptions {
   int tracked_ttl = 0;
   double tracked_rate = 60;  // Hz of sim time
   // Referee messages (from REFEREE, the automatic referee), where the SSL game
-  // controller sends them.
+  // controller sends them. With official_referee the direction turns: the
+  // official game controller's messages there go to REFEREE, and nothing of
+  // ubersim's is sent. Without it, a foreign game controller heard there stops
+  // ubersim's messages (one referee per group), with an error in the log.
   std::string referee_address = "224.5.23.1";
   int referee_port = 10003;
   int referee_ttl = 0;
+  bool official_referee = false;
   // What robot specs start from (the --robot-type file); unset: specs are refused.
   std::optional<BaseRobotType> base_robot_type;
   // Sync mode (--sync, docs/sync.md): each team that speaks to its robot
@@ -80,6 +85,8 @@ class SslBridge {
   void on_ack(const sim_control_ack_t& ack);
   void on_state(const sim_state_t& state);
   void on_referee(const referee_t& referee);
+  // A Referee datagram heard on the referee group (ours come back too).
+  void on_referee_datagram(const std::vector<uint8_t>& bytes);
   // decode_datagram, counting and logging (once per second) what it drops.
   bool decoded(const std::vector<uint8_t>& bytes, google::protobuf::Message& message,
                Errors& errors, const std::string& port);
@@ -114,7 +121,11 @@ class SslBridge {
   std::optional<field_geometry_t> current_field_;  // from the latest VISION_GEOMETRY
   UdpSocket referee_socket_;
   sockaddr_in referee_destination_{};
+  std::string referee_source_;  // our source_identifier, to tell our packets from others'
   RefereeTranslator referee_translator_;
+  std::optional<UdpSocket> referee_listener_;
+  OfficialRefereeTracker official_referee_;
+  bool foreign_referee_heard_ = false;
   std::optional<TrackedFrames> tracked_;
   std::optional<UdpSocket> tracked_socket_;
   sockaddr_in tracked_destination_{};

@@ -18,6 +18,10 @@ class UdpSocket {
   // For sending to a multicast group: TTL, loopback delivery, and the
   // interface (by its address) the datagrams leave on.
   static UdpSocket multicast_sender(int ttl, const std::string& interface_ip);
+  // For receiving what is sent to a multicast group and port, on the interface
+  // with that address. Shared (SO_REUSEADDR): the teams' programs listen there too.
+  static UdpSocket multicast_receiver(const std::string& group, int port,
+                                      const std::string& interface_ip);
 
   UdpSocket(UdpSocket&& other) noexcept;
   UdpSocket& operator=(UdpSocket&& other) noexcept;
