@@ -28,6 +28,11 @@ void TruthDemandAnnouncer::nothing() { asking_ = changed_ = false; }
 
 void TruthDemandAnnouncer::tick(Clock::time_point now) {
   if (!asking_ || (!changed_ && now < next_)) return;
+  announce(now);
+}
+
+void TruthDemandAnnouncer::announce(Clock::time_point now) {
+  if (!asking_) return;
   bus_.publish(channel_, demand_);
   changed_ = false;
   next_ = now + kRepeat;

@@ -384,6 +384,10 @@ std::optional<double> SslBridge::sync_datagram(Team team) {
     case SyncAnswers::Kind::Registered:
       spdlog::info("sync: the {} team spoke on its port: registered as sync client ssl_bridge_{}",
                    name, name);
+      // Physics starts stepping once the teams are registered: it must know the
+      // tracked frames' instants before, or two sync runs publish other states.
+      // (A team speaks only after a detection packet, so physics listens by now.)
+      truth_demand_.announce();
       say_sync_client(team, false);
       return std::nullopt;
     case SyncAnswers::Kind::Extra:

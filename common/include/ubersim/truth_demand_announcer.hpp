@@ -26,6 +26,9 @@ class TruthDemandAnnouncer {
 
   // Sends the demand if it changed or kRepeat has passed since it was last sent.
   void tick(Clock::time_point now = Clock::now());
+  // Sends the demand now (if there is one), e.g. before a sync registration
+  // that lets physics start stepping: it must know the demand from step one.
+  void announce(Clock::time_point now = Clock::now());
 
  private:
   MessageBus& bus_;
