@@ -22,6 +22,8 @@ std::map<std::string, std::string> keys_of(const FieldConfig& f) {
   return {{"FIELD_LENGTH", number(f.field_length)},
           {"FIELD_WIDTH", number(f.field_width)},
           {"BOUNDARY_WIDTH", number(f.boundary_width)},
+          {"BOUNDARY_WIDTH_GOAL_LINE", number(f.boundary_width_goal_line)},
+          {"GOAL_SUBSTITUTION_AREA_WIDTH", number(f.goal_substitution_area_width)},
           {"LINE_WIDTH", number(f.line_width)},
           {"GOAL_WIDTH", number(f.goal_width)},
           {"GOAL_DEPTH", number(f.goal_depth)},
