@@ -53,6 +53,11 @@ struct WorldSetup {
 WorldSetup load_world_setup(const std::string& config_dir, const std::string& scenario,
                             const std::string& physics_config);
 
+// The setup's robots and ball moved onto another field: their positions are
+// scaled by the ratio of the field sizes (a Division B line-up stays a line-up
+// on a 6 x 4 m field), and the field replaced.
+void put_on_field(WorldSetup& setup, const FieldConfig& field);
+
 struct WorldCounters {
   std::uint64_t commands_applied = 0;
   std::uint64_t commands_dropped = 0;  // non-finite, bad mode, bad wheel count
