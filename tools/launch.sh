@@ -156,7 +156,7 @@ start() {  # start NAME COMMAND...
 mode=$speed
 [ "$lockstep" = 1 ] && mode=lockstep
 [ "$sync" = 1 ] && mode=sync
-echo "ubersim: scenario $scenario, profile $profile, speed $mode, LCM $lcm_url, CPU ${cpu}"
+echo "ubersim: scenario $scenario${field_override:+ on field $field_override}, profile $profile, speed $mode, LCM $lcm_url, CPU ${cpu}"
 if [ -n "$log_file" ]; then
   # ubersim_logger, not lcm-logger: lcm-logger 1.3.1 queues only 30 messages
   # per subscription and loses SIM_STATE when physics runs ahead in bursts.
