@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "ubersim/field_change.hpp"
 #include "ubersim/ssl_bridge/units.hpp"
 
 namespace ubersim::ssl {
@@ -35,6 +36,23 @@ double goal_substitution_area_width(const SSL_GeometryFieldSize& f,
   return std::min(kept, boundary_width_goal_line(f));
 }
 
+// The ball in play takes the geometry's radius (physics rebuilds it and the
+// robots around it); within half a millimetre of ours it stays as it is.
+void add_ball_radius(float radius_mm, const field_geometry_t* current, std::string& text,
+                     Errors& errors) {
+  const double radius = mm_to_m(radius_mm);
+  if (!std::isfinite(radius) || radius < kMinBallRadius || radius > kMaxBallRadius) {
+    char what[96];
+    std::snprintf(what, sizeof what, "geometry.field.ball_radius must be %g to %g mm; not applied",
+                  m_to_mm(kMinBallRadius), m_to_mm(kMaxBallRadius));
+    add_error(errors, kErrorInvalid, what);
+    return;
+  }
+  constexpr double kSameBall = 0.0005;  // m
+  if (current != nullptr && std::fabs(radius - current->ball_radius) <= kSameBall) return;
+  text += line(kBallRadiusKey, radius);
+}
+
 }  // namespace
 
 GeometryChange translate_geometry(const SSL_GeometryData& geometry,
@@ -63,13 +81,9 @@ GeometryChange translate_geometry(const SSL_GeometryData& geometry,
     text += line("PENALTY_MARK_DISTANCE", mm_to_m(f.goal_center_to_penalty_mark()));
   }
   if (f.has_goal_height()) text += line("GOAL_HEIGHT", mm_to_m(f.goal_height()));
+  if (f.has_ball_radius()) add_ball_radius(f.ball_radius(), current, text, out.errors);
   out.field_config = text;
 
-  if (f.has_ball_radius() && current != nullptr &&
-      std::fabs(mm_to_m(f.ball_radius()) - current->ball_radius) > 0.0005) {
-    add_error(out.errors, kErrorUnsupported,
-              "geometry.field.ball_radius: the ball is the scenario's ball config; not applied");
-  }
   if (geometry.calib_size() > 0) {
     add_error(out.errors, kErrorUnsupported,
               "geometry.calib: the cameras are the vision emulator's profile; not applied");

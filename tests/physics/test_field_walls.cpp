@@ -2,7 +2,7 @@
 // a ball rolled at a wall turns back where its surface meets the wall's inner
 // face. The 2026 Division A field leaves 0.6 m behind the goal lines and 0.3 m
 // along the touch lines; a field change at run time (SIM_CONTROL SET_FIELD)
-// moves the walls and the goals with it.
+// moves the walls and the goals with it, and may give the ball another radius.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -79,6 +79,36 @@ TEST(FieldWalls, GoalHeightOfAFieldChangeIsTheGoalsHeight) {
   const double resting = world.ball().position()[2] - r;
   EXPECT_NEAR(resting, 0.3, 0.003);
   std::printf("ball resting on the goal at %.4f m (goal height 0.3 m)\n", resting);
+}
+
+// The SSL geometry's ball radius, applied at run time: the ball rests on its
+// new radius, bounces off the wall where its new surface meets it, the robots
+// stay where they stood, and the announced geometry carries it.
+TEST(FieldWalls, BallRadiusOfAFieldChangeIsTheBallsRadius) {
+  World world(empty_world(DriveModel::Planar, "division_b"));
+  PlanarState pose;
+  pose.x = -1.0;
+  pose.y = 0.5;
+  world.add_robot(Team::Yellow, 3, "omni4_ssl", pose);
+  world.change_field("BALL_RADIUS = 0.025\n");
+  EXPECT_DOUBLE_EQ(world.setup().ball.radius, 0.025);
+  EXPECT_DOUBLE_EQ(world.geometry().ball_radius, 0.025);
+  world.place_ball(1.0, 0, 0, 0, 0, 0);
+  run_for(world, 0.5);
+  const double centre_height = world.ball().position()[2];
+  EXPECT_NEAR(centre_height, 0.025, 0.0005);
+  const double wall = reach_of_ball(world, 0, 2.0, 0, 2.0);
+  EXPECT_NEAR(wall, 3.0 + 0.3, kWallTolerance);
+  ASSERT_NE(world.robot(Team::Yellow, 3), nullptr);
+  EXPECT_NEAR(world.robot(Team::Yellow, 3)->planar_state().x, -1.0, 0.01);
+  std::printf("ball of radius 0.025 m: centre at %.4f m, touch-line wall at %.4f m\n",
+              centre_height, wall);
+
+  // A ball the robots' dribblers cannot reach (5 mm, roller 35 mm up) is
+  // refused, and nothing changes.
+  EXPECT_THROW(world.change_field("BALL_RADIUS = 0.005\n"), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(world.setup().ball.radius, 0.025);
+  EXPECT_EQ(world.robots().size(), 1u);
 }
 
 }  // namespace

@@ -387,6 +387,17 @@ TEST_F(SslProtocols, OfficialDivisionAGeometryIsTheFieldPlayedOn) {
   const double y = y_against_wall(2);
   std::printf("robot against the touch-line wall of the official Division A field: %.1f mm\n", y);
   EXPECT_NEAR(y, 4500 + 300 - 90, 5.0);
+
+  // Another ball radius in the geometry becomes the ball's (physics rebuilds it).
+  SimulatorCommand bigger_ball = change;
+  bigger_ball.mutable_config()->mutable_geometry()->mutable_field()->set_ball_radius(25.0f);
+  expect_done(bigger_ball);
+  EXPECT_TRUE(vision_rx_.receive_until(
+      [](const SSL_WrapperPacket& p) {
+        return p.has_geometry() && std::abs(p.geometry().field().ball_radius() - 25.0f) < 1e-3f;
+      },
+      5))
+      << physics_->log();
 }
 
 namespace {

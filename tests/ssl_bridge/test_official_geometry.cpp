@@ -6,6 +6,7 @@
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -128,17 +129,32 @@ TEST(SslOfficialGeometry, SubstitutionAreaNotSentShrinksWithTheAreaBehindTheGoal
   EXPECT_DOUBLE_EQ(f.goal_substitution_area_width, 0.2);
 }
 
-TEST(SslOfficialGeometry, BallRadiusWithinHalfAMillimetreIsOursAndMoreIsAnError) {
+TEST(SslOfficialGeometry, BallRadiusWithinHalfAMillimetreIsOursAndOtherwiseApplied) {
   SSL_GeometryData geometry = official_geometry("a");
   geometry.clear_calib();
   const field_geometry_t reported = field_in_use().to_message(kBallRadius);
   geometry.mutable_field()->set_ball_radius(21.9f);
-  EXPECT_TRUE(translate_geometry(geometry, &reported).errors.empty());
-  geometry.mutable_field()->set_ball_radius(22.5f);
-  const Errors errors = translate_geometry(geometry, &reported).errors;
-  ASSERT_EQ(errors.size(), 1u);
-  EXPECT_EQ(errors[0].code(), kErrorUnsupported);
-  EXPECT_EQ(errors[0].message().rfind("geometry.field.ball_radius", 0), 0u);
+  GeometryChange change = translate_geometry(geometry, &reported);
+  EXPECT_TRUE(change.errors.empty());
+  EXPECT_EQ(change.field_config->find("BALL_RADIUS"), std::string::npos);  // ours stays
+
+  geometry.mutable_field()->set_ball_radius(25.0f);
+  change = translate_geometry(geometry, &reported);
+  EXPECT_TRUE(change.errors.empty());
+  EXPECT_NE(change.field_config->find("BALL_RADIUS = 0.025\n"), std::string::npos);
+  const FieldChange applied = change_field_and_ball(field_in_use(), *change.field_config);
+  ASSERT_TRUE(applied.ball_radius.has_value());
+  EXPECT_DOUBLE_EQ(*applied.ball_radius, 0.025);
+  // A plain field config has no ball: change_field refuses the key.
+  EXPECT_THROW(change_field(field_in_use(), "BALL_RADIUS = 0.025\n"), ConfigError);
+
+  for (float bad : {std::nanf(""), -21.5f, 500.0f}) {
+    geometry.mutable_field()->set_ball_radius(bad);
+    change = translate_geometry(geometry, &reported);
+    ASSERT_EQ(change.errors.size(), 1u) << bad;
+    EXPECT_EQ(change.errors[0].code(), kErrorInvalid);
+    EXPECT_EQ(change.field_config->find("BALL_RADIUS"), std::string::npos);
+  }
 }
 
 // What ubersim announces for a shipped field config reads back as the same field.

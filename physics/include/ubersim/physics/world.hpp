@@ -109,8 +109,14 @@ class World {
   // A field changed at run time (SIM_CONTROL SET_FIELD): the keys of
   // field_text replace those of the field in use, the static field is
   // rebuilt, bodies outside the new walls are moved in. Also kept over RESET.
-  // Throws ConfigError; returns what was done.
+  // BALL_RADIUS in the text gives the ball another radius (change_ball_radius).
+  // Throws ConfigError (std::invalid_argument when a robot type cannot reach
+  // such a ball); nothing changes then. Returns what was done.
   std::string change_field(const std::string& field_text);
+  // The ball in play gets `radius` where it is (same mass and surface), and
+  // every robot is rebuilt where it stands around it (the dribbler's roller
+  // and the kicker reach follow the ball). Kept over RESET.
+  void change_ball_radius(double radius);
   bool remove_robot(Team team, int id);
   Robot* robot(Team team, int id);
   // Ball at a position (z = 0: resting on the floor) with a velocity, no spin.
