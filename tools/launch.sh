@@ -13,7 +13,10 @@ usage() {
   cat <<USAGE
 usage: tools/launch.sh [options]
   --scenario NAME      robots, ball and field (default division_b_6v6)
-  --field NAME         field2002 | division_b | division_a: that field's default scenario
+  --field NAME         field2002 | division_b | division_a: that field's default scenario;
+                       any other config/fields/NAME.cfg (erforce_2014 ... erforce_2023b):
+                       the scenario of the nearest size, its places scaled to the field;
+                       with --scenario: that scenario's line-up on this field
   --profile NAME       vision and radio emulator profile (default cmdragons02)
   --speed F            1 real time (default), 0.5, 4 ..., 0 as fast as possible
   --lockstep           physics advances only when told (referee step N)
@@ -100,12 +103,24 @@ done
 # The official game controller reaches ubersim only through the SSL bridge.
 [ "$referee" = official ] && ssl_bridge=1
 
-if [ -z "$scenario" ]; then
+field_override=""
+if [ -n "$scenario" ] && [ -n "$field" ]; then
+  field_override=$field  # the scenario's line-up on that field
+elif [ -z "$scenario" ]; then
   case "${field:-division_b}" in
     field2002) scenario=field2002_5v5 ;;
     division_b) scenario=division_b_6v6 ;;
     division_a) scenario=division_a_11v11 ;;
-    *) echo "launch: no default scenario for field '$field' (give --scenario)" >&2; exit 2 ;;
+    *)
+      # Another field: the line-up of the nearest size, scaled onto it by physics.
+      field_file="$root/config/fields/$field.cfg"
+      [ -f "$field_file" ] || field_file="$field"
+      length=$(awk -F'[=#]' '/^[ \t]*FIELD_LENGTH[ \t]*=/ { gsub(/[ \t]/, "", $2); print $2 }' "$field_file" 2>/dev/null)
+      if [ -z "$length" ]; then
+        echo "launch: no field '$field' (config/fields/$field.cfg with FIELD_LENGTH)" >&2; exit 2
+      fi
+      scenario=$(awk -v l="$length" 'BEGIN { print (l >= 10.5 ? "division_a_11v11" : l >= 4.5 ? "division_b_6v6" : "field2002_5v5") }')
+      field_override=$field ;;
   esac
 fi
 case "$demo" in yellow|blue|both|none) ;; *) echo "launch: --demo takes yellow, blue, both or none" >&2; exit 2 ;; esac
@@ -153,7 +168,7 @@ start() {  # start NAME COMMAND...
 mode=$speed
 [ "$lockstep" = 1 ] && mode=lockstep
 [ "$sync" = 1 ] && mode=sync
-echo "ubersim: scenario $scenario, profile $profile, speed $mode, LCM $lcm_url, CPU ${cpu}"
+echo "ubersim: scenario $scenario${field_override:+ on field $field_override}, profile $profile, speed $mode, LCM $lcm_url, CPU ${cpu}"
 if [ -n "$log_file" ]; then
   # ubersim_logger, not lcm-logger: lcm-logger 1.3.1 queues only 30 messages
   # per subscription and loses SIM_STATE when physics runs ahead in bursts.
@@ -165,6 +180,7 @@ if [ -n "$log_file" ]; then
   sleep 0.1
 fi
 physics_args=(--scenario "$scenario" --speed "$speed")
+[ -n "$field_override" ] && physics_args+=(--field "$field_override")
 [ "$lockstep" = 1 ] && physics_args+=(--lockstep)
 [ "$truth_every_step" = 1 ] && physics_args+=(--truth-every-step)
 radio_args=() demo_args=() bridge_args=()

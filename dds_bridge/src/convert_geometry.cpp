@@ -24,6 +24,8 @@ void field_to_dds(const field_geometry_t& from, DdsFieldGeometry& to) {
   to.penalty_area_width = from.penalty_area_width;
   to.ball_radius = from.ball_radius;
   to.penalty_mark_distance = from.penalty_mark_distance;
+  to.boundary_width_goal_line = from.boundary_width_goal_line;
+  to.goal_substitution_area_width = from.goal_substitution_area_width;
 }
 
 field_geometry_t field_from_dds(const DdsFieldGeometry& from) {
@@ -44,6 +46,8 @@ field_geometry_t field_from_dds(const DdsFieldGeometry& from) {
   to.penalty_area_width = from.penalty_area_width;
   to.ball_radius = from.ball_radius;
   to.penalty_mark_distance = from.penalty_mark_distance;
+  to.boundary_width_goal_line = from.boundary_width_goal_line;
+  to.goal_substitution_area_width = from.goal_substitution_area_width;
   return to;
 }
 

@@ -40,21 +40,24 @@ void check_body(FiniteCheck& check, const std::string& name, const body_state_t&
 }
 
 void check_field(FiniteCheck& check, const std::string& prefix, const field_geometry_t& f) {
-  for (const auto& [name, value] : {std::pair<const char*, double>{"field_length", f.field_length},
-                                    {"field_width", f.field_width},
-                                    {"boundary_width", f.boundary_width},
-                                    {"line_width", f.line_width},
-                                    {"goal_width", f.goal_width},
-                                    {"goal_depth", f.goal_depth},
-                                    {"goal_height", f.goal_height},
-                                    {"goal_wall_thickness", f.goal_wall_thickness},
-                                    {"wall_height", f.wall_height},
-                                    {"wall_thickness", f.wall_thickness},
-                                    {"center_circle_radius", f.center_circle_radius},
-                                    {"penalty_area_depth", f.penalty_area_depth},
-                                    {"penalty_area_width", f.penalty_area_width},
-                                    {"ball_radius", f.ball_radius},
-                                    {"penalty_mark_distance", f.penalty_mark_distance}})
+  for (const auto& [name, value] :
+       {std::pair<const char*, double>{"field_length", f.field_length},
+        {"field_width", f.field_width},
+        {"boundary_width", f.boundary_width},
+        {"line_width", f.line_width},
+        {"goal_width", f.goal_width},
+        {"goal_depth", f.goal_depth},
+        {"goal_height", f.goal_height},
+        {"goal_wall_thickness", f.goal_wall_thickness},
+        {"wall_height", f.wall_height},
+        {"wall_thickness", f.wall_thickness},
+        {"center_circle_radius", f.center_circle_radius},
+        {"penalty_area_depth", f.penalty_area_depth},
+        {"penalty_area_width", f.penalty_area_width},
+        {"ball_radius", f.ball_radius},
+        {"penalty_mark_distance", f.penalty_mark_distance},
+        {"boundary_width_goal_line", f.boundary_width_goal_line},
+        {"goal_substitution_area_width", f.goal_substitution_area_width}})
     check(prefix + name, value);
 }
 

@@ -26,6 +26,10 @@ int run(int argc, char** argv) {
   double duration = 0;
   app.add_option("--scenario", scenario, "scenario config: field, ball and robots")
       ->capture_default_str();
+  std::string field;
+  app.add_option("--field", field,
+                 "field config (config/fields/<name>.cfg or a path) instead of the scenario's; "
+                 "robots and ball keep their places scaled to its size");
   app.add_option("--physics-config", physics_config, "config/physics/<name>.cfg: step, solver...")
       ->capture_default_str();
   app.add_option("--speed", speed, "times real time (0.5, 4 ...); 0 = as fast as possible")
@@ -60,6 +64,9 @@ int run(int argc, char** argv) {
   ubersim::setup_logging("physics", common.verbosity());
   ubersim::physics::WorldSetup setup =
       ubersim::physics::load_world_setup(common.config_root(), scenario, physics_config);
+  if (!field.empty()) {
+    ubersim::physics::put_on_field(setup, ubersim::load_field_config(common.config_root(), field));
+  }
   setup.seed = seed;
   ubersim::physics::ServerOptions options;
   options.scenario = scenario;

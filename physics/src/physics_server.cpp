@@ -84,8 +84,9 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
       std::chrono::duration<double>(world.setup().physics.message_poll_period));
   auto next_poll = start;
   pacer.restart(start, world.step_index());
-  spdlog::info("physics running: scenario {}, {} robots, {} Hz, {}{}", options_.scenario,
-               world.robots().size(), 1.0 / world.dt(),
+  spdlog::info("physics running: scenario {} on field {} ({:g} x {:g} m), {} robots, {} Hz, {}{}",
+               options_.scenario, world.setup().field.name, world.setup().field.field_length,
+               world.setup().field.field_width, world.robots().size(), 1.0 / world.dt(),
                core_.sync()                  ? std::string("sync (docs/sync.md)")
                : pacer.lockstep()            ? std::string("lockstep")
                : pacer.as_fast_as_possible() ? std::string("as fast as possible")

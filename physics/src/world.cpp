@@ -50,6 +50,18 @@ WorldSetup load_world_setup(const std::string& config_dir, const std::string& sc
   return setup;
 }
 
+void put_on_field(WorldSetup& setup, const FieldConfig& field) {
+  const double sx = field.field_length / setup.field.field_length;
+  const double sy = field.field_width / setup.field.field_width;
+  for (RobotSpawn& spawn : setup.robots) {
+    spawn.state.x *= sx;
+    spawn.state.y *= sy;
+  }
+  setup.ball_x *= sx;
+  setup.ball_y *= sy;
+  setup.field = field;
+}
+
 World::World(WorldSetup setup) : setup_(std::move(setup)), dt_(setup_.physics.dt()) {
   ensure_ode_initialised();
   ball_surface_ = derive_ball_surface(setup_.ball, setup_.physics.gravity);

@@ -1,15 +1,17 @@
 #include "ubersim/referee/auto_runner.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <ubersim/referee_t.hpp>
 #include <ubersim/truth_demand_t.hpp>
+#include <vector>
 
 #include "ubersim/config.hpp"
+#include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/referee/referee_message.hpp"
-#include "ubersim/logging.hpp"
 #include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/sim_link.hpp"
 #include "ubersim/referee/state_judge.hpp"
@@ -21,6 +23,23 @@ namespace {
 constexpr std::int64_t kRequestBase = 7LL << 56;  // our request ids, apart from the CLI's
 // SIM_TRUTH_DEMAND is repeated this often (physics forgets a demand after 3 s).
 constexpr auto kDemandRepeat = std::chrono::seconds(1);
+
+std::vector<char> encoded(const field_geometry_t& geometry) {
+  std::vector<char> bytes(static_cast<std::size_t>(geometry.getEncodedSize()));
+  geometry.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+// Every size the rules and placements use is a length a field can have.
+bool usable(const field_geometry_t& f) {
+  for (double length : {f.field_length, f.field_width, f.boundary_width, f.boundary_width_goal_line,
+                        f.goal_width, f.penalty_area_depth, f.penalty_area_width,
+                        f.center_circle_radius, f.penalty_mark_distance}) {
+    if (!std::isfinite(length) || length < 0 || length > 1e6) return false;
+  }
+  return f.field_length > 0 && f.field_width > 0 && std::isfinite(f.ball_radius) &&
+         f.ball_radius > 0 && f.ball_radius < 1;
+}
 
 class Runner {
  public:
@@ -44,6 +63,9 @@ class Runner {
                    field_, [this](const std::string& type) { return radii_(type); });
     bus_.subscribe<sim_state_t>(
         channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 100000);
+    // Physics announces its field now and then and at once after a SET_FIELD.
+    bus_.subscribe<field_geometry_t>(channels_(Channel::SimGeometry),
+                                     [this](const field_geometry_t& g) { on_geometry(g); });
     if (options_.start_physics) {
       // Physics waited paused for us: the game starts at the first state we see.
       sim_control_t resume{};
@@ -87,6 +109,21 @@ class Runner {
     demand.consumer = "ubersim_referee auto";
     demand.every_step = true;
     bus_.publish(channels_.extra(kTruthDemandChannel), demand);
+  }
+
+  void on_geometry(const field_geometry_t& geometry) {
+    if (encoded(geometry) == encoded(field_)) return;
+    if (!usable(geometry)) {
+      bad_input_.warn("field_geometry", "a SIM_GEOMETRY with sizes that are not finite lengths");
+      return;
+    }
+    field_ = geometry;
+    judge_->set_field(field_);
+    spdlog::info(
+        "automatic referee: field now {} x {} m (penalty mark {} m from the goal "
+        "attacked, walls {} m behind the goal lines)",
+        field_.field_length, field_.field_width, field_.penalty_mark_distance,
+        field_.boundary_width_goal_line);
   }
 
   void on_state(const sim_state_t& state) {

@@ -129,8 +129,7 @@ void AutoReferee::stop_for(const Restart& restart, Decision& decision) {
     double x = p.x, y = p.y;
     if (p.kind == Situation::KickOff) x = y = 0;
     if (p.kind == Situation::Penalty) {
-      const double attacked = sides_.defends(other(p.team)) * field_.field_length / 2;
-      x = attacked - (attacked > 0 ? 1 : -1) * field_.penalty_mark_distance;
+      x = penalty_mark_x(field_, sides_, p.team);
       y = 0;
     }
     state_.designated_position = std::make_pair(x, y);

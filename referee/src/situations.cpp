@@ -48,9 +48,16 @@ void keep_everyone_out(PlacementScene& scene, double distance_from_hull) {
 }  // namespace
 
 PlacementBounds bounds_of(const field_geometry_t& field) {
-  // Robots may stand in the boundary area, not in or behind the walls.
-  return {field.field_length / 2 + field.boundary_width,
+  // Robots may stand in the boundary area, not in or behind the walls; the
+  // area behind the goal lines may be wider than along the touch lines.
+  return {field.field_length / 2 + field.boundary_width_goal_line,
           field.field_width / 2 + field.boundary_width};
+}
+
+double penalty_mark_x(const field_geometry_t& field, FieldSides sides, Team kicking) {
+  const Team defending = kicking == Team::Yellow ? Team::Blue : Team::Yellow;
+  const int attacked_side = sides.defends(defending);
+  return attacked_side * (field.field_length / 2 - field.penalty_mark_distance);
 }
 
 PlacementScene plan_situation(const SituationRequest& request, PlacementScene scene,
@@ -120,7 +127,7 @@ PlacementScene plan_situation(const SituationRequest& request, PlacementScene sc
 
     case Situation::Penalty: {
       const double attack = attacked_goal_x > 0 ? 1.0 : -1.0;
-      scene.ball_x = attacked_goal_x - attack * field.penalty_mark_distance;
+      scene.ball_x = penalty_mark_x(field, sides, kicking);
       scene.ball_y = 0;
       const int keeper = nearest_robot(scene, other, attacked_goal_x, 0);
       if (keeper >= 0) {

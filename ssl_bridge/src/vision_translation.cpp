@@ -140,7 +140,8 @@ bool forwardable(const vision_geometry_t& geometry) {
   bool ok = size(f.field_length) && size(f.field_width) && size(f.boundary_width) &&
             size(f.line_width) && size(f.goal_width) && size(f.goal_depth) && size(f.goal_height) &&
             size(f.center_circle_radius) && size(f.penalty_area_depth) &&
-            size(f.penalty_area_width) && size(f.ball_radius) && size(f.penalty_mark_distance);
+            size(f.penalty_area_width) && size(f.ball_radius) && size(f.penalty_mark_distance) &&
+            size(f.boundary_width_goal_line) && size(f.goal_substitution_area_width);
   for (const camera_calibration_t& c : geometry.cameras) {
     ok = ok && fits_ssl(c.focal_length) && fits_ssl(c.principal_x) && fits_ssl(c.principal_y) &&
          c.image_width >= 0 && c.image_height >= 0;
@@ -184,9 +185,8 @@ SSL_WrapperPacket geometry_packet(const vision_geometry_t& geometry, const Geome
   field->set_goal_width(m_to_whole_mm(f.goal_width));
   field->set_goal_depth(m_to_whole_mm(f.goal_depth));
   field->set_boundary_width(m_to_whole_mm(f.boundary_width));
-  // Our walls stand at one margin all round, behind the goal lines too.
-  field->set_boundary_width_goal_line(m_to_whole_mm(f.boundary_width));
-  field->set_goal_substitution_area_width(m_to_whole_mm(extras.goal_substitution_area_width));
+  field->set_boundary_width_goal_line(m_to_whole_mm(f.boundary_width_goal_line));
+  field->set_goal_substitution_area_width(m_to_whole_mm(f.goal_substitution_area_width));
   add_markings(f, *field);
   field->set_penalty_area_depth(m_to_whole_mm(f.penalty_area_depth));
   field->set_penalty_area_width(m_to_whole_mm(f.penalty_area_width));

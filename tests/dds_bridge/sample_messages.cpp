@@ -79,6 +79,8 @@ field_geometry_t field_geometry(double seed) {
   g.penalty_area_width = 2.0;
   g.ball_radius = 0.0215;
   g.penalty_mark_distance = 6.0;
+  g.boundary_width_goal_line = 0.6;
+  g.goal_substitution_area_width = 0.3;
   return g;
 }
 

@@ -67,6 +67,8 @@ class Game {
     state_.ball.linear_velocity[2] = 0;
   }
 
+  void set_field(const field_geometry_t& field) { referee_.set_field(field); }
+
   // Feeds one state; collects what was decided.
   Decision tick() {
     state_.sim_time = time_;
@@ -295,11 +297,30 @@ TEST(AutoRefereeFouls, DefenderTouchingTheBallInItsDefenceAreaGivesAPenalty) {
   EXPECT_EQ(game.events()[0].robot, 4);
   EXPECT_EQ(game.state().blue.fouls, 1);
   EXPECT_EQ(*game.state().next_command, Command::PreparePenaltyYellow);
-  EXPECT_NEAR(game.state().designated_position->first, 1.5, 1e-9);  // 3 m from the goal line
+  // The official GC's mark: x = field_length / 2 - 6 m, negated for a team on the positive
+  // half; yellow attacks +x from the negative half: 6 m from the blue goal.
+  EXPECT_NEAR(game.state().designated_position->first, -1.5, 1e-9);
   game.run(2.1);
   ASSERT_EQ(game.placements().size(), 1u);
   EXPECT_EQ(game.placements()[0].kind, Situation::Penalty);
   EXPECT_EQ(game.placements()[0].team, Team::Yellow);
+}
+
+// A geometry applied at run time (SIM_GEOMETRY after a SET_FIELD) moves the penalty mark.
+TEST(AutoRefereeFouls, PenaltyMarkFollowsAFieldChange) {
+  Game game;
+  game.kick_off_and_play();
+  field_geometry_t changed = division_b();
+  changed.penalty_mark_distance = 4.0;
+  game.set_field(changed);
+  auto& defender = game.robot(Team::Blue, 4);
+  defender.x = 3.8;
+  defender.y = 0.6;
+  game.ball(3.8 - 0.12, 0.6);
+  game.tick();
+  ASSERT_EQ(game.events().size(), 1u);
+  EXPECT_EQ(game.events()[0].type, EventType::DefenderInDefenseArea);
+  EXPECT_NEAR(game.state().designated_position->first, 4.5 - 4.0, 1e-9);
 }
 
 TEST(AutoRefereeFouls, PartlyInsideTheDefenceAreaIsNoFoul) {

@@ -17,6 +17,21 @@ field_geometry_t division_b() {
   return load_field_config(UBERSIM_SOURCE_CONFIG_DIR, "division_b").to_message(0.0215);
 }
 
+field_geometry_t division_a() {
+  return load_field_config(UBERSIM_SOURCE_CONFIG_DIR, "division_a").to_message(0.0215);
+}
+
+// The official game controller's penalty mark, written out from
+// ssl-game-controller internal/app/statemachine/placementPos.go (penaltyKick,
+// commit 78a9b3bbbc06d1869f37d57923f2106418f2572e): x = field_length / 2 -
+// PenaltyKickDistToGoal, negated when the team in favour is on the positive half.
+double gc_penalty_x(double field_length, double penalty_kick_dist_to_goal,
+                    bool team_in_favour_on_positive_half) {
+  double x = field_length / 2.0 - penalty_kick_dist_to_goal;
+  if (team_in_favour_on_positive_half) x *= -1;
+  return x;
+}
+
 // 2 x 6 robots scattered deliberately badly: some on the ball, some on each other.
 PlacementScene messy_scene() {
   PlacementScene scene;
@@ -152,7 +167,7 @@ TEST(Situations, PenaltyPutsKeeperOnLineAndOthersBehindTheBall) {
       plan_situation({Situation::Penalty, Team::Yellow, 0, 0}, messy_scene(), field, {});
   EXPECT_TRUE(is_legal(planned, bounds_of(field)));
   const double goal_x = field.field_length / 2;  // yellow attacks +x
-  EXPECT_DOUBLE_EQ(planned.ball_x, goal_x - field.penalty_mark_distance);
+  EXPECT_DOUBLE_EQ(planned.ball_x, -1.5);        // 6 m from the goal attacked, in yellow's half
   int keepers = 0, kickers = 0;
   for (const auto& r : planned.robots) {
     if (r.team == Team::Blue && std::abs(r.x - (goal_x - r.radius)) < 1e-9 && r.y == 0) {
@@ -165,6 +180,41 @@ TEST(Situations, PenaltyPutsKeeperOnLineAndOthersBehindTheBall) {
   }
   EXPECT_EQ(keepers, 1);
   EXPECT_EQ(kickers, 1);
+}
+
+// Where the official GC puts the ball, for both divisions, both teams and both sides.
+TEST(Situations, PenaltyMarkIsWhereTheOfficialGameControllerPutsTheBall) {
+  struct Case {
+    field_geometry_t field;
+    double dist_to_goal;  // the GC's PenaltyKickDistToGoal for the division (config.go)
+  };
+  for (const Case& c : {Case{division_a(), 8.0}, Case{division_b(), 6.0}}) {
+    for (int yellow_defends : {-1, 1}) {
+      for (Team kicking : kTeams) {
+        const FieldSides sides{yellow_defends};
+        const bool on_positive_half = sides.defends(kicking) > 0;
+        const double expected =
+            gc_penalty_x(c.field.field_length, c.dist_to_goal, on_positive_half);
+        SCOPED_TRACE(c.field.name + " " + team_name(kicking) + " defends " +
+                     std::to_string(sides.defends(kicking)));
+        EXPECT_DOUBLE_EQ(penalty_mark_x(c.field, sides, kicking), expected);
+        const auto planned =
+            plan_situation({Situation::Penalty, kicking, 0, 0}, messy_scene(), c.field, sides);
+        EXPECT_DOUBLE_EQ(planned.ball_x, expected);
+        EXPECT_DOUBLE_EQ(planned.ball_y, 0.0);
+        EXPECT_TRUE(is_legal(planned, bounds_of(c.field)));
+      }
+    }
+  }
+  // Division A: 2 m into the kicking team's own half.
+  EXPECT_DOUBLE_EQ(penalty_mark_x(division_a(), {}, Team::Yellow), -2.0);
+}
+
+// Robots may stand behind the goal lines as far as the wider boundary there.
+TEST(Situations, PlacementBoundsFollowTheAsymmetricBoundary) {
+  const PlacementBounds a = bounds_of(division_a());
+  EXPECT_DOUBLE_EQ(a.half_length, 6.0 + 0.6);
+  EXPECT_DOUBLE_EQ(a.half_width, 4.5 + 0.3);
 }
 
 TEST(Situations, BallPlacementMovesTheBallAndClearsAround) {

@@ -64,3 +64,28 @@ TEST(StateJudge, AStateWithANumberNotFiniteOrATimeNotValidIsNotJudged) {
   ASSERT_TRUE(out.placement.has_value());
   for (const auto& r : out.placement->robots) EXPECT_TRUE(std::isfinite(r.orientation));
 }
+
+// A field changed at run time (SIM_GEOMETRY after a SET_FIELD) is the field
+// the next placement keeps the robots on.
+TEST(StateJudge, PlacementsFollowAFieldChange) {
+  auto field =
+      ubersim::load_field_config(UBERSIM_SOURCE_CONFIG_DIR, "division_b").to_message(0.0215);
+  StateJudge judge(JudgeOptions{}, field, [](const std::string&) { return 0.09; });
+  EXPECT_TRUE(judge.on_state(state_at(0.0)).judged);
+  field.field_length = 4.0;
+  field.field_width = 3.0;
+  field.boundary_width = 0.2;
+  field.boundary_width_goal_line = 0.3;
+  judge.set_field(field);
+  auto state = state_at(60.0);  // the kick-off is placed
+  state.robots[0].x = 4.0;      // inside division_b's walls, beyond the new ones
+  const auto out = judge.on_state(state);
+  ASSERT_TRUE(out.placement.has_value());
+  bool blue_placed = false;
+  for (const auto& r : out.placement->robots) {
+    EXPECT_LE(std::abs(r.x), 2.0 + 0.3 - 0.09 + 1e-9);
+    EXPECT_LE(std::abs(r.y), 1.5 + 0.2 - 0.09 + 1e-9);
+    blue_placed = blue_placed || r.team == ubersim::team_t::BLUE;
+  }
+  EXPECT_TRUE(blue_placed);
+}

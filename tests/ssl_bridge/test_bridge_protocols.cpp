@@ -4,6 +4,7 @@
 // (generated protobuf classes and raw UDP sockets). Robot specs change the
 // robots' size (seen in geometry and detections) and kick limit (seen on the
 // ball). ISOLATED: own network namespace.
+#include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
 #include <ssl_vision_wrapper_tracked.pb.h>
 
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <thread>
 
@@ -349,6 +351,53 @@ TEST_F(SslProtocols, GeometryChangesTheFieldAndVisionPortMovesTheOutput) {
       moved_rx.receive_until([](const SSL_WrapperPacket& p) { return p.has_detection(); }, 3));
   drain();
   EXPECT_FALSE(vision_rx_.receive(0.5).has_value()) << "still sending to the old port";
+}
+
+// The geometry the official ssl-simulation-controller sends for Division A
+// (its file, tests/ssl_bridge/data), with the 2026 room behind the goal lines
+// as ssl-vision announces it: the whole stack plays on it.
+TEST_F(SslProtocols, OfficialDivisionAGeometryIsTheFieldPlayedOn) {
+  ASSERT_NO_FATAL_FAILURE(start("ideal"));
+  std::ifstream in(std::string(UBERSIM_SOURCE_DIR) +
+                   "/tests/ssl_bridge/data/simctl_geometry_div_a.txt");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  SimulatorCommand change;
+  SSL_GeometryData* geometry = change.mutable_config()->mutable_geometry();
+  ASSERT_TRUE(google::protobuf::TextFormat::ParseFromString(text, geometry));
+  geometry->clear_calib();  // the cameras: the vision profile's (another change)
+  geometry->mutable_field()->set_boundary_width_goal_line(600);
+  expect_done(change);
+  SSL_GeometryFieldSize seen;
+  EXPECT_TRUE(vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        if (p.has_geometry()) seen = p.geometry().field();
+        return p.has_geometry() && seen.field_length() == 12000;
+      },
+      5))
+      << physics_->log();
+  EXPECT_EQ(seen.field_width(), 9000);
+  EXPECT_EQ(seen.boundary_width(), 300);
+  EXPECT_EQ(seen.boundary_width_goal_line(), 600);
+  EXPECT_EQ(seen.goal_center_to_penalty_mark(), 8000);
+  EXPECT_EQ(seen.goal_depth(), 300);
+  EXPECT_EQ(seen.goal_height(), 155);
+  // A robot sent beyond the touch line stops at the new wall, 0.3 m beyond it
+  // (the walls behind the goal lines are out of the one camera's view here;
+  // test_physics_field_walls measures them).
+  const double y = y_against_wall(2);
+  std::printf("robot against the touch-line wall of the official Division A field: %.1f mm\n", y);
+  EXPECT_NEAR(y, 4500 + 300 - 90, 5.0);
+
+  // Another ball radius in the geometry becomes the ball's (physics rebuilds it).
+  SimulatorCommand bigger_ball = change;
+  bigger_ball.mutable_config()->mutable_geometry()->mutable_field()->set_ball_radius(25.0f);
+  expect_done(bigger_ball);
+  EXPECT_TRUE(vision_rx_.receive_until(
+      [](const SSL_WrapperPacket& p) {
+        return p.has_geometry() && std::abs(p.geometry().field().ball_radius() - 25.0f) < 1e-3f;
+      },
+      5))
+      << physics_->log();
 }
 
 namespace {

@@ -88,6 +88,8 @@ vision_geometry_t division_b_like() {
   g.field.penalty_area_width = 2.0;
   g.field.ball_radius = 0.0215;
   g.field.penalty_mark_distance = 6.0;
+  g.field.boundary_width_goal_line = 0.6;       // more room behind the goal lines (2026)
+  g.field.goal_substitution_area_width = 0.25;  // not the SSL default: read from the field
   camera_calibration_t camera{};
   camera.camera_id = 1;
   camera.focal_length = 500;
@@ -164,8 +166,8 @@ TEST(SslVisionTranslation, GeometryFieldInWholeMillimetresWithMarkings) {
   EXPECT_EQ(field.goal_width(), 1000);
   EXPECT_EQ(field.goal_depth(), 180);
   EXPECT_EQ(field.boundary_width(), 300);
-  EXPECT_EQ(field.boundary_width_goal_line(), 300);
-  EXPECT_EQ(field.goal_substitution_area_width(), 300);
+  EXPECT_EQ(field.boundary_width_goal_line(), 600);
+  EXPECT_EQ(field.goal_substitution_area_width(), 250);
   EXPECT_EQ(packet.source(), SSL_SOURCE_OTHER);
   EXPECT_EQ(field.penalty_area_depth(), 1000);
   EXPECT_EQ(field.penalty_area_width(), 2000);

@@ -34,17 +34,76 @@ TEST(ShippedConfigs, EveryFileParses) {
 
 TEST(ShippedConfigs, FieldsLoad) {
   const auto names = names_of("fields");
-  EXPECT_EQ(names, (std::vector<std::string>{"division_a", "division_b", "field2002"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"division_a", "division_b", "erforce_2014",
+                                             "erforce_2017", "erforce_2018", "erforce_2019",
+                                             "erforce_2020", "erforce_2020b", "erforce_2023",
+                                             "erforce_2023b", "field2002"}));
+  for (const auto& name : names) {
+    EXPECT_NO_THROW(ubersim::load_field_config(kConfigDir, name)) << name;
+  }
+  // 2026 official fields (ssl-vision's defaults, the game controller's penalty distances).
   const auto b = ubersim::load_field_config(kConfigDir, "division_b");
   EXPECT_DOUBLE_EQ(b.field_length, 9.0);
   EXPECT_DOUBLE_EQ(b.field_width, 6.0);
+  EXPECT_DOUBLE_EQ(b.penalty_mark_distance, 6.0);
+  EXPECT_DOUBLE_EQ(b.boundary_width, 0.3);
+  EXPECT_DOUBLE_EQ(b.boundary_width_goal_line, 0.6);
+  EXPECT_DOUBLE_EQ(b.goal_substitution_area_width, 0.3);
   const auto a = ubersim::load_field_config(kConfigDir, "division_a");
   EXPECT_DOUBLE_EQ(a.field_length, 12.0);
   EXPECT_DOUBLE_EQ(a.goal_width, 1.8);
-  EXPECT_DOUBLE_EQ(a.boundary_width, 0.3);  // from its BASE
+  EXPECT_DOUBLE_EQ(a.boundary_width, 0.3);
+  EXPECT_DOUBLE_EQ(a.boundary_width_goal_line, 0.6);
+  EXPECT_DOUBLE_EQ(a.goal_substitution_area_width, 0.3);
+  EXPECT_DOUBLE_EQ(a.penalty_mark_distance, 8.0);
+  EXPECT_DOUBLE_EQ(a.wall_thickness, 0.05);  // from its BASE
   const auto f2002 = ubersim::load_field_config(kConfigDir, "field2002");
   EXPECT_DOUBLE_EQ(f2002.field_length, 2.8);
   EXPECT_DOUBLE_EQ(f2002.field_width, 2.3);
+  EXPECT_DOUBLE_EQ(f2002.penalty_mark_distance, 0.45);
+  // Without the optional keys: one margin all round, the SSL substitution area or less.
+  EXPECT_DOUBLE_EQ(f2002.boundary_width_goal_line, f2002.boundary_width);
+  EXPECT_DOUBLE_EQ(f2002.goal_substitution_area_width, 0.2);
+  // ER-Force's presets: its numbers (config/simulator/*.txt at 9814d057).
+  const auto e2020 = ubersim::load_field_config(kConfigDir, "erforce_2020");
+  EXPECT_DOUBLE_EQ(e2020.field_length, 12.04);
+  EXPECT_DOUBLE_EQ(e2020.field_width, 9.02);
+  EXPECT_DOUBLE_EQ(e2020.boundary_width, 0.25);
+  EXPECT_DOUBLE_EQ(e2020.boundary_width_goal_line, 0.25);
+  EXPECT_DOUBLE_EQ(e2020.penalty_mark_distance, 1.8);
+  const auto e2014 = ubersim::load_field_config(kConfigDir, "erforce_2014");
+  EXPECT_DOUBLE_EQ(e2014.field_length, 6.03);
+  EXPECT_DOUBLE_EQ(e2014.goal_width, 0.69);
+  EXPECT_DOUBLE_EQ(e2014.penalty_area_width, 0.32 + 2 * 0.81);
+  const auto e2023b = ubersim::load_field_config(kConfigDir, "erforce_2023b");
+  EXPECT_DOUBLE_EQ(e2023b.field_length, 9.0);
+  EXPECT_DOUBLE_EQ(e2023b.boundary_width, 0.3);
+}
+
+TEST(ShippedConfigs, FieldKeysAreCheckedAgainstTheField) {
+  const auto field = [](const std::string& text) {
+    return ubersim::load_field_config(ubersim::ConfigFile::parse(text, "f.cfg"), "f");
+  };
+  const std::string base =
+      "FIELD_LENGTH = 9\nFIELD_WIDTH = 6\nBOUNDARY_WIDTH = 0.3\nLINE_WIDTH = 0.01\n"
+      "GOAL_WIDTH = 1\nGOAL_DEPTH = 0.18\nGOAL_HEIGHT = 0.155\nGOAL_WALL_THICKNESS = 0.02\n"
+      "WALL_HEIGHT = 0.1\nWALL_THICKNESS = 0.05\nCENTER_CIRCLE_RADIUS = 0.5\n"
+      "PENALTY_AREA_DEPTH = 1\nPENALTY_AREA_WIDTH = 2\nWALL_RESTITUTION = 0.6\n"
+      "WALL_FRICTION = 0.3\n";
+  // The penalty mark may lie anywhere from the goal attacked to the other goal line.
+  EXPECT_DOUBLE_EQ(field(base + "PENALTY_MARK_DISTANCE = 9\n").penalty_mark_distance, 9.0);
+  EXPECT_THROW(field(base + "PENALTY_MARK_DISTANCE = 9.01\n"), ubersim::ConfigError);
+  // The substitution area lies within the area behind the goal line.
+  const auto wide = field(base +
+                          "PENALTY_MARK_DISTANCE = 6\nBOUNDARY_WIDTH_GOAL_LINE = 0.6\n"
+                          "GOAL_SUBSTITUTION_AREA_WIDTH = 0.6\n");
+  EXPECT_DOUBLE_EQ(wide.half_length_to_wall(), 4.5 + 0.6);
+  EXPECT_DOUBLE_EQ(wide.half_width_to_wall(), 3.0 + 0.3);
+  EXPECT_THROW(field(base + "PENALTY_MARK_DISTANCE = 6\nGOAL_SUBSTITUTION_AREA_WIDTH = 0.31\n"),
+               ubersim::ConfigError);
+  // A goal deeper than the room behind the goal line (plus wall) would stick out of the wall.
+  EXPECT_THROW(field(base + "PENALTY_MARK_DISTANCE = 6\nBOUNDARY_WIDTH_GOAL_LINE = 0.1\n"),
+               ubersim::ConfigError);
 }
 
 TEST(ShippedConfigs, RobotsLoad) {

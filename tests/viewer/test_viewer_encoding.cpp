@@ -163,6 +163,10 @@ TEST(ViewerEncoding, FieldGeometryAndCameras) {
   geometry.field.field_width = 6;
   geometry.field.goal_width = 1;
   geometry.field.ball_radius = 0.0215;
+  geometry.field.boundary_width = 0.3;
+  geometry.field.boundary_width_goal_line = 0.6;
+  geometry.field.goal_substitution_area_width = 0.25;
+  geometry.field.penalty_mark_distance = 6;
   camera_calibration_t camera{};
   camera.camera_id = 1;
   camera.position[0] = -2.25;
@@ -175,7 +179,12 @@ TEST(ViewerEncoding, FieldGeometryAndCameras) {
   EXPECT_DOUBLE_EQ(field["field_width"].get<double>(), 6.0);
   EXPECT_DOUBLE_EQ(field["goal_width"].get<double>(), 1.0);
   EXPECT_NEAR(field["ball_radius"].get<double>(), 0.0215, 1e-12);
-  EXPECT_EQ(field.size(), 16u) << "every field_geometry_t field";
+  // The page draws the walls behind the goal lines, the substitution areas and the marks.
+  EXPECT_DOUBLE_EQ(field["boundary_width"].get<double>(), 0.3);
+  EXPECT_DOUBLE_EQ(field["boundary_width_goal_line"].get<double>(), 0.6);
+  EXPECT_DOUBLE_EQ(field["goal_substitution_area_width"].get<double>(), 0.25);
+  EXPECT_DOUBLE_EQ(field["penalty_mark_distance"].get<double>(), 6.0);
+  EXPECT_EQ(field.size(), 18u) << "every field_geometry_t field";
   const json cameras = encode_cameras(geometry);
   ASSERT_EQ(cameras.size(), 1u);
   EXPECT_EQ(cameras[0]["camera_id"], 1);

@@ -120,7 +120,9 @@ json encode_field_geometry(const field_geometry_t& f) {
           {"penalty_area_depth", number(f.penalty_area_depth)},
           {"penalty_area_width", number(f.penalty_area_width)},
           {"ball_radius", number(f.ball_radius)},
-          {"penalty_mark_distance", number(f.penalty_mark_distance)}};
+          {"penalty_mark_distance", number(f.penalty_mark_distance)},
+          {"boundary_width_goal_line", number(f.boundary_width_goal_line)},
+          {"goal_substitution_area_width", number(f.goal_substitution_area_width)}};
 }
 
 json encode_cameras(const vision_geometry_t& geometry) {

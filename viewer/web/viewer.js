@@ -8,6 +8,7 @@ const ROBOT_RADIUS = 0.09;          // SSL robots are at most 0.18 m across (m)
 const VELOCITY_ARROW_SECONDS = 0.5; // an arrow is how far it goes in this time (s)
 const DEFAULT_GEOMETRY = {          // until the field is known: division B
   name: '(waiting for geometry)', field_length: 9, field_width: 6, boundary_width: 0.3,
+  boundary_width_goal_line: 0.3, goal_substitution_area_width: 0.3, penalty_mark_distance: 6,
   line_width: 0.01, goal_width: 1, goal_depth: 0.18, goal_wall_thickness: 0.02,
   wall_thickness: 0.02, center_circle_radius: 0.5, penalty_area_depth: 1,
   penalty_area_width: 2, ball_radius: 0.0215,
@@ -79,7 +80,7 @@ function updateView() {
     canvas.height = Math.round(height * ratio);
   }
   const g = geometry();
-  const halfX = g.field_length / 2 + g.boundary_width + g.wall_thickness + 0.05;
+  const halfX = g.field_length / 2 + goalLineBoundary(g) + g.wall_thickness + 0.05;
   const halfY = g.field_width / 2 + g.boundary_width + g.wall_thickness + 0.05;
   const scale = Math.min(width / (2 * halfX), height / (2 * halfY));
   view = { scale, cx: width / 2, cy: height / 2, ratio };
@@ -127,9 +128,22 @@ function rect(x1, y1, x2, y2, fill) {
   if (fill) { context.fillRect(a, b, w, h); } else { context.strokeRect(a, b, w, h); }
 }
 
+// The margin behind the goal lines (SSL geometry field 16); older bridges
+// sent only the one along the touch lines.
+function goalLineBoundary(g) {
+  return g.boundary_width_goal_line === undefined ? g.boundary_width : g.boundary_width_goal_line;
+}
+
 function drawField(g) {
   const L = g.field_length / 2, W = g.field_width / 2;
-  const outerX = L + g.boundary_width, outerY = W + g.boundary_width;
+  const outerX = L + goalLineBoundary(g), outerY = W + g.boundary_width;
+  // Goal substitution areas: the strip in front of the wall behind each goal line.
+  const sub = g.goal_substitution_area_width || 0;
+  if (sub > 0) {
+    context.fillStyle = 'rgba(255,255,255,0.08)';
+    rect(-outerX, -outerY, -outerX + sub, outerY, true);
+    rect(outerX - sub, -outerY, outerX, outerY, true);
+  }
   // Walls: a dark band just outside the boundary area.
   context.fillStyle = '#333';
   const t = Math.max(g.wall_thickness, 0.02);
@@ -149,6 +163,16 @@ function drawField(g) {
   const pd = g.penalty_area_depth, pw = g.penalty_area_width / 2;
   rect(-L, -pw, -L + pd, pw, false);
   rect(L - pd, -pw, L, pw, false);
+  // Penalty marks: penalty_mark_distance from the centre of the goal attacked.
+  if (g.penalty_mark_distance !== undefined) {
+    context.fillStyle = '#ffffff';
+    for (const side of [-1, 1]) {
+      const [px, py] = toCanvas(side * (L - g.penalty_mark_distance), 0);
+      context.beginPath();
+      context.arc(px, py, Math.max(2, 0.02 * view.scale), 0, 2 * Math.PI);
+      context.fill();
+    }
+  }
   // Goals: the walls around each goal's inside, behind the goal lines.
   const gw = g.goal_width / 2, gd = g.goal_depth, gt = Math.max(g.goal_wall_thickness, 0.01);
   for (const side of [-1, 1]) {

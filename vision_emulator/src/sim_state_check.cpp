@@ -39,6 +39,7 @@ std::string find_sim_state_problem(const sim_state_t& state) {
 
 std::string find_field_geometry_problem(const field_geometry_t& geometry) {
   for (double length : {geometry.field_length, geometry.field_width, geometry.boundary_width,
+                        geometry.boundary_width_goal_line, geometry.goal_substitution_area_width,
                         geometry.goal_width, geometry.goal_depth}) {
     if (!std::isfinite(length) || length < 0 || length > kMaxCoordinate) {
       return "a field length is not finite and >= 0";

@@ -11,7 +11,8 @@ struct FieldConfig {
   std::string name;
   double field_length = 0;           // m
   double field_width = 0;            // m
-  double boundary_width = 0;         // m
+  double boundary_width = 0;         // m, touch lines to the walls
+  double boundary_width_goal_line = 0;  // m, goal lines to the walls
   double line_width = 0;             // m
   double goal_width = 0;             // m
   double goal_depth = 0;             // m
@@ -22,12 +23,16 @@ struct FieldConfig {
   double center_circle_radius = 0;   // m
   double penalty_area_depth = 0;     // m
   double penalty_area_width = 0;     // m
-  double penalty_mark_distance = 0;  // m, goal line of the attacked goal to the penalty mark
+  // m, from the centre of the goal attacked to the penalty mark (SSL's
+  // goal_center_to_penalty_mark; the GC's PenaltyKickDistToGoal)
+  double penalty_mark_distance = 0;
+  // m, depth of the goal substitution area, from the wall behind each goal line
+  double goal_substitution_area_width = 0;
   double wall_restitution = 0;       // unitless
   double wall_friction = 0;          // unitless
 
   // Inner faces of the boundary walls: |x| <= half_length_to_wall(), same for y.
-  double half_length_to_wall() const { return field_length / 2 + boundary_width; }
+  double half_length_to_wall() const { return field_length / 2 + boundary_width_goal_line; }
   double half_width_to_wall() const { return field_width / 2 + boundary_width; }
 
   field_geometry_t to_message(double ball_radius) const;

@@ -53,6 +53,11 @@ struct WorldSetup {
 WorldSetup load_world_setup(const std::string& config_dir, const std::string& scenario,
                             const std::string& physics_config);
 
+// The setup's robots and ball moved onto another field: their positions are
+// scaled by the ratio of the field sizes (a Division B line-up stays a line-up
+// on a 6 x 4 m field), and the field replaced.
+void put_on_field(WorldSetup& setup, const FieldConfig& field);
+
 struct WorldCounters {
   std::uint64_t commands_applied = 0;
   std::uint64_t commands_dropped = 0;  // non-finite, bad mode, bad wheel count
@@ -104,8 +109,14 @@ class World {
   // A field changed at run time (SIM_CONTROL SET_FIELD): the keys of
   // field_text replace those of the field in use, the static field is
   // rebuilt, bodies outside the new walls are moved in. Also kept over RESET.
-  // Throws ConfigError; returns what was done.
+  // BALL_RADIUS in the text gives the ball another radius (change_ball_radius).
+  // Throws ConfigError (std::invalid_argument when a robot type cannot reach
+  // such a ball); nothing changes then. Returns what was done.
   std::string change_field(const std::string& field_text);
+  // The ball in play gets `radius` where it is (same mass and surface), and
+  // every robot is rebuilt where it stands around it (the dribbler's roller
+  // and the kicker reach follow the ball). Kept over RESET.
+  void change_ball_radius(double radius);
   bool remove_robot(Team team, int id);
   Robot* robot(Team team, int id);
   // Ball at a position (z = 0: resting on the floor) with a velocity, no spin.

@@ -116,6 +116,11 @@ class AutoReferee {
 
   Decision update(const sim_state_t& state);
 
+  // The field changed at run time (a SIM_GEOMETRY that differs, e.g. the
+  // geometry the SSL bridge applied): rules and restart spots use it from now on.
+  void set_field(const field_geometry_t& field) { field_ = field; }
+  const field_geometry_t& field() const { return field_; }
+
   // Sim time of the next state this referee must judge, after update(state):
   // no rule can decide differently on any state before it, given how fast
   // the ball and the robots can move and when its clocks run out, so judging

@@ -38,4 +38,9 @@ PlacementScene plan_situation(const SituationRequest& request, PlacementScene sc
 
 PlacementBounds bounds_of(const field_geometry_t& field);
 
+// x of the penalty mark for a penalty kick by `kicking`: penalty_mark_distance
+// from the centre of the goal it attacks, where the official game controller
+// places the ball (x = ±(field_length / 2 - PenaltyKickDistToGoal)).
+double penalty_mark_x(const field_geometry_t& field, FieldSides sides, Team kicking);
+
 }  // namespace ubersim::referee

@@ -44,6 +44,12 @@ class StateJudge {
   // it holds would go out in REFEREE or a placement.
   JudgeOutput on_state(const sim_state_t& state);
 
+  // The field changed at run time: placements and rules follow it.
+  void set_field(const field_geometry_t& field) {
+    field_ = field;
+    referee_.set_field(field);
+  }
+
   const RefereeState& state() const { return referee_.state(); }
   double last_time() const { return last_time_; }  // s, of the last state judged
   std::uint64_t judged() const { return judged_; }

@@ -1,9 +1,9 @@
 #pragma once
 // SimulatorConfig.geometry -> a SET_FIELD request: the field sizes (mm) become
 // "KEY = value" lines (m) of a field config, which physics applies to the field
-// in use. The lines and arcs follow from the sizes (ignored); what ubersim
-// takes from elsewhere (cameras: the vision profile; ball: the ball config)
-// is an error when it differs from what ubersim has.
+// in use. The lines and arcs follow from the sizes (ignored). A ball radius
+// more than 0.5 mm from the ball in play becomes BALL_RADIUS (physics gives
+// the ball that radius); the cameras are the vision profile's (an error).
 #include <messages_robocup_ssl_geometry.pb.h>
 
 #include <optional>

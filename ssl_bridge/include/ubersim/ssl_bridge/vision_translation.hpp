@@ -22,8 +22,6 @@ BallModel load_ball_model(const std::string& config_dir, const std::string& name
 struct GeometryExtras {
   std::optional<BallModel> ball_model;
   double max_robot_radius = 0;  // m, 0 = not reported
-  // m; SSL-Vision's default for both divisions (our field configs have no such key)
-  double goal_substitution_area_width = 0.3;
 };
 
 // The SSL_Source every packet carries: ubersim is neither SSL-Vision nor grSim
