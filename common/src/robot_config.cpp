@@ -99,6 +99,14 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
   r.max_angular_speed = config.real_in("MAX_ANGULAR_SPEED", 0.0, 200.0);
   r.max_acceleration = config.real_in("MAX_ACCELERATION", 0.0, 100.0);
   r.max_angular_acceleration = config.real_in("MAX_ANGULAR_ACCELERATION", 0.0, 1000.0);
+  // Optional: a robot that brakes harder (or softer) than it speeds up.
+  r.max_brake_acceleration = config.has("MAX_BRAKE_ACCELERATION")
+                                 ? config.real_in("MAX_BRAKE_ACCELERATION", 0.0, 100.0)
+                                 : r.max_acceleration;
+  r.max_angular_brake_acceleration =
+      config.has("MAX_ANGULAR_BRAKE_ACCELERATION")
+          ? config.real_in("MAX_ANGULAR_BRAKE_ACCELERATION", 0.0, 1000.0)
+          : r.max_angular_acceleration;
 
   r.dribbler_max_speed = config.real_in("DRIBBLER_MAX_SPEED", 0.0, 10000.0);
   r.dribbler_roller_radius = config.real_in("DRIBBLER_ROLLER_RADIUS", 0.0, 0.1);

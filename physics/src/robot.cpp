@@ -15,6 +15,37 @@ double approach(double value, double target, double max_step) {
   return value + std::clamp(target - value, -max_step, max_step);
 }
 
+// The angular set-point's step: a change against the current turning (the
+// sign differs, so it slows the turn) is braking, anything else speeds up.
+// This is how the ER-Force simulator bounds each axis (simrobot.cpp, bound()).
+double approach_angular(double value, double target, double speedup_step, double brake_step) {
+  const bool braking = value != 0 && std::signbit(target - value) != std::signbit(value);
+  return approach(value, target, braking ? brake_step : speedup_step);
+}
+
+// How much of the set-point change (dvx, dvy) one step may make, as a factor
+// in [0, 1] that keeps its direction. The part of the change against the
+// current velocity (vx, vy) reduces the speed: it is braking and bounded by
+// `brake_step`; the rest (along the velocity, or across it) speeds up or turns
+// it and is bounded by `speedup_step` (ER-Force's rule per axis, made
+// independent of the axes). The two bound an ellipse; when they are equal it
+// is the plain length limit. A step <= 0 means no limit on that part.
+double velocity_change_scale(double vx, double vy, double dvx, double dvy, double speedup_step,
+                             double brake_step) {
+  const double change = std::sqrt(dvx * dvx + dvy * dvy);
+  if (speedup_step == brake_step) {
+    return (speedup_step > 0 && change > speedup_step) ? speedup_step / change : 1;
+  }
+  const double speed = std::sqrt(vx * vx + vy * vy);
+  const double along = speed > 0 ? (dvx * vx + dvy * vy) / speed : 0;  // < 0: against the motion
+  const double braking = along < 0 ? -along : 0;
+  const double rest = std::sqrt(std::max(0.0, change * change - braking * braking));
+  const auto share = [](double part, double step) { return step > 0 ? part / step : 0.0; };
+  const double b = share(braking, brake_step), r = share(rest, speedup_step);
+  const double reach = std::sqrt(b * b + r * r);  // > 1: beyond what one step allows
+  return reach > 1 ? 1 / reach : 1;
+}
+
 }  // namespace
 
 Robot::Robot(dWorldID world, dSpaceID world_space, const PhysicsConfig& physics,
@@ -151,16 +182,19 @@ void Robot::before_step(double now, double dt) {
       target_vx = c * command.vx - sn * command.vy;
       target_vy = sn * command.vx + c * command.vy;
     }
-    // The on-board acceleration limit acts on the field-frame velocity: that
-    // is the acceleration the robot's mass actually sees.
+    // The on-board acceleration limits act on the field-frame velocity: that
+    // is the acceleration the robot's mass actually sees. Speeding up and
+    // braking have limits of their own (equal unless the type says otherwise).
     const double dvx = target_vx - setpoint_vx_;
     const double dvy = target_vy - setpoint_vy_;
-    const double change = std::sqrt(dvx * dvx + dvy * dvy);
-    const double max_change = t.max_acceleration * dt;
-    const double scale = (t.max_acceleration > 0 && change > max_change) ? max_change / change : 1;
+    const double scale =
+        velocity_change_scale(setpoint_vx_, setpoint_vy_, dvx, dvy, t.max_acceleration * dt,
+                              t.max_brake_acceleration * dt);
     setpoint_vx_ += dvx * scale;
     setpoint_vy_ += dvy * scale;
-    setpoint_omega_ = approach(setpoint_omega_, command.omega, t.max_angular_acceleration * dt);
+    setpoint_omega_ =
+        approach_angular(setpoint_omega_, command.omega, t.max_angular_acceleration * dt,
+                         t.max_angular_brake_acceleration * dt);
     const double local[3] = {c * setpoint_vx_ + sn * setpoint_vy_,
                              -sn * setpoint_vx_ + c * setpoint_vy_, setpoint_omega_};
     // w = T^-1 v, written out: this runs for every robot at every step.

@@ -50,6 +50,11 @@ struct RobotTypeConfig {
   double max_angular_speed = 0;         // rad/s
   double max_acceleration = 0;          // m/s^2, on-board limit, 0 = none
   double max_angular_acceleration = 0;  // rad/s^2, 0 = none
+  // Braking limits: for the part of a set-point change that reduces the speed
+  // (MAX_BRAKE_ACCELERATION, MAX_ANGULAR_BRAKE_ACCELERATION). Default: the
+  // speed-up limit above, so a type without them brakes as it speeds up.
+  double max_brake_acceleration = 0;          // m/s^2, 0 = none
+  double max_angular_brake_acceleration = 0;  // rad/s^2, 0 = none
 
   double dribbler_max_speed = 0;      // rad/s of the roller, 0 = no dribbler
   double dribbler_roller_radius = 0;  // m
