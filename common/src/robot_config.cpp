@@ -33,6 +33,17 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
   r.center_of_mass_height = config.real_in("CENTER_OF_MASS_HEIGHT", 0.0, r.height);
   r.front_distance = config.real_in("FRONT_DISTANCE", 0.0, r.radius);
   r.ground_clearance = config.real_in("GROUND_CLEARANCE", 0.0, r.height / 2);
+  // Optional: the kicker and dribbler set back into a mouth of the front.
+  r.kicker_distance = config.has("KICKER_DISTANCE")
+                          ? config.real_in("KICKER_DISTANCE", 0.0, r.front_distance)
+                          : r.front_distance;
+  if (config.has("MOUTH_HEIGHT")) {
+    r.mouth_height = config.real_in("MOUTH_HEIGHT", r.ground_clearance, r.height);
+  } else if (r.has_mouth()) {
+    config.fail("KICKER_DISTANCE",
+                "a kicker set back from FRONT_DISTANCE needs MOUTH_HEIGHT (m, floor to the top of "
+                "the opening it sits in)");
+  }
 
   const auto angles = config.reals("WHEEL_ANGLES_DEG");
   const std::size_t expected_wheels = r.drive == DriveKind::Differential ? 2 : 0;

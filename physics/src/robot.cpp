@@ -59,11 +59,19 @@ Robot::Robot(dWorldID world, dSpaceID world_space, const PhysicsConfig& physics,
       kinematics_(*type_) {
   const RobotTypeConfig& t = *type_;
   const double origin = chassis_origin_height(t);
-  outline_ = ChassisOutline::make(t.radius, t.front_distance, physics.chassis_outline_segments,
+  // With a mouth, the main body is cut flat at the kicker; the front parts
+  // around the mouth are added below, once the chassis body exists.
+  outline_ = ChassisOutline::make(t.radius, t.kicker_distance, physics.chassis_outline_segments,
                                   t.ground_clearance - origin, t.height - origin);
+  if (t.has_mouth() && t.mouth_height - t.ground_clearance < 2 * ball_radius_) {
+    throw std::invalid_argument("robot type '" + t.name + "': its mouth (MOUTH_HEIGHT " +
+                                std::to_string(t.mouth_height) +
+                                " m) is too low for a ball of radius " +
+                                std::to_string(ball_radius_) + " m");
+  }
   if (t.has_dribbler()) {
     // Roller axis placed so that it just touches a ball resting against the
-    // front face: a held ball sits on the face, where the kicker reaches it.
+    // kicker face: a held ball sits on the face, where the kicker reaches it.
     const double reach = ball_radius_ + t.dribbler_roller_radius;
     const double rise = t.dribbler_height - ball_radius_;
     if (std::abs(rise) >= reach) {
@@ -71,7 +79,7 @@ Robot::Robot(dWorldID world, dSpaceID world_space, const PhysicsConfig& physics,
           "robot type '" + t.name + "': a dribbler at height " + std::to_string(t.dribbler_height) +
           " m cannot touch a ball of radius " + std::to_string(ball_radius_) + " m");
     }
-    roller_x_ = t.front_distance + ball_radius_ - std::sqrt(reach * reach - rise * rise);
+    roller_x_ = t.kicker_distance + ball_radius_ - std::sqrt(reach * reach - rise * rise);
   }
   space_ = make_simple_space(world_space);
   dGeomID space_geom = reinterpret_cast<dGeomID>(space_.get());
@@ -92,9 +100,45 @@ Robot::Robot(dWorldID world, dSpaceID world_space, const PhysicsConfig& physics,
   drive_ =
       t.model == DriveModel::Jointed ? make_jointed_drive(context) : make_planar_drive(context);
   wheel_targets_.assign(t.wheels.size(), 0.0);
+  if (t.has_mouth()) add_mouth_parts(t.ground_clearance - origin, t.height - origin,
+                                     t.mouth_height - origin);
+}
+
+// The front around a mouth, as three more prisms on the chassis body: a lip
+// above the mouth (flat front to kicker face, flat front's width) and a pillar
+// either side (the round part of the body between the two cuts), full height.
+void Robot::add_mouth_parts(double z_bottom, double z_top, double z_mouth) {
+  const RobotTypeConfig& t = *type_;
+  const double kicker = t.kicker_distance, front = t.front_distance, r = t.radius;
+  const double half_front = std::sqrt(std::max(0.0, r * r - front * front));
+  const double half_kicker = std::sqrt(std::max(0.0, r * r - kicker * kicker));
+  front_parts_.reserve(3);
+  front_parts_.push_back(ChassisOutline::polygon(
+      {{kicker, -half_front}, {front, -half_front}, {front, half_front}, {kicker, half_front}},
+      z_mouth, z_top));
+  if (half_kicker - half_front > 1e-6) {
+    // Left pillar, counter-clockwise: along the mouth's side, round the arc.
+    constexpr int kArcSegments = 4;
+    const double from = std::atan2(half_front, front), to = std::atan2(half_kicker, kicker);
+    std::vector<Vec2> left{{kicker, half_front}};
+    for (int i = 0; i <= kArcSegments; ++i) {
+      const double a = from + (to - from) * i / kArcSegments;
+      left.push_back({r * std::cos(a), r * std::sin(a)});
+    }
+    std::vector<Vec2> right;  // the mirror image, still counter-clockwise
+    for (auto it = left.rbegin(); it != left.rend(); ++it) right.push_back({it->x, -it->y});
+    front_parts_.push_back(ChassisOutline::polygon(std::move(left), z_bottom, z_top));
+    front_parts_.push_back(ChassisOutline::polygon(std::move(right), z_bottom, z_top));
+  }
+  for (const ChassisOutline& part : front_parts_) {
+    GeomHandle& geom = front_geoms_.emplace_back(create_chassis_geom(space_.get(), &part));
+    dGeomSetBody(geom.get(), drive_->chassis());
+    tag_geom(geom.get(), &chassis_tag_);
+  }
 }
 
 void Robot::place(const PlanarState& state) {
+  release_ball();
   drive_->place(state);
   setpoint_vx_ = state.vx;
   setpoint_vy_ = state.vy;
@@ -232,8 +276,8 @@ bool Robot::ball_at_kicker(const Ball& ball) const {
   double local[3];
   ball_in_robot_frame(ball, local);
   const double half_width = std::max(t.kicker_width, t.dribbler_width) / 2;
-  return local[0] >= t.front_distance &&
-         local[0] <= t.front_distance + ball_radius_ + t.kicker_reach &&
+  return local[0] >= t.kicker_distance &&
+         local[0] <= t.kicker_distance + ball_radius_ + t.kicker_reach &&
          std::abs(local[1]) <= half_width && local[2] <= ball_radius_ + t.kicker_reach;
 }
 

@@ -30,7 +30,13 @@ struct RobotTypeConfig {
   double radius = 0;                 // m
   double height = 0;                 // m
   double center_of_mass_height = 0;  // m
-  double front_distance = 0;         // m, centre to the flat front face (kicker, dribbler)
+  double front_distance = 0;         // m, centre to the flat front of the body
+  // m, centre to the kicker face and dribbler, where a held ball rests
+  // (KICKER_DISTANCE, default FRONT_DISTANCE). Nearer than the front, the
+  // body has a mouth there: the flat front's width, from the chassis'
+  // underside up to mouth_height, so the ball sits partly inside the robot.
+  double kicker_distance = 0;
+  double mouth_height = 0;  // m, floor to the top of the mouth (MOUTH_HEIGHT); 0 = no mouth
   double ground_clearance = 0;       // m, floor to the underside of the chassis
 
   std::vector<WheelConfig> wheels;
@@ -74,6 +80,7 @@ struct RobotTypeConfig {
   std::size_t caster_count() const { return caster_positions.size() / 2; }
   bool has_dribbler() const { return dribbler_max_speed > 0; }
   bool has_kicker() const { return kick_max_speed > 0 || chip_max_speed > 0; }
+  bool has_mouth() const { return kicker_distance < front_distance; }
 };
 
 // Reads every key of a robot file (and rejects any other). Throws ConfigError.

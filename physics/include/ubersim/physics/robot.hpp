@@ -71,6 +71,7 @@ class Robot {
   // The command in force: the last one, or stop once it timed out.
   const RobotCommand& effective_command(double now) const;
   void ball_in_robot_frame(const Ball& ball, double local[3]) const;
+  void add_mouth_parts(double z_bottom, double z_top, double z_mouth);
 
   std::shared_ptr<const RobotTypeConfig> type_;
   Team team_;
@@ -83,6 +84,9 @@ class Robot {
   GeomTag chassis_tag_;
   SpaceHandle space_;
   std::unique_ptr<Drive> drive_;
+  // Around a mouth (type().has_mouth()): lip and pillars, on the chassis body.
+  std::vector<ChassisOutline> front_parts_;  // reserved once: the geoms point into it
+  std::vector<GeomHandle> front_geoms_;
 
   RobotCommand command_;
   double last_command_time_ = -1;                                  // s, -1 = never
