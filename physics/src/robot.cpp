@@ -290,6 +290,7 @@ bool Robot::try_kick(Ball& ball, double now, double dt) {
   const bool chip = command.chip_speed > 0;
   if (!chip && command.kick_speed <= 0) return false;
   if (!kicker_charged(now) || !ball_at_kicker(ball)) return false;
+  release_ball();  // a held ball leaves with the kick
   const dBodyID body = drive_->chassis();
   const Vec2 forward = heading_direction(dBodyGetRotation(body));
   const double fx = forward.x;
@@ -319,10 +320,24 @@ bool Robot::try_kick(Ball& ball, double now, double dt) {
   return true;
 }
 
+void Robot::update_hold(const Ball& ball, double now, bool perfect_dribbling, dWorldID world) {
+  const bool dribbling = type_->has_dribbler() && effective_command(now).dribbler_speed != 0;
+  if (!perfect_dribbling || !dribbling) {
+    release_ball();
+    return;
+  }
+  if (hold_ || !ball_at_kicker(ball)) return;
+  // Where the ball is now, relative to the robot, is where it stays.
+  const dReal* b = ball.position();
+  hold_.reset(dJointCreateBall(world, nullptr));
+  dJointAttach(hold_.get(), drive_->chassis(), ball.body());
+  dJointSetBallAnchor(hold_.get(), b[0], b[1], b[2]);
+}
+
 void Robot::add_dribbler_contact(const Ball& ball, double now, dWorldID world,
                                  dJointGroupID group) const {
   const RobotTypeConfig& t = *type_;
-  if (!t.has_dribbler()) return;
+  if (!t.has_dribbler() || hold_) return;  // a held ball needs no roller
   const RobotCommand& command = effective_command(now);
   if (command.dribbler_speed == 0) return;
   double local[3];
