@@ -349,8 +349,7 @@ ChassisOutline ChassisOutline::make(double radius, double front_distance, int se
   return polygon(std::move(o.vertices), z_bottom, z_top);
 }
 
-ChassisOutline ChassisOutline::polygon(std::vector<Vec2> vertices, double z_bottom,
-                                       double z_top) {
+ChassisOutline ChassisOutline::polygon(std::vector<Vec2> vertices, double z_bottom, double z_top) {
   if (vertices.size() < 3) throw std::invalid_argument("a chassis outline needs 3 corners");
   ChassisOutline o;
   o.z_bottom = z_bottom;

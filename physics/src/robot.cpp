@@ -64,10 +64,9 @@ Robot::Robot(dWorldID world, dSpaceID world_space, const PhysicsConfig& physics,
   outline_ = ChassisOutline::make(t.radius, t.kicker_distance, physics.chassis_outline_segments,
                                   t.ground_clearance - origin, t.height - origin);
   if (t.has_mouth() && t.mouth_height - t.ground_clearance < 2 * ball_radius_) {
-    throw std::invalid_argument("robot type '" + t.name + "': its mouth (MOUTH_HEIGHT " +
-                                std::to_string(t.mouth_height) +
-                                " m) is too low for a ball of radius " +
-                                std::to_string(ball_radius_) + " m");
+    throw std::invalid_argument(
+        "robot type '" + t.name + "': its mouth (MOUTH_HEIGHT " + std::to_string(t.mouth_height) +
+        " m) is too low for a ball of radius " + std::to_string(ball_radius_) + " m");
   }
   if (t.has_dribbler()) {
     // Roller axis placed so that it just touches a ball resting against the
@@ -100,8 +99,8 @@ Robot::Robot(dWorldID world, dSpaceID world_space, const PhysicsConfig& physics,
   drive_ =
       t.model == DriveModel::Jointed ? make_jointed_drive(context) : make_planar_drive(context);
   wheel_targets_.assign(t.wheels.size(), 0.0);
-  if (t.has_mouth()) add_mouth_parts(t.ground_clearance - origin, t.height - origin,
-                                     t.mouth_height - origin);
+  if (t.has_mouth())
+    add_mouth_parts(t.ground_clearance - origin, t.height - origin, t.mouth_height - origin);
 }
 
 // The front around a mouth, as three more prisms on the chassis body: a lip

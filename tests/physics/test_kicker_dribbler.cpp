@@ -226,9 +226,10 @@ TEST_P(KickerDribbler, ABallRestsInTheMouthAtTheKickerDistance) {
     world.step();
     closest = std::min(closest, ball_distance(world, *robot_));
   }
-  std::printf("%s: rolling ball's closest approach %.4f m from the centre (kicker face 0.0715 + "
-              "radius %.4f; front 0.078)\n",
-              model_name(GetParam()), closest, r);
+  std::printf(
+      "%s: rolling ball's closest approach %.4f m from the centre (kicker face 0.0715 + "
+      "radius %.4f; front 0.078)\n",
+      model_name(GetParam()), closest, r);
   EXPECT_NEAR(closest, 0.0715 + r, 0.001);
   // The dribbler holds a ball there, and the kicker kicks it from there.
   world.place_ball(0.0715 + r + 0.001, 0, 0, 0, 0, 0);
@@ -249,9 +250,10 @@ TEST_P(KickerDribbler, ABallRestsInTheMouthAtTheKickerDistance) {
   world.place_ball(0.078 + r - 0.005, 0, 0.1, 0, 0, 0);
   run_for(world, 5 * world.dt());
   const double pushed = world.ball().position()[0] - robot_->planar_state().x;
-  std::printf("%s: ball overlapping the lip by 5 mm: after 5 steps %.4f m ahead (front + radius "
-              "%.4f)\n",
-              model_name(GetParam()), pushed, 0.078 + r);
+  std::printf(
+      "%s: ball overlapping the lip by 5 mm: after 5 steps %.4f m ahead (front + radius "
+      "%.4f)\n",
+      model_name(GetParam()), pushed, 0.078 + r);
   EXPECT_GT(pushed, 0.078 + r - 0.002);
 }
 

@@ -215,9 +215,9 @@ TEST_P(RobotMotion, ABrakeLimitOfItsOwnBoundsTheDecelerationNotTheSpeedUp) {
   for (const double brake : {1.5, 5.0}) {
     World world(empty_world(GetParam()));
     const std::string type = "braking";
-    world.define_robot_type(type, robot_config_text("omni4_ssl", GetParam(),
-                                                    {{"MAX_BRAKE_ACCELERATION",
-                                                      std::to_string(brake)}}));
+    world.define_robot_type(type,
+                            robot_config_text("omni4_ssl", GetParam(),
+                                              {{"MAX_BRAKE_ACCELERATION", std::to_string(brake)}}));
     const double speedup = world.setup().robot_types(type)->max_acceleration;
     const double measured = measured_braking(world, type, 0, 2.0);
     std::printf("%s: brake limit %.1f m/s^2 (speed-up %.1f): measured deceleration %.3f\n",

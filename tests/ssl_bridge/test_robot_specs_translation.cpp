@@ -1,9 +1,8 @@
 // RobotSpecs -> robot types defined at run time, in-process: the produced
 // config text is read back by the same reader physics uses.
+#include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
 #include <ssl_simulation_custom_erforce_robot_spec.pb.h>
-
-#include <google/protobuf/text_format.h>
 
 #include <cmath>
 #include <fstream>
@@ -205,7 +204,8 @@ TEST(SslRobotSpecs, TheOfficialRobotSpecsOfEveryTeamTranslateWithoutErrors) {
   for (int i = 0; i < 16; ++i) {
     const RobotSpecs& spec = config.robot_specs(i);
     RobotSpecErForce erforce;
-    ASSERT_TRUE(spec.custom(0).UnpackTo(&erforce) || erforce.ParseFromString(spec.custom(0).value()));
+    ASSERT_TRUE(spec.custom(0).UnpackTo(&erforce) ||
+                erforce.ParseFromString(spec.custom(0).value()));
     const DefinedRobotType& type = out.types[static_cast<std::size_t>(i)];
     SCOPED_TRACE(type.name);
     RobotTypeConfig read;

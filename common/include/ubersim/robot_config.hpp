@@ -31,13 +31,13 @@ struct RobotTypeConfig {
   double height = 0;                 // m
   double center_of_mass_height = 0;  // m
   double front_distance = 0;         // m, centre to the flat front of the body
+  double ground_clearance = 0;       // m, floor to the underside of the chassis
   // m, centre to the kicker face and dribbler, where a held ball rests
   // (KICKER_DISTANCE, default FRONT_DISTANCE). Nearer than the front, the
   // body has a mouth there: the flat front's width, from the chassis'
   // underside up to mouth_height, so the ball sits partly inside the robot.
   double kicker_distance = 0;
   double mouth_height = 0;  // m, floor to the top of the mouth (MOUTH_HEIGHT); 0 = no mouth
-  double ground_clearance = 0;       // m, floor to the underside of the chassis
 
   std::vector<WheelConfig> wheels;
   double wheel_radius = 0;               // m
