@@ -352,6 +352,10 @@ void write_lcm_seeds(const fs::path& decode_dir, const fs::path& physics_dir,
   type.robot_type_name = "fuzz_bot";
   type.robot_type_config = "BASE = omni4_ssl\nMASS = 2.5\n";
   write(physics_dir, "robot_type", on(PhysicsChannel::SimControl), encode_or_abort(type));
+  sim_control_t dribbling = control(sim_control_t::SET_DRIBBLING);
+  dribbling.perfect_dribbling = true;  // dribblers that hold the ball by a joint
+  write(physics_dir, "perfect_dribbling", on(PhysicsChannel::SimControl),
+        encode_or_abort(dribbling));
   write(physics_dir, "demand", on(PhysicsChannel::TruthDemand), encode_or_abort(demand()));
   write(physics_dir, "horizon_sync", on(PhysicsChannel::SyncHorizon, kSyncBit),
         encode_or_abort(horizon()));

@@ -33,6 +33,17 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
   r.center_of_mass_height = config.real_in("CENTER_OF_MASS_HEIGHT", 0.0, r.height);
   r.front_distance = config.real_in("FRONT_DISTANCE", 0.0, r.radius);
   r.ground_clearance = config.real_in("GROUND_CLEARANCE", 0.0, r.height / 2);
+  // Optional: the kicker and dribbler set back into a mouth of the front.
+  r.kicker_distance = config.has("KICKER_DISTANCE")
+                          ? config.real_in("KICKER_DISTANCE", 0.0, r.front_distance)
+                          : r.front_distance;
+  if (config.has("MOUTH_HEIGHT")) {
+    r.mouth_height = config.real_in("MOUTH_HEIGHT", r.ground_clearance, r.height);
+  } else if (r.has_mouth()) {
+    config.fail("KICKER_DISTANCE",
+                "a kicker set back from FRONT_DISTANCE needs MOUTH_HEIGHT (m, floor to the top of "
+                "the opening it sits in)");
+  }
 
   const auto angles = config.reals("WHEEL_ANGLES_DEG");
   const std::size_t expected_wheels = r.drive == DriveKind::Differential ? 2 : 0;
@@ -99,6 +110,14 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
   r.max_angular_speed = config.real_in("MAX_ANGULAR_SPEED", 0.0, 200.0);
   r.max_acceleration = config.real_in("MAX_ACCELERATION", 0.0, 100.0);
   r.max_angular_acceleration = config.real_in("MAX_ANGULAR_ACCELERATION", 0.0, 1000.0);
+  // Optional: a robot that brakes harder (or softer) than it speeds up.
+  r.max_brake_acceleration = config.has("MAX_BRAKE_ACCELERATION")
+                                 ? config.real_in("MAX_BRAKE_ACCELERATION", 0.0, 100.0)
+                                 : r.max_acceleration;
+  r.max_angular_brake_acceleration =
+      config.has("MAX_ANGULAR_BRAKE_ACCELERATION")
+          ? config.real_in("MAX_ANGULAR_BRAKE_ACCELERATION", 0.0, 1000.0)
+          : r.max_angular_acceleration;
 
   r.dribbler_max_speed = config.real_in("DRIBBLER_MAX_SPEED", 0.0, 10000.0);
   r.dribbler_roller_radius = config.real_in("DRIBBLER_ROLLER_RADIUS", 0.0, 0.1);

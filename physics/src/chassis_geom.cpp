@@ -346,9 +346,19 @@ ChassisOutline ChassisOutline::make(double radius, double front_distance, int se
     const double a = start + (end - start) * i / segments;
     o.vertices.push_back({radius * std::cos(a), radius * std::sin(a)});
   }
+  return polygon(std::move(o.vertices), z_bottom, z_top);
+}
+
+ChassisOutline ChassisOutline::polygon(std::vector<Vec2> vertices, double z_bottom, double z_top) {
+  if (vertices.size() < 3) throw std::invalid_argument("a chassis outline needs 3 corners");
+  ChassisOutline o;
+  o.z_bottom = z_bottom;
+  o.z_top = z_top;
+  o.vertices = std::move(vertices);
   for (std::size_t i = 0; i < o.vertices.size(); ++i) {
     const Vec2 e = o.vertices[(i + 1) % o.vertices.size()] - o.vertices[i];
     const double len = length(e);
+    if (!(len > 0)) throw std::invalid_argument("a chassis outline has two equal corners");
     o.normals.push_back({e.y / len, -e.x / len});
     o.bounding_radius = std::max(o.bounding_radius, length(o.vertices[i]));
   }

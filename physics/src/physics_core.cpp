@@ -34,6 +34,8 @@ const char* action_name(int action) {
       return "PING";
     case sim_control_t::SET_SYNC:
       return "SET_SYNC";
+    case sim_control_t::SET_DRIBBLING:
+      return "SET_DRIBBLING";
     default:
       return "unknown action";
   }
@@ -276,6 +278,12 @@ const PhysicsCore::Output& PhysicsCore::on_control(const sim_control_t& request,
       } catch (const std::exception& error) {
         acknowledge(request, false, error.what());
       }
+      return out_;
+    case sim_control_t::SET_DRIBBLING:
+      world_.set_perfect_dribbling(request.perfect_dribbling);
+      acknowledge(request, true,
+                  request.perfect_dribbling ? "perfect dribbling: a dribbler holds the ball"
+                                            : "simulated dribbling");
       return out_;
     default:
       acknowledge(request, false, "unknown action " + std::to_string(request.action));

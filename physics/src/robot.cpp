@@ -15,6 +15,37 @@ double approach(double value, double target, double max_step) {
   return value + std::clamp(target - value, -max_step, max_step);
 }
 
+// The angular set-point's step: a change against the current turning (the
+// sign differs, so it slows the turn) is braking, anything else speeds up.
+// This is how the ER-Force simulator bounds each axis (simrobot.cpp, bound()).
+double approach_angular(double value, double target, double speedup_step, double brake_step) {
+  const bool braking = value != 0 && std::signbit(target - value) != std::signbit(value);
+  return approach(value, target, braking ? brake_step : speedup_step);
+}
+
+// How much of the set-point change (dvx, dvy) one step may make, as a factor
+// in [0, 1] that keeps its direction. The part of the change against the
+// current velocity (vx, vy) reduces the speed: it is braking and bounded by
+// `brake_step`; the rest (along the velocity, or across it) speeds up or turns
+// it and is bounded by `speedup_step` (ER-Force's rule per axis, made
+// independent of the axes). The two bound an ellipse; when they are equal it
+// is the plain length limit. A step <= 0 means no limit on that part.
+double velocity_change_scale(double vx, double vy, double dvx, double dvy, double speedup_step,
+                             double brake_step) {
+  const double change = std::sqrt(dvx * dvx + dvy * dvy);
+  if (speedup_step == brake_step) {
+    return (speedup_step > 0 && change > speedup_step) ? speedup_step / change : 1;
+  }
+  const double speed = std::sqrt(vx * vx + vy * vy);
+  const double along = speed > 0 ? (dvx * vx + dvy * vy) / speed : 0;  // < 0: against the motion
+  const double braking = along < 0 ? -along : 0;
+  const double rest = std::sqrt(std::max(0.0, change * change - braking * braking));
+  const auto share = [](double part, double step) { return step > 0 ? part / step : 0.0; };
+  const double b = share(braking, brake_step), r = share(rest, speedup_step);
+  const double reach = std::sqrt(b * b + r * r);  // > 1: beyond what one step allows
+  return reach > 1 ? 1 / reach : 1;
+}
+
 }  // namespace
 
 Robot::Robot(dWorldID world, dSpaceID world_space, const PhysicsConfig& physics,
@@ -28,11 +59,18 @@ Robot::Robot(dWorldID world, dSpaceID world_space, const PhysicsConfig& physics,
       kinematics_(*type_) {
   const RobotTypeConfig& t = *type_;
   const double origin = chassis_origin_height(t);
-  outline_ = ChassisOutline::make(t.radius, t.front_distance, physics.chassis_outline_segments,
+  // With a mouth, the main body is cut flat at the kicker; the front parts
+  // around the mouth are added below, once the chassis body exists.
+  outline_ = ChassisOutline::make(t.radius, t.kicker_distance, physics.chassis_outline_segments,
                                   t.ground_clearance - origin, t.height - origin);
+  if (t.has_mouth() && t.mouth_height - t.ground_clearance < 2 * ball_radius_) {
+    throw std::invalid_argument(
+        "robot type '" + t.name + "': its mouth (MOUTH_HEIGHT " + std::to_string(t.mouth_height) +
+        " m) is too low for a ball of radius " + std::to_string(ball_radius_) + " m");
+  }
   if (t.has_dribbler()) {
     // Roller axis placed so that it just touches a ball resting against the
-    // front face: a held ball sits on the face, where the kicker reaches it.
+    // kicker face: a held ball sits on the face, where the kicker reaches it.
     const double reach = ball_radius_ + t.dribbler_roller_radius;
     const double rise = t.dribbler_height - ball_radius_;
     if (std::abs(rise) >= reach) {
@@ -40,7 +78,7 @@ Robot::Robot(dWorldID world, dSpaceID world_space, const PhysicsConfig& physics,
           "robot type '" + t.name + "': a dribbler at height " + std::to_string(t.dribbler_height) +
           " m cannot touch a ball of radius " + std::to_string(ball_radius_) + " m");
     }
-    roller_x_ = t.front_distance + ball_radius_ - std::sqrt(reach * reach - rise * rise);
+    roller_x_ = t.kicker_distance + ball_radius_ - std::sqrt(reach * reach - rise * rise);
   }
   space_ = make_simple_space(world_space);
   dGeomID space_geom = reinterpret_cast<dGeomID>(space_.get());
@@ -61,9 +99,45 @@ Robot::Robot(dWorldID world, dSpaceID world_space, const PhysicsConfig& physics,
   drive_ =
       t.model == DriveModel::Jointed ? make_jointed_drive(context) : make_planar_drive(context);
   wheel_targets_.assign(t.wheels.size(), 0.0);
+  if (t.has_mouth())
+    add_mouth_parts(t.ground_clearance - origin, t.height - origin, t.mouth_height - origin);
+}
+
+// The front around a mouth, as three more prisms on the chassis body: a lip
+// above the mouth (flat front to kicker face, flat front's width) and a pillar
+// either side (the round part of the body between the two cuts), full height.
+void Robot::add_mouth_parts(double z_bottom, double z_top, double z_mouth) {
+  const RobotTypeConfig& t = *type_;
+  const double kicker = t.kicker_distance, front = t.front_distance, r = t.radius;
+  const double half_front = std::sqrt(std::max(0.0, r * r - front * front));
+  const double half_kicker = std::sqrt(std::max(0.0, r * r - kicker * kicker));
+  front_parts_.reserve(3);
+  front_parts_.push_back(ChassisOutline::polygon(
+      {{kicker, -half_front}, {front, -half_front}, {front, half_front}, {kicker, half_front}},
+      z_mouth, z_top));
+  if (half_kicker - half_front > 1e-6) {
+    // Left pillar, counter-clockwise: along the mouth's side, round the arc.
+    constexpr int kArcSegments = 4;
+    const double from = std::atan2(half_front, front), to = std::atan2(half_kicker, kicker);
+    std::vector<Vec2> left{{kicker, half_front}};
+    for (int i = 0; i <= kArcSegments; ++i) {
+      const double a = from + (to - from) * i / kArcSegments;
+      left.push_back({r * std::cos(a), r * std::sin(a)});
+    }
+    std::vector<Vec2> right;  // the mirror image, still counter-clockwise
+    for (auto it = left.rbegin(); it != left.rend(); ++it) right.push_back({it->x, -it->y});
+    front_parts_.push_back(ChassisOutline::polygon(std::move(left), z_bottom, z_top));
+    front_parts_.push_back(ChassisOutline::polygon(std::move(right), z_bottom, z_top));
+  }
+  for (const ChassisOutline& part : front_parts_) {
+    GeomHandle& geom = front_geoms_.emplace_back(create_chassis_geom(space_.get(), &part));
+    dGeomSetBody(geom.get(), drive_->chassis());
+    tag_geom(geom.get(), &chassis_tag_);
+  }
 }
 
 void Robot::place(const PlanarState& state) {
+  release_ball();
   drive_->place(state);
   setpoint_vx_ = state.vx;
   setpoint_vy_ = state.vy;
@@ -151,16 +225,19 @@ void Robot::before_step(double now, double dt) {
       target_vx = c * command.vx - sn * command.vy;
       target_vy = sn * command.vx + c * command.vy;
     }
-    // The on-board acceleration limit acts on the field-frame velocity: that
-    // is the acceleration the robot's mass actually sees.
+    // The on-board acceleration limits act on the field-frame velocity: that
+    // is the acceleration the robot's mass actually sees. Speeding up and
+    // braking have limits of their own (equal unless the type says otherwise).
     const double dvx = target_vx - setpoint_vx_;
     const double dvy = target_vy - setpoint_vy_;
-    const double change = std::sqrt(dvx * dvx + dvy * dvy);
-    const double max_change = t.max_acceleration * dt;
-    const double scale = (t.max_acceleration > 0 && change > max_change) ? max_change / change : 1;
+    const double scale =
+        velocity_change_scale(setpoint_vx_, setpoint_vy_, dvx, dvy, t.max_acceleration * dt,
+                              t.max_brake_acceleration * dt);
     setpoint_vx_ += dvx * scale;
     setpoint_vy_ += dvy * scale;
-    setpoint_omega_ = approach(setpoint_omega_, command.omega, t.max_angular_acceleration * dt);
+    setpoint_omega_ =
+        approach_angular(setpoint_omega_, command.omega, t.max_angular_acceleration * dt,
+                         t.max_angular_brake_acceleration * dt);
     const double local[3] = {c * setpoint_vx_ + sn * setpoint_vy_,
                              -sn * setpoint_vx_ + c * setpoint_vy_, setpoint_omega_};
     // w = T^-1 v, written out: this runs for every robot at every step.
@@ -198,8 +275,8 @@ bool Robot::ball_at_kicker(const Ball& ball) const {
   double local[3];
   ball_in_robot_frame(ball, local);
   const double half_width = std::max(t.kicker_width, t.dribbler_width) / 2;
-  return local[0] >= t.front_distance &&
-         local[0] <= t.front_distance + ball_radius_ + t.kicker_reach &&
+  return local[0] >= t.kicker_distance &&
+         local[0] <= t.kicker_distance + ball_radius_ + t.kicker_reach &&
          std::abs(local[1]) <= half_width && local[2] <= ball_radius_ + t.kicker_reach;
 }
 
@@ -212,6 +289,7 @@ bool Robot::try_kick(Ball& ball, double now, double dt) {
   const bool chip = command.chip_speed > 0;
   if (!chip && command.kick_speed <= 0) return false;
   if (!kicker_charged(now) || !ball_at_kicker(ball)) return false;
+  release_ball();  // a held ball leaves with the kick
   const dBodyID body = drive_->chassis();
   const Vec2 forward = heading_direction(dBodyGetRotation(body));
   const double fx = forward.x;
@@ -241,10 +319,24 @@ bool Robot::try_kick(Ball& ball, double now, double dt) {
   return true;
 }
 
+void Robot::update_hold(const Ball& ball, double now, bool perfect_dribbling, dWorldID world) {
+  const bool dribbling = type_->has_dribbler() && effective_command(now).dribbler_speed != 0;
+  if (!perfect_dribbling || !dribbling) {
+    release_ball();
+    return;
+  }
+  if (hold_ || !ball_at_kicker(ball)) return;
+  // Where the ball is now, relative to the robot, is where it stays.
+  const dReal* b = ball.position();
+  hold_.reset(dJointCreateBall(world, nullptr));
+  dJointAttach(hold_.get(), drive_->chassis(), ball.body());
+  dJointSetBallAnchor(hold_.get(), b[0], b[1], b[2]);
+}
+
 void Robot::add_dribbler_contact(const Ball& ball, double now, dWorldID world,
                                  dJointGroupID group) const {
   const RobotTypeConfig& t = *type_;
-  if (!t.has_dribbler()) return;
+  if (!t.has_dribbler() || hold_) return;  // a held ball needs no roller
   const RobotCommand& command = effective_command(now);
   if (command.dribbler_speed == 0) return;
   double local[3];

@@ -142,7 +142,15 @@ Robot* World::robot(Team team, int id) {
   return nullptr;
 }
 
+void World::set_perfect_dribbling(bool perfect) {
+  perfect_dribbling_ = perfect;
+  if (!perfect) {
+    for (auto& r : robots_) r->release_ball();
+  }
+}
+
 void World::place_ball(double x, double y, double z, double vx, double vy, double vz) {
+  for (auto& r : robots_) r->release_ball();  // a placed ball is free
   const double r = setup_.ball.radius;
   const double position[3] = {x, y, std::max(z, r)};
   const double velocity[3] = {vx, vy, vz};
@@ -215,6 +223,7 @@ void World::step() {
   apply_force_moves();
   const double now = time();
   for (auto& r : robots_) r->before_step(now, dt_);
+  for (auto& r : robots_) r->update_hold(*ball_, now, perfect_dribbling_, world_.get());
   std::vector<char>& kicked = kicked_buffer_;
   kicked.assign(robots_.size(), 0);
   for (std::size_t i = 0; i < robots_.size(); ++i) {

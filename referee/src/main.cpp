@@ -43,6 +43,7 @@ struct Options {
   int steps = 1;
   std::string speed = "1";  // a factor, or "sync"
   std::int64_t seed = 0;
+  std::string dribbling;  // "perfect" or "simulated"
   std::string scenario;
   // auto
   std::string game = "division_b";
@@ -141,6 +142,14 @@ class Referee {
     sim_control_t control{};
     control.action = sim_control_t::SET_SEED;
     control.seed = options_.seed;
+    return send(control);
+  }
+
+  // Physics' dribbler mode for every robot (SET_DRIBBLING).
+  int dribbling() {
+    sim_control_t control{};
+    control.action = sim_control_t::SET_DRIBBLING;
+    control.perfect_dribbling = options_.dribbling == "perfect";
     return send(control);
   }
 
@@ -352,6 +361,13 @@ int main(int argc, char** argv) {
   command("seed", "set the random seed", [](Referee& r) { return r.seed(); })
       ->add_option("seed", o.seed)
       ->required();
+  command("dribbling",
+          "perfect: a dribbler that is on holds the ball it touches rigidly (ER-Force's "
+          "simulate_dribbling = false); simulated: the roller's contact only (the default)",
+          [](Referee& r) { return r.dribbling(); })
+      ->add_option("mode", o.dribbling)
+      ->required()
+      ->check(CLI::IsMember({"perfect", "simulated"}));
   command("geometry", "print the field geometry", [](Referee& r) { return r.geometry(); });
   command("state", "print where everything is", [](Referee& r) { return r.state(); });
 

@@ -77,9 +77,6 @@ void map_erforce(const RealismConfigErForce& in, const std::string& field, emula
                    static_cast<double>(in.vision_processing_time()), "vision_processing_time")) {
     out.vision_processing_time = static_cast<double>(in.vision_processing_time()) * kNanosecond;
   }
-  if (in.has_simulate_dribbling() && !in.simulate_dribbling()) {
-    ignored.push_back("simulate_dribbling = false (ubersim always simulates the dribbler)");
-  }
   if (in.object_position_offset() != 0) {
     ignored.push_back("object_position_offset (no systematic offset is modelled)");
   }
@@ -132,6 +129,8 @@ RealismTranslation translate_realism(const RealismConfig& config) {
       continue;
     }
     map_erforce(erforce, field, realism, out.errors);
+    // false = ER-Force's "glue the ball during dribbling": physics' perfect dribbling.
+    if (erforce.has_simulate_dribbling()) out.perfect_dribbling = !erforce.simulate_dribbling();
     any = true;
   }
   if (any) out.realism = realism;

@@ -80,9 +80,7 @@ class SpecWriter {
   std::map<std::string, std::vector<std::string>> overrides_;
 };
 
-void apply_limits(const RobotLimits& limits, const RobotTypeConfig& base, SpecWriter& w) {
-  // ubersim has one on-board limit for speeding up and braking: a brake limit
-  // is honoured when it equals the speed-up limit that applies.
+void apply_limits(const RobotLimits& limits, SpecWriter& w) {
   if (limits.has_acc_speedup_absolute_max() &&
       w.usable("limits.acc_speedup_absolute_max", limits.acc_speedup_absolute_max())) {
     w.set("MAX_ACCELERATION", limits.acc_speedup_absolute_max());
@@ -91,20 +89,15 @@ void apply_limits(const RobotLimits& limits, const RobotTypeConfig& base, SpecWr
       w.usable("limits.acc_speedup_angular_max", limits.acc_speedup_angular_max())) {
     w.set("MAX_ANGULAR_ACCELERATION", limits.acc_speedup_angular_max());
   }
-  const auto check_brake = [&](const char* field, float brake, const char* key, double base_v) {
-    const double speedup = w.value(key, base_v);
-    if (std::fabs(brake - speedup) > 1e-3 * std::max(1.0, speedup)) {
-      w.unsupported(field, "ubersim robots brake with the speed-up limit (" + number(speedup) +
-                               "); a separate brake limit is not modelled");
-    }
-  };
-  if (limits.has_acc_brake_absolute_max()) {
-    check_brake("limits.acc_brake_absolute_max", limits.acc_brake_absolute_max(),
-                "MAX_ACCELERATION", base.max_acceleration);
+  // Physics bounds braking (the part of a change that reduces the speed) on
+  // its own; unset, a robot type brakes with its speed-up limit.
+  if (limits.has_acc_brake_absolute_max() &&
+      w.usable("limits.acc_brake_absolute_max", limits.acc_brake_absolute_max())) {
+    w.set("MAX_BRAKE_ACCELERATION", limits.acc_brake_absolute_max());
   }
-  if (limits.has_acc_brake_angular_max()) {
-    check_brake("limits.acc_brake_angular_max", limits.acc_brake_angular_max(),
-                "MAX_ANGULAR_ACCELERATION", base.max_angular_acceleration);
+  if (limits.has_acc_brake_angular_max() &&
+      w.usable("limits.acc_brake_angular_max", limits.acc_brake_angular_max())) {
+    w.set("MAX_ANGULAR_BRAKE_ACCELERATION", limits.acc_brake_angular_max());
   }
   if (limits.has_vel_absolute_max() &&
       w.usable("limits.vel_absolute_max", limits.vel_absolute_max())) {
@@ -139,8 +132,34 @@ void apply_wheel_angles(const RobotWheelAngles& angles, const RobotTypeConfig& b
                              ccw_deg(angles.back_right()), ccw_deg(angles.front_right())});
 }
 
-void apply_custom(const google::protobuf::Any& any, const BaseRobotType& base, bool has_front,
-                  SpecWriter& w, std::size_t index) {
+// ER-Force's robot body (its simulator's simrobot.cpp and mesh.cpp): the hull
+// is cut flat at center_to_dribbler; below a box 0.06 m above the floor (its
+// dribbler bar's 0.04 m plus 0.02 m) the front is open, and the ball rests
+// against the dribbler bar, whose face is at shoot_radius from the centre
+// (the protocol: "from the robot center to the ball, when the ball is as close
+// as possible"). In ubersim terms: FRONT_DISTANCE = center_to_dribbler,
+// KICKER_DISTANCE = shoot_radius (where the kicker and dribbler meet the
+// ball), and the mouth between them MOUTH_HEIGHT high.
+constexpr double kErForceMouthHeight = 0.06;  // m, floor to the top of the opening
+
+void apply_shoot_radius(double shoot_radius, const BaseRobotType& base, SpecWriter& w) {
+  const RobotTypeConfig& b = base.config;
+  const double front = w.value("FRONT_DISTANCE", b.front_distance);
+  // A dribbler reaching out beyond the hull is not part of our body model:
+  // the ball then rests on the flat front.
+  const double kicker = std::min(static_cast<double>(shoot_radius), front);
+  w.set("KICKER_DISTANCE", kicker);
+  if (kicker < front) {
+    // High enough for the ball, never above the robot.
+    const double height = w.value("HEIGHT", b.height);
+    const double clearance = w.value("GROUND_CLEARANCE", b.ground_clearance);
+    const double mouth = std::max(kErForceMouthHeight, clearance + 2.5 * base.ball_radius);
+    w.set("MOUTH_HEIGHT", std::min(mouth, height));
+  }
+}
+
+void apply_custom(const google::protobuf::Any& any, const BaseRobotType& base, SpecWriter& w,
+                  std::size_t index) {
   const std::string& url = any.type_url();
   const std::string type = url.substr(url.find_last_of('/') + 1);
   const std::string field = "custom[" + std::to_string(index) + "]";
@@ -153,18 +172,25 @@ void apply_custom(const google::protobuf::Any& any, const BaseRobotType& base, b
     w.malformed(field, "does not decode as RobotSpecErForce; not applied");
     return;
   }
-  if (erforce.has_shoot_radius()) {
-    // Centre to the ball held at the front: our front face plus the ball's radius.
-    if (has_front) {
-      w.unsupported(field + ".shoot_radius", "center_to_dribbler is set and wins");
-    } else if (w.usable((field + ".shoot_radius").c_str(), erforce.shoot_radius())) {
-      w.set("FRONT_DISTANCE", std::max(0.0, erforce.shoot_radius() - base.ball_radius));
-    }
+  if (erforce.has_shoot_radius() &&
+      w.usable((field + ".shoot_radius").c_str(), erforce.shoot_radius())) {
+    apply_shoot_radius(erforce.shoot_radius(), base, w);
   }
   if (erforce.has_dribbler_width() &&
       w.usable((field + ".dribbler_width").c_str(), erforce.dribbler_width())) {
     w.set("DRIBBLER_WIDTH", erforce.dribbler_width());
     w.set("KICKER_WIDTH", erforce.dribbler_width());
+  }
+}
+
+// A base type with a mouth of its own keeps it only where the specs' body
+// still has room for it.
+void keep_mouth_inside(const RobotTypeConfig& b, SpecWriter& w) {
+  const double front = w.value("FRONT_DISTANCE", b.front_distance);
+  if (w.value("KICKER_DISTANCE", b.kicker_distance) > front) w.set("KICKER_DISTANCE", front);
+  const double height = w.value("HEIGHT", b.height);
+  if (b.mouth_height > 0 && w.value("MOUTH_HEIGHT", b.mouth_height) > height) {
+    w.set("MOUTH_HEIGHT", height);
   }
 }
 
@@ -235,11 +261,12 @@ RobotSpecsTranslation translate_robot_specs(
     } else if (b.front_distance > 0.9 * radius) {
       w.set("FRONT_DISTANCE", b.front_distance * scale);  // keep the front inside a smaller body
     }
-    if (specs.has_limits()) apply_limits(specs.limits(), b, w);
+    if (specs.has_limits()) apply_limits(specs.limits(), w);
     if (specs.has_wheel_angles()) apply_wheel_angles(specs.wheel_angles(), b, w);
     for (int c = 0; c < specs.custom_size(); ++c) {
-      apply_custom(specs.custom(c), base, has_front, w, static_cast<std::size_t>(c));
+      apply_custom(specs.custom(c), base, w, static_cast<std::size_t>(c));
     }
+    keep_mouth_inside(b, w);
     type.radius = radius;
     type.config_text = w.text();
     out.types.push_back(std::move(type));

@@ -195,6 +195,11 @@ void translate_config(const SimulatorConfig& config, const SimControlSettings& s
     RealismTranslation realism = translate_realism(config.realism_config());
     out.errors.insert(out.errors.end(), realism.errors.begin(), realism.errors.end());
     out.realism = realism.realism;
+    if (realism.perfect_dribbling) {  // physics owns the dribblers
+      sim_control_t dribbling = request(sim_control_t::SET_DRIBBLING);
+      dribbling.perfect_dribbling = *realism.perfect_dribbling;
+      out.requests.push_back(dribbling);
+    }
   }
   if (config.has_vision_port()) {
     if (config.vision_port() == 0 || config.vision_port() > 65535) {

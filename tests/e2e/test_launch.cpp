@@ -191,6 +191,14 @@ TEST(Launch, RefereePlacementsShowInVision) {
   ASSERT_TRUE(std::regex_search(robot.second, match, std::regex(R"(sim time ([0-9.eE+-]+) s)")))
       << robot.second;
   const double placed_at = std::stod(match[1]);
+  // Physics' dribbler mode, both ways, acknowledged.
+  const auto perfect = run({referee, "dribbling", "perfect"}, dir);
+  EXPECT_EQ(perfect.first, 0) << perfect.second;
+  EXPECT_NE(perfect.second.find("perfect dribbling"), std::string::npos) << perfect.second;
+  const auto simulated = run({referee, "dribbling", "simulated"}, dir);
+  EXPECT_EQ(simulated.first, 0) << simulated.second;
+  EXPECT_NE(simulated.second.find("simulated dribbling"), std::string::npos) << simulated.second;
+  EXPECT_NE(run({referee, "dribbling", "sometimes"}, dir).first, 0);
 
   const std::size_t before = listener.frames().size();
   ASSERT_TRUE(listener.run_until(

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <string>
 #include <ubersim/robot_command_t.hpp>
 
@@ -34,6 +35,24 @@ inline WorldSetup empty_world(DriveModel model, const std::string& field = "divi
   setup.ball_y = -setup.field.field_width / 2 + 0.3;
   setup.robot_types = types_with_model(model);
   return setup;
+}
+
+// The text of a shipped robot config with the drive model of the test and
+// some keys replaced or added ("KEY" -> "values"): a robot type to define at
+// run time (World::define_robot_type reads it like config/robots/).
+inline std::string robot_config_text(const std::string& name, DriveModel model,
+                                     std::map<std::string, std::string> keys) {
+  keys["DRIVE_MODEL"] = model == DriveModel::Jointed ? "jointed" : "planar";
+  const ConfigFile file = ConfigFile::load(kConfigDir + "/robots/" + name + ".cfg");
+  std::string text;
+  for (const std::string& key : file.keys()) {
+    if (keys.count(key) != 0) continue;
+    text += key + " =";
+    for (const std::string& v : file.strings(key)) text += " " + v;
+    text += "\n";
+  }
+  for (const auto& [key, values] : keys) text += key + " = " + values + "\n";
+  return text;
 }
 
 inline robot_command_t velocity_command(int id, double vx, double vy, double omega) {

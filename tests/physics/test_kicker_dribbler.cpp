@@ -147,6 +147,116 @@ TEST_P(KickerDribbler, WithoutDribblerTheBallStaysBehind) {
   EXPECT_GT(gap, robot_->type().front_distance + world.setup().ball.radius + 0.2);
 }
 
+// Distance (m) from the robot's centre to the ball's, in the floor plane.
+double ball_distance(const World& world, const Robot& robot) {
+  const PlanarState s = robot.planar_state();
+  const dReal* b = world.ball().position();
+  return std::hypot(b[0] - s.x, b[1] - s.y);
+}
+
+// Spinning on the spot at 8 rad/s with the dribbler on: the roller's grip
+// alone cannot hold the ball against the turn; perfect dribbling (ER-Force's
+// simulate_dribbling = false) holds it where it touched the face.
+TEST_P(KickerDribbler, PerfectDribblingHoldsTheBallThroughATurnSimulatedDribblingLosesIt) {
+  World& world = setup_robot_and_ball(0.002);
+  const double resting = robot_->type().kicker_distance + world.setup().ball.radius;
+  robot_command_t c = velocity_command(7, 0, 0, 8.0);
+  c.dribbler_speed = robot_->type().dribbler_max_speed / 2;
+
+  world.set_perfect_dribbling(true);
+  world.command(Team::Blue, 7, c);
+  run_for(world, 1.0);
+  const double held = ball_distance(world, *robot_);
+  const bool held_at_face = robot_->ball_at_kicker(world.ball());
+  std::printf("%s: perfect dribbling, 1 s at 8 rad/s: ball %.4f m from the centre (resting %.4f)\n",
+              model_name(GetParam()), held, resting);
+  EXPECT_TRUE(robot_->holds_ball());
+  EXPECT_TRUE(held_at_face);
+  EXPECT_NEAR(held, resting, 0.005);
+
+  // Switched back: the same turn flings the ball off.
+  world.set_perfect_dribbling(false);
+  EXPECT_FALSE(robot_->holds_ball());
+  run_for(world, 1.0);
+  const double lost = ball_distance(world, *robot_);
+  std::printf("%s: simulated dribbling, 1 s more: ball %.3f m from the centre\n",
+              model_name(GetParam()), lost);
+  EXPECT_FALSE(robot_->ball_at_kicker(world.ball()));
+  EXPECT_GT(lost, resting + 0.05);
+}
+
+TEST_P(KickerDribbler, PerfectDribblingLetsGoForAKickAndWithTheDribblerOff) {
+  World& world = setup_robot_and_ball(0.002);
+  world.set_perfect_dribbling(true);
+  robot_command_t c = velocity_command(7, 0, 0, 0);
+  c.dribbler_speed = robot_->type().dribbler_max_speed / 2;
+  world.command(Team::Blue, 7, c);
+  run_for(world, 0.1);
+  ASSERT_TRUE(robot_->holds_ball());
+  c.kick_speed = 4.0;
+  world.command(Team::Blue, 7, c);
+  run_for(world, 3 * world.dt());
+  EXPECT_FALSE(robot_->holds_ball());
+  EXPECT_NEAR(world.ball().velocity()[0], 4.0, 0.05 * 4.0);
+  // Dribbler off: nothing is held.
+  World& again = setup_robot_and_ball(0.002);
+  again.set_perfect_dribbling(true);
+  again.command(Team::Blue, 7, velocity_command(7, 0, 0, 0));
+  run_for(again, 0.1);
+  EXPECT_FALSE(robot_->holds_ball());
+}
+
+// ER-Force's body: a kicker (and dribbler) set back from the flat front in a
+// mouth. The ball rests against the kicker face inside the front, where the
+// kicker reaches it; above the mouth the front is still there.
+TEST_P(KickerDribbler, ABallRestsInTheMouthAtTheKickerDistance) {
+  world_ = std::make_unique<World>(empty_world(GetParam()));
+  World& world = *world_;
+  world.define_robot_type("mouth", robot_config_text("omni4_ssl", GetParam(),
+                                                     {{"FRONT_DISTANCE", "0.078"},
+                                                      {"KICKER_DISTANCE", "0.0715"},
+                                                      {"MOUTH_HEIGHT", "0.06"}}));
+  robot_ = &world.add_robot(Team::Blue, 7, "mouth", PlanarState{});
+  const double r = world.setup().ball.radius;
+  // A ball rolling slowly into the mouth meets the kicker face, 6.5 mm
+  // behind the flat front (without a mouth it would stop at the front).
+  world.place_ball(0.0715 + r + 0.03, 0, 0, -0.3, 0, 0);
+  double closest = 1;
+  for (int i = 0; i < 240; ++i) {
+    world.step();
+    closest = std::min(closest, ball_distance(world, *robot_));
+  }
+  std::printf(
+      "%s: rolling ball's closest approach %.4f m from the centre (kicker face 0.0715 + "
+      "radius %.4f; front 0.078)\n",
+      model_name(GetParam()), closest, r);
+  EXPECT_NEAR(closest, 0.0715 + r, 0.001);
+  // The dribbler holds a ball there, and the kicker kicks it from there.
+  world.place_ball(0.0715 + r + 0.001, 0, 0, 0, 0, 0);
+  robot_command_t c = velocity_command(7, 0, 0, 0);
+  c.dribbler_speed = robot_->type().dribbler_max_speed / 2;
+  world.command(Team::Blue, 7, c);
+  run_for(world, 0.5);
+  const double held = ball_distance(world, *robot_);
+  std::printf("%s: dribbler holds it %.4f m from the centre\n", model_name(GetParam()), held);
+  EXPECT_NEAR(held, 0.0715 + r, 0.002);
+  EXPECT_TRUE(robot_->ball_at_kicker(world.ball()));
+  c.kick_speed = 4.0;
+  world.command(Team::Blue, 7, c);
+  run_for(world, 3 * world.dt());
+  EXPECT_NEAR(world.ball().velocity()[0], 4.0, 0.05 * 4.0);
+  // Above the mouth the lip is the front: a ball overlapping it there is
+  // pushed out to the flat front (in the open mouth it would stay put).
+  world.place_ball(0.078 + r - 0.005, 0, 0.1, 0, 0, 0);
+  run_for(world, 5 * world.dt());
+  const double pushed = world.ball().position()[0] - robot_->planar_state().x;
+  std::printf(
+      "%s: ball overlapping the lip by 5 mm: after 5 steps %.4f m ahead (front + radius "
+      "%.4f)\n",
+      model_name(GetParam()), pushed, 0.078 + r);
+  EXPECT_GT(pushed, 0.078 + r - 0.002);
+}
+
 INSTANTIATE_TEST_SUITE_P(BothDriveModels, KickerDribbler,
                          ::testing::Values(DriveModel::Jointed, DriveModel::Planar),
                          drive_model_test_name);

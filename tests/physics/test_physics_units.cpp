@@ -221,5 +221,42 @@ TEST(RobotConfigs, NewKeysAreCheckedWithFileAndLine) {
   }
 }
 
+// The optional keys: braking limits and a kicker set back into a mouth.
+TEST(RobotConfigs, OptionalBrakeAndMouthKeysAreCheckedWithFileAndLine) {
+  const std::string base = std::string("BASE = ") + kConfigDir + "/robots/omni4_ssl.cfg\n";
+  const auto error_of = [](const std::string& text) {
+    try {
+      load_robot_config(ConfigFile::parse(text, "t.cfg"), "t");
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const RobotTypeConfig t = load_robot_config(
+      ConfigFile::parse(base + "MAX_BRAKE_ACCELERATION = 5.5\nKICKER_DISTANCE = 0.07\n"
+                               "MOUTH_HEIGHT = 0.06\n",
+                        "t.cfg"),
+      "t");
+  EXPECT_DOUBLE_EQ(t.max_brake_acceleration, 5.5);
+  EXPECT_DOUBLE_EQ(t.max_angular_brake_acceleration, t.max_angular_acceleration);
+  EXPECT_DOUBLE_EQ(t.kicker_distance, 0.07);
+  EXPECT_TRUE(t.has_mouth());
+  EXPECT_NE(
+      error_of(base + "MAX_BRAKE_ACCELERATION = -1\n").find("t.cfg:2: MAX_BRAKE_ACCELERATION"),
+      std::string::npos);
+  EXPECT_NE(error_of(base + "MAX_ANGULAR_BRAKE_ACCELERATION = nan\n")
+                .find("t.cfg:2: MAX_ANGULAR_BRAKE_ACCELERATION"),
+            std::string::npos);
+  // Beyond the flat front, or a mouth without its height.
+  EXPECT_NE(error_of(base + "KICKER_DISTANCE = 0.08\n").find("t.cfg:2: KICKER_DISTANCE"),
+            std::string::npos);
+  const std::string no_height = error_of(base + "KICKER_DISTANCE = 0.07\n");
+  EXPECT_NE(no_height.find("t.cfg:2: KICKER_DISTANCE"), std::string::npos) << no_height;
+  EXPECT_NE(no_height.find("MOUTH_HEIGHT"), std::string::npos) << no_height;
+  EXPECT_NE(
+      error_of(base + "KICKER_DISTANCE = 0.07\nMOUTH_HEIGHT = 0.5\n").find("t.cfg:3: MOUTH_HEIGHT"),
+      std::string::npos);
+}
+
 }  // namespace
 }  // namespace ubersim::physics::testing

@@ -183,6 +183,81 @@ TEST_P(RobotMotion, CommandTimeoutStopsTheRobot) {
   EXPECT_LT(std::abs(robot.planar_state().vx), 0.02);
 }
 
+// A robot moving steadily at `speed` on one axis (0 forward, 2 rotation) is
+// told to stop: the rate at which it loses speed between 75 % and 25 % of it,
+// interpolated between steps, like the speed-up ramps above.
+double measured_braking(World& world, const std::string& type, int axis, double speed) {
+  Robot& robot = world.add_robot(Team::Yellow, 6, type, PlanarState{-2.0, 0, 0, 0, 0, 0});
+  const double vx = axis == 0 ? speed : 0, omega = axis == 2 ? speed : 0;
+  world.command(Team::Yellow, 6, velocity_command(6, vx, 0, omega));
+  run_for(world, 1.0);  // up to speed and steady
+  const auto value = [&] {
+    const PlanarState s = robot.planar_state();
+    return axis == 0 ? std::cos(s.heading) * s.vx + std::sin(s.heading) * s.vy : s.omega;
+  };
+  const double start = value();
+  world.command(Team::Yellow, 6, velocity_command(6, 0, 0, 0));
+  double t_high = -1, t_low = -1, previous = start;
+  for (int i = 0; i < 480 && t_low < 0; ++i) {
+    world.step();
+    const double v = value();
+    const auto crossing = [&](double level) {
+      return world.time() - world.dt() * (level - v) / (previous - v);
+    };
+    if (t_high < 0 && v <= 0.75 * start) t_high = crossing(0.75 * start);
+    if (t_high >= 0 && t_low < 0 && v <= 0.25 * start) t_low = crossing(0.25 * start);
+    previous = v;
+  }
+  return (t_high >= 0 && t_low > t_high) ? 0.5 * start / (t_low - t_high) : 0;
+}
+
+TEST_P(RobotMotion, ABrakeLimitOfItsOwnBoundsTheDecelerationNotTheSpeedUp) {
+  for (const double brake : {1.5, 5.0}) {
+    World world(empty_world(GetParam()));
+    const std::string type = "braking";
+    world.define_robot_type(type,
+                            robot_config_text("omni4_ssl", GetParam(),
+                                              {{"MAX_BRAKE_ACCELERATION", std::to_string(brake)}}));
+    const double speedup = world.setup().robot_types(type)->max_acceleration;
+    const double measured = measured_braking(world, type, 0, 2.0);
+    std::printf("%s: brake limit %.1f m/s^2 (speed-up %.1f): measured deceleration %.3f\n",
+                model_name(GetParam()), brake, speedup, measured);
+    EXPECT_NEAR(measured, brake, 0.05 * brake);
+    // ... while it still speeds up at its speed-up limit.
+    world.remove_robot(Team::Yellow, 6);
+    Robot& robot = world.add_robot(Team::Yellow, 6, type, PlanarState{});
+    world.command(Team::Yellow, 6, velocity_command(6, 2.0, 0, 0));
+    run_for(world, 0.25);  // 0.75 m/s at 3 m/s^2, were braking used: 0.375 or 1.25
+    EXPECT_NEAR(robot.planar_state().vx, speedup * 0.25, 0.05);
+  }
+}
+
+TEST_P(RobotMotion, AnAngularBrakeLimitBoundsTheAngularDeceleration) {
+  World world(empty_world(GetParam()));
+  const std::string type = "braking";
+  world.define_robot_type(
+      type, robot_config_text("omni4_ssl", GetParam(), {{"MAX_ANGULAR_BRAKE_ACCELERATION", "20"}}));
+  const double measured = measured_braking(world, type, 2, 6.0);
+  std::printf("%s: angular brake limit 20 rad/s^2 (speed-up 40): measured %.2f\n",
+              model_name(GetParam()), measured);
+  EXPECT_NEAR(measured, 20.0, 0.05 * 20.0);
+}
+
+TEST_P(RobotMotion, WithoutBrakeLimitsARobotBrakesAtItsSpeedUpLimit) {
+  World world(empty_world(GetParam()));
+  const auto type = load_robot_config(kConfigDir, "omni4_ssl");
+  EXPECT_EQ(type.max_brake_acceleration, type.max_acceleration);
+  EXPECT_EQ(type.max_angular_brake_acceleration, type.max_angular_acceleration);
+  const double linear = measured_braking(world, "omni4_ssl", 0, 2.0);
+  World spinning(empty_world(GetParam()));
+  const double angular = measured_braking(spinning, "omni4_ssl", 2, 6.0);
+  std::printf("%s: omni4_ssl brakes at %.3f m/s^2 and %.2f rad/s^2 (limits %.1f, %.1f)\n",
+              model_name(GetParam()), linear, angular, type.max_acceleration,
+              type.max_angular_acceleration);
+  EXPECT_NEAR(linear, type.max_acceleration, 0.05 * type.max_acceleration);
+  EXPECT_NEAR(angular, type.max_angular_acceleration, 0.05 * type.max_angular_acceleration);
+}
+
 INSTANTIATE_TEST_SUITE_P(BothDriveModels, RobotMotion,
                          ::testing::Values(DriveModel::Jointed, DriveModel::Planar),
                          drive_model_test_name);

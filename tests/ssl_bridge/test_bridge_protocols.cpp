@@ -6,6 +6,8 @@
 // ball). ISOLATED: own network namespace.
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
+#include <ssl_simulation_custom_erforce_realism.pb.h>
+#include <ssl_simulation_custom_erforce_robot_spec.pb.h>
 #include <ssl_vision_wrapper_tracked.pb.h>
 
 #include <array>
@@ -273,6 +275,51 @@ TEST_F(SslProtocols, RobotSpecsChangeRadiusInGeometryAndDetectionsAndTheKickLimi
   EXPECT_GT(fast, 4000.0) << physics_->log();
   EXPECT_LT(limited, 2100.0);
   EXPECT_GT(limited, 1500.0);
+}
+
+// What the official simulation controller sends for a team (its
+// robot-specs.yaml entry for TIGERs Mannheim at
+// 1c9857786bf9f5926e90603744f2da3559bcce38, once per robot id, ER-Force's
+// custom type URL) and RC2021's simulate_dribbling = false: physics takes
+// both (no error), and the robot kicks a ball that waits in its mouth (the
+// mouth's geometry itself is measured in test_physics_kicker_dribbler).
+TEST_F(SslProtocols, OfficialRobotSpecsAndGluedDribblingApplyWithoutErrors) {
+  ASSERT_NO_FATAL_FAILURE(start("ideal"));
+  SimulatorCommand specs;
+  for (uint32_t id = 0; id < 16; ++id) {
+    RobotSpecs* s = specs.mutable_config()->add_robot_specs();
+    s->mutable_id()->set_team(BLUE);
+    s->mutable_id()->set_id(id);
+    s->set_radius(0.09f);
+    s->set_height(0.143f);
+    s->set_mass(2.7f);
+    s->set_max_linear_kick_speed(8);
+    s->set_max_chip_kick_speed(8);
+    s->set_center_to_dribbler(0.078f);
+    RobotLimits* l = s->mutable_limits();
+    l->set_acc_speedup_absolute_max(4.7f);
+    l->set_acc_speedup_angular_max(50.8f);
+    l->set_acc_brake_absolute_max(5.9f);
+    l->set_acc_brake_angular_max(51.6f);
+    l->set_vel_absolute_max(3.7f);
+    l->set_vel_angular_max(26.2f);
+    RobotSpecErForce erforce;
+    erforce.set_shoot_radius(0.0715f);
+    erforce.set_dribbler_width(0.065f);
+    google::protobuf::Any* custom = s->add_custom();
+    custom->set_type_url("type.googleapis.com/sslsim.RobotSpecErForce");
+    custom->set_value(erforce.SerializeAsString());
+  }
+  expect_done(specs);
+  SimulatorCommand realism;
+  RealismConfigErForce glue;
+  glue.set_simulate_dribbling(false);
+  realism.mutable_config()->mutable_realism_config()->add_custom()->PackFrom(glue);
+  expect_done(realism);
+  // The ball 2 mm from the kicker face, inside the mouth: it is kicked.
+  const double speed = kicked_ball_speed(5.0f, 0.0715);
+  std::printf("TIGERs specs: 5 m/s kick from the mouth: ball at %.0f mm/s\n", speed);
+  EXPECT_NEAR(speed, 5000.0, 500.0) << physics_->log();
 }
 
 TEST_F(SslProtocols, RealismPresetsSetTheDetectionNoiseOnTheVisionPort) {

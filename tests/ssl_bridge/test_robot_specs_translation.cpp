@@ -1,9 +1,12 @@
 // RobotSpecs -> robot types defined at run time, in-process: the produced
 // config text is read back by the same reader physics uses.
+#include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
 #include <ssl_simulation_custom_erforce_robot_spec.pb.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/ssl_bridge/sim_control_translation.hpp"
@@ -44,8 +47,9 @@ TEST(SslRobotSpecs, EveryHonouredFieldReachesTheRobotType) {
   specs.set_max_chip_kick_speed(3.0f);
   specs.set_center_to_dribbler(0.07f);
   specs.mutable_limits()->set_acc_speedup_absolute_max(2.5f);
-  specs.mutable_limits()->set_acc_brake_absolute_max(2.5f);  // equal: honoured
+  specs.mutable_limits()->set_acc_brake_absolute_max(3.5f);
   specs.mutable_limits()->set_acc_speedup_angular_max(30.f);
+  specs.mutable_limits()->set_acc_brake_angular_max(45.f);
   specs.mutable_limits()->set_vel_absolute_max(2.0f);
   specs.mutable_limits()->set_vel_angular_max(8.0f);
   RobotWheelAngles* w = specs.mutable_wheel_angles();
@@ -55,6 +59,7 @@ TEST(SslRobotSpecs, EveryHonouredFieldReachesTheRobotType) {
   w->set_front_left(static_cast<float>(300 * M_PI / 180));
   RobotSpecErForce erforce;
   erforce.set_dribbler_width(0.06f);
+  erforce.set_shoot_radius(0.064f);
   specs.add_custom()->PackFrom(erforce);
 
   const RobotSpecsTranslation out = translate_robot_specs(all, base);
@@ -73,8 +78,15 @@ TEST(SslRobotSpecs, EveryHonouredFieldReachesTheRobotType) {
   EXPECT_NEAR(read.kick_max_speed, 4.0, 1e-6);
   EXPECT_NEAR(read.chip_max_speed, 3.0, 1e-6);
   EXPECT_NEAR(read.front_distance, 0.07, 1e-6);
+  // ER-Force's body: the flat front at center_to_dribbler, the ball resting
+  // against the dribbler at shoot_radius, in a mouth between them.
+  EXPECT_NEAR(read.kicker_distance, 0.064, 1e-6);
+  EXPECT_TRUE(read.has_mouth());
+  EXPECT_NEAR(read.mouth_height, 0.06, 1e-6);
   EXPECT_NEAR(read.max_acceleration, 2.5, 1e-6);
   EXPECT_NEAR(read.max_angular_acceleration, 30, 1e-5);
+  EXPECT_NEAR(read.max_brake_acceleration, 3.5, 1e-6);
+  EXPECT_NEAR(read.max_angular_brake_acceleration, 45, 1e-5);
   EXPECT_NEAR(read.max_speed, 2.0, 1e-6);
   EXPECT_NEAR(read.max_angular_speed, 8.0, 1e-6);
   EXPECT_NEAR(read.dribbler_width, 0.06, 1e-6);
@@ -99,7 +111,8 @@ TEST(SslRobotSpecs, FieldsThatCannotBeHonouredAreNamedInErrors) {
   RobotSpecs& specs = *all.Add();
   specs.mutable_id()->set_team(YELLOW);  // no id: the whole team
   specs.set_mass(-1.0f);
-  specs.mutable_limits()->set_acc_brake_absolute_max(9.0f);  // differs from speed-up
+  specs.mutable_limits()->set_acc_brake_absolute_max(std::nanf(""));
+  specs.mutable_limits()->set_acc_brake_angular_max(-5.0f);
   google::protobuf::Any other;
   other.set_type_url("type.googleapis.com/SomeoneElsesSpec");
   *specs.add_custom() = other;
@@ -112,8 +125,8 @@ TEST(SslRobotSpecs, FieldsThatCannotBeHonouredAreNamedInErrors) {
 
   const RobotSpecsTranslation out = translate_robot_specs(all, base);
   EXPECT_TRUE(mentions(out.errors, kErrorInvalid, "robot_specs[0].mass"));
-  EXPECT_TRUE(
-      mentions(out.errors, kErrorUnsupported, "robot_specs[0].limits.acc_brake_absolute_max"));
+  EXPECT_TRUE(mentions(out.errors, kErrorInvalid, "robot_specs[0].limits.acc_brake_absolute_max"));
+  EXPECT_TRUE(mentions(out.errors, kErrorInvalid, "robot_specs[0].limits.acc_brake_angular_max"));
   EXPECT_TRUE(mentions(out.errors, kErrorUnsupported, "robot_specs[0].custom[0]"));
   EXPECT_TRUE(mentions(out.errors, kErrorMalformed, "robot_specs[0].custom[1]"));
   EXPECT_TRUE(mentions(out.errors, kErrorInvalid, "robot_specs[1].id.team"));
@@ -124,6 +137,105 @@ TEST(SslRobotSpecs, FieldsThatCannotBeHonouredAreNamedInErrors) {
       parse_robot_type_definition(out.types[0].name, out.types[0].config_text);
   EXPECT_NEAR(read.mass, base.config.mass, 1e-9);
   EXPECT_NEAR(read.radius, 0.09, 1e-6);  // the protocol's default radius
+  // The bad brake limits are not applied: the type brakes as it speeds up.
+  EXPECT_EQ(read.max_brake_acceleration, base.config.max_acceleration);
+  EXPECT_EQ(read.max_angular_brake_acceleration, base.config.max_angular_acceleration);
+}
+
+TEST(SslRobotSpecs, AnInvalidShootRadiusIsNamedAndTheFrontStays) {
+  google::protobuf::RepeatedPtrField<RobotSpecs> all;
+  RobotSpecs& specs = *all.Add();
+  specs.mutable_id()->set_team(BLUE);
+  specs.set_center_to_dribbler(0.075f);
+  RobotSpecErForce erforce;
+  erforce.set_shoot_radius(-0.07f);
+  erforce.set_dribbler_width(std::nanf(""));
+  specs.add_custom()->PackFrom(erforce);
+  const RobotSpecsTranslation out = translate_robot_specs(all, omni4());
+  EXPECT_TRUE(mentions(out.errors, kErrorInvalid, "robot_specs[0].custom[0].shoot_radius"));
+  EXPECT_TRUE(mentions(out.errors, kErrorInvalid, "robot_specs[0].custom[0].dribbler_width"));
+  ASSERT_EQ(out.types.size(), 1u);
+  const RobotTypeConfig read =
+      parse_robot_type_definition(out.types[0].name, out.types[0].config_text);
+  EXPECT_FALSE(read.has_mouth());
+  EXPECT_NEAR(read.kicker_distance, 0.075, 1e-6);
+}
+
+// A dribbler reaching out beyond the hull (shoot_radius beyond
+// center_to_dribbler) is not an error: the ball rests on the flat front.
+TEST(SslRobotSpecs, AShootRadiusBeyondTheFrontPutsTheKickerAtTheFront) {
+  google::protobuf::RepeatedPtrField<RobotSpecs> all;
+  RobotSpecs& specs = *all.Add();
+  specs.mutable_id()->set_team(YELLOW);
+  specs.set_center_to_dribbler(0.07f);
+  RobotSpecErForce erforce;
+  erforce.set_shoot_radius(0.08f);
+  specs.add_custom()->PackFrom(erforce);
+  const RobotSpecsTranslation out = translate_robot_specs(all, omni4());
+  for (const auto& e : out.errors) ADD_FAILURE() << e.code() << ": " << e.message();
+  ASSERT_EQ(out.types.size(), 1u);
+  const RobotTypeConfig read =
+      parse_robot_type_definition(out.types[0].name, out.types[0].config_text);
+  EXPECT_NEAR(read.front_distance, 0.07, 1e-6);
+  EXPECT_NEAR(read.kicker_distance, 0.07, 1e-6);
+  EXPECT_FALSE(read.has_mouth());
+}
+
+// Every team of the official simulation controller's robot-specs.yaml
+// (tests/ssl_bridge/data/official_robot_specs.txtpb) translates without a
+// single error, into a type physics' reader takes, with each value in place.
+TEST(SslRobotSpecs, TheOfficialRobotSpecsOfEveryTeamTranslateWithoutErrors) {
+  std::ifstream in(UBERSIM_SSL_TEST_DATA "/official_robot_specs.txtpb");
+  ASSERT_TRUE(in) << "fixture missing";
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  SimulatorConfig config;
+  ASSERT_TRUE(google::protobuf::TextFormat::ParseFromString(text, &config));
+  ASSERT_EQ(config.robot_specs_size(), 16);
+  for (RobotSpecs& specs : *config.mutable_robot_specs()) {
+    ASSERT_EQ(specs.custom_size(), 1);
+    // The simulation controller's type URL (ER-Force's package).
+    specs.mutable_custom(0)->set_type_url("type.googleapis.com/sslsim.RobotSpecErForce");
+  }
+  const RobotSpecsTranslation out = translate_robot_specs(config.robot_specs(), omni4());
+  EXPECT_EQ(out.errors.size(), 0u);
+  for (const auto& e : out.errors) ADD_FAILURE() << e.code() << ": " << e.message();
+  ASSERT_EQ(out.types.size(), 16u);
+  int mouths = 0;
+  for (int i = 0; i < 16; ++i) {
+    const RobotSpecs& spec = config.robot_specs(i);
+    RobotSpecErForce erforce;
+    ASSERT_TRUE(spec.custom(0).UnpackTo(&erforce) ||
+                erforce.ParseFromString(spec.custom(0).value()));
+    const DefinedRobotType& type = out.types[static_cast<std::size_t>(i)];
+    SCOPED_TRACE(type.name);
+    RobotTypeConfig read;
+    ASSERT_NO_THROW(read = parse_robot_type_definition(type.name, type.config_text))
+        << type.config_text;
+    EXPECT_NEAR(read.radius, spec.radius(), 1e-6);
+    EXPECT_NEAR(read.height, spec.height(), 1e-6);
+    EXPECT_NEAR(read.mass, spec.mass(), 1e-6);
+    EXPECT_NEAR(read.kick_max_speed, spec.max_linear_kick_speed(), 1e-6);
+    EXPECT_NEAR(read.chip_max_speed, spec.max_chip_kick_speed(), 1e-6);
+    EXPECT_NEAR(read.front_distance, spec.center_to_dribbler(), 1e-6);
+    EXPECT_NEAR(read.kicker_distance, erforce.shoot_radius(), 1e-6);  // all within the front
+    EXPECT_NEAR(read.dribbler_width, erforce.dribbler_width(), 1e-6);
+    EXPECT_NEAR(read.kicker_width, erforce.dribbler_width(), 1e-6);
+    const RobotLimits& l = spec.limits();
+    EXPECT_NEAR(read.max_acceleration, l.acc_speedup_absolute_max(), 1e-5);
+    EXPECT_NEAR(read.max_angular_acceleration, l.acc_speedup_angular_max(), 1e-4);
+    EXPECT_NEAR(read.max_brake_acceleration, l.acc_brake_absolute_max(), 1e-5);
+    EXPECT_NEAR(read.max_angular_brake_acceleration, l.acc_brake_angular_max(), 1e-4);
+    EXPECT_NEAR(read.max_speed, l.vel_absolute_max(), 1e-5);
+    EXPECT_NEAR(read.max_angular_speed, l.vel_angular_max(), 1e-4);
+    if (read.has_mouth()) ++mouths;
+  }
+  // TIGERs Mannheim (entry 1) brakes harder than it speeds up.
+  const RobotTypeConfig tigers =
+      parse_robot_type_definition(out.types[1].name, out.types[1].config_text);
+  EXPECT_NEAR(tigers.max_acceleration, 4.7, 1e-5);
+  EXPECT_NEAR(tigers.max_brake_acceleration, 5.9, 1e-5);
+  EXPECT_NEAR(tigers.max_angular_brake_acceleration, 51.6, 1e-4);
+  EXPECT_EQ(mouths, 15);  // UBC Thunderbots' ball rests at its flat front
 }
 
 TEST(SslRobotSpecs, SpecsDefineATypeThenRebuildTheRobotsWhereTheyStand) {

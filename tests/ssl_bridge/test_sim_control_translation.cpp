@@ -1,5 +1,6 @@
 // SimulatorCommand -> SIM_CONTROL requests and errors, in-process.
 #include <gtest/gtest.h>
+#include <ssl_simulation_custom_erforce_realism.pb.h>
 
 #include <cmath>
 #include <ubersim/team_t.hpp>
@@ -257,4 +258,26 @@ TEST(SslSimControl, GeometryBecomesSetFieldSpecsWithoutABaseTypeAreAnError) {
   EXPECT_FALSE(out.realism.has_value());  // no custom config: nothing to change
   ASSERT_TRUE(out.vision_port.has_value());
   EXPECT_EQ(*out.vision_port, 10006);
+}
+
+// ER-Force's simulate_dribbling reaches physics (which owns the dribblers) as
+// SET_DRIBBLING, inverted: false there is "glue the ball", perfect dribbling.
+TEST(SslSimControl, SimulateDribblingBecomesSetDribblingWithoutAnError) {
+  for (const bool simulate : {false, true}) {
+    RealismConfigErForce erforce;
+    erforce.set_simulate_dribbling(simulate);
+    SimulatorCommand command;
+    command.mutable_config()->mutable_realism_config()->add_custom()->PackFrom(erforce);
+    const auto out = translate_simulator_command(command, nullptr, {});
+    for (const auto& e : out.errors) ADD_FAILURE() << e.code() << ": " << e.message();
+    ASSERT_EQ(out.requests.size(), 1u);
+    EXPECT_EQ(out.requests[0].action, +sim_control_t::SET_DRIBBLING);
+    EXPECT_EQ(out.requests[0].perfect_dribbling, !simulate);
+  }
+  // Unset: physics is not asked.
+  RealismConfigErForce quiet;
+  quiet.set_stddev_ball_p(0.001f);
+  SimulatorCommand command;
+  command.mutable_config()->mutable_realism_config()->add_custom()->PackFrom(quiet);
+  EXPECT_TRUE(translate_simulator_command(command, nullptr, {}).requests.empty());
 }

@@ -30,8 +30,14 @@ struct RobotTypeConfig {
   double radius = 0;                 // m
   double height = 0;                 // m
   double center_of_mass_height = 0;  // m
-  double front_distance = 0;         // m, centre to the flat front face (kicker, dribbler)
+  double front_distance = 0;         // m, centre to the flat front of the body
   double ground_clearance = 0;       // m, floor to the underside of the chassis
+  // m, centre to the kicker face and dribbler, where a held ball rests
+  // (KICKER_DISTANCE, default FRONT_DISTANCE). Nearer than the front, the
+  // body has a mouth there: the flat front's width, from the chassis'
+  // underside up to mouth_height, so the ball sits partly inside the robot.
+  double kicker_distance = 0;
+  double mouth_height = 0;  // m, floor to the top of the mouth (MOUTH_HEIGHT); 0 = no mouth
 
   std::vector<WheelConfig> wheels;
   double wheel_radius = 0;               // m
@@ -50,6 +56,11 @@ struct RobotTypeConfig {
   double max_angular_speed = 0;         // rad/s
   double max_acceleration = 0;          // m/s^2, on-board limit, 0 = none
   double max_angular_acceleration = 0;  // rad/s^2, 0 = none
+  // Braking limits: for the part of a set-point change that reduces the speed
+  // (MAX_BRAKE_ACCELERATION, MAX_ANGULAR_BRAKE_ACCELERATION). Default: the
+  // speed-up limit above, so a type without them brakes as it speeds up.
+  double max_brake_acceleration = 0;          // m/s^2, 0 = none
+  double max_angular_brake_acceleration = 0;  // rad/s^2, 0 = none
 
   double dribbler_max_speed = 0;      // rad/s of the roller, 0 = no dribbler
   double dribbler_roller_radius = 0;  // m
@@ -69,6 +80,7 @@ struct RobotTypeConfig {
   std::size_t caster_count() const { return caster_positions.size() / 2; }
   bool has_dribbler() const { return dribbler_max_speed > 0; }
   bool has_kicker() const { return kick_max_speed > 0 || chip_max_speed > 0; }
+  bool has_mouth() const { return kicker_distance < front_distance; }
 };
 
 // Reads every key of a robot file (and rejects any other). Throws ConfigError.

@@ -24,6 +24,9 @@ struct ChassisOutline {
   // into `segments` straight pieces whose corners lie on the circle.
   static ChassisOutline make(double radius, double front_distance, int segments, double z_bottom,
                              double z_top);
+  // Any convex polygon (corners counter-clockwise), e.g. a part of the front
+  // around the kicker's mouth.
+  static ChassisOutline polygon(std::vector<Vec2> vertices, double z_bottom, double z_top);
 
   // Signed distance from a point (chassis frame) to the outline: < 0 inside.
   // `edge` gets the edge of least penetration (inside) or nearest (outside).

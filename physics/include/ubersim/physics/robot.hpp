@@ -60,6 +60,13 @@ class Robot {
   // moves at the roller's speed (backspin) with force capped by its motor.
   void add_dribbler_contact(const Ball& ball, double now, dWorldID world,
                             dJointGroupID group) const;
+  // Perfect dribbling (the world's switch, ER-Force's simulate_dribbling =
+  // false): while the dribbler is on, a ball that reaches the kicker face is
+  // held there by a ball joint to the chassis; released when the dribbler goes
+  // off, the robot kicks, either body is placed, or the switch goes off.
+  void update_hold(const Ball& ball, double now, bool perfect_dribbling, dWorldID world);
+  void release_ball() { hold_.reset(); }
+  bool holds_ball() const { return hold_ != nullptr; }
 
   void fill_state(robot_state_t& out, const Ball& ball, double now) const;
 
@@ -71,6 +78,7 @@ class Robot {
   // The command in force: the last one, or stop once it timed out.
   const RobotCommand& effective_command(double now) const;
   void ball_in_robot_frame(const Ball& ball, double local[3]) const;
+  void add_mouth_parts(double z_bottom, double z_top, double z_mouth);
 
   std::shared_ptr<const RobotTypeConfig> type_;
   Team team_;
@@ -83,6 +91,10 @@ class Robot {
   GeomTag chassis_tag_;
   SpaceHandle space_;
   std::unique_ptr<Drive> drive_;
+  // Around a mouth (type().has_mouth()): lip and pillars, on the chassis body.
+  std::vector<ChassisOutline> front_parts_;  // reserved once: the geoms point into it
+  std::vector<GeomHandle> front_geoms_;
+  JointHandle hold_;  // the perfect dribbler's joint to the ball, while it holds it
 
   RobotCommand command_;
   double last_command_time_ = -1;                                  // s, -1 = never

@@ -119,6 +119,11 @@ class World {
   void change_ball_radius(double radius);
   bool remove_robot(Team team, int id);
   Robot* robot(Team team, int id);
+  // SIM_CONTROL SET_DRIBBLING: true = a dribbler that is on holds the ball it
+  // touches rigidly (Robot::update_hold), false = the roller's contact only.
+  // Kept over reset().
+  void set_perfect_dribbling(bool perfect);
+  bool perfect_dribbling() const { return perfect_dribbling_; }
   // Ball at a position (z = 0: resting on the floor) with a velocity, no spin.
   void place_ball(double x, double y, double z, double vx, double vy, double vz);
 
@@ -161,6 +166,7 @@ class World {
   std::unique_ptr<ContactHandler> contact_handler_;
 
   std::int64_t step_ = 0;
+  bool perfect_dribbling_ = false;
   unsigned long solver_random_state_ = 0;
   std::array<DelayLine<sim_commands_t>, 2> pending_;  // per team: each keeps its own order
   std::array<double, 3> ball_last_good_{};

@@ -14,6 +14,8 @@ namespace ubersim::ssl {
 
 struct RealismTranslation {
   std::optional<emulator_realism_t> realism;  // request_id and sender left to the caller
+  // simulate_dribbling, inverted, for physics (SIM_CONTROL SET_DRIBBLING); unset: unchanged.
+  std::optional<bool> perfect_dribbling;
   Errors errors;
 };
 

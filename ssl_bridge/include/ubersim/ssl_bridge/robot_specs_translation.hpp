@@ -22,7 +22,7 @@ namespace ubersim::ssl {
 struct BaseRobotType {
   std::vector<std::pair<std::string, std::vector<std::string>>> keys;
   RobotTypeConfig config;
-  double ball_radius = 0.0215;  // m, to turn ER-Force's shoot_radius into a front distance
+  double ball_radius = 0.0215;  // m, a mouth (ER-Force's shoot_radius) must fit the ball
 };
 
 BaseRobotType base_robot_type(const ConfigFile& file, const RobotTypeConfig& config,
