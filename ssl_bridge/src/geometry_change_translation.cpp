@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "ubersim/ssl_bridge/calibration_translation.hpp"
 #include "ubersim/ssl_bridge/units.hpp"
 
 namespace ubersim::ssl {
@@ -51,10 +52,9 @@ GeometryChange translate_geometry(const SSL_GeometryData& geometry,
     add_error(out.errors, kErrorUnsupported,
               "geometry.field.ball_radius: the ball is the scenario's ball config; not applied");
   }
-  if (geometry.calib_size() > 0) {
-    add_error(out.errors, kErrorUnsupported,
-              "geometry.calib: the cameras are the vision emulator's profile; not applied");
-  }
+  CalibrationTranslation calibrations = translate_calibrations(geometry);
+  out.cameras = calibrations.cameras;
+  out.errors.insert(out.errors.end(), calibrations.errors.begin(), calibrations.errors.end());
   return out;
 }
 

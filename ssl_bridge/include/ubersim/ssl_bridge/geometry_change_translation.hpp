@@ -1,14 +1,16 @@
 #pragma once
 // SimulatorConfig.geometry -> a SET_FIELD request: the field sizes (mm) become
 // "KEY = value" lines (m) of a field config, which physics applies to the field
-// in use. The lines and arcs follow from the sizes (ignored); what ubersim
-// takes from elsewhere (cameras: the vision profile; ball: the ball config)
-// is an error when it differs from what ubersim has.
+// in use. The lines and arcs follow from the sizes (ignored); the camera
+// calibrations become the vision emulator's cameras (calibration_translation.hpp);
+// what ubersim takes from elsewhere (ball: the ball config) is an error when it
+// differs from what ubersim has.
 #include <messages_robocup_ssl_geometry.pb.h>
 
 #include <optional>
 #include <string>
 #include <ubersim/field_geometry_t.hpp>
+#include <ubersim/vision_cameras_t.hpp>
 
 #include "ubersim/ssl_bridge/errors.hpp"
 
@@ -16,6 +18,7 @@ namespace ubersim::ssl {
 
 struct GeometryChange {
   std::optional<std::string> field_config;  // for SIM_CONTROL SET_FIELD
+  std::optional<vision_cameras_t> cameras;  // the calibrations, for VISION_CAMERAS
   Errors errors;
 };
 
