@@ -14,7 +14,8 @@ usage() {
 usage: tools/launch.sh [options]
   --scenario NAME      robots, ball and field (default division_b_6v6)
   --field NAME         field2002 | division_b | division_a: that field's default scenario
-  --profile NAME       vision and radio emulator profile (default cmdragons02)
+  --profile NAME       vision and radio emulator profile (default cmdragons02); ER-Force's realism
+                       presets as none | friendly | rc2021 | realistic (= erforce_NAME)
   --speed F            1 real time (default), 0.5, 4 ..., 0 as fast as possible
   --lockstep           physics advances only when told (referee step N)
   --sync               sync mode: as fast as the demo teams' answers allow, latency exact and
@@ -97,6 +98,8 @@ if [ -z "$scenario" ]; then
   esac
 fi
 case "$demo" in yellow|blue|both|none) ;; *) echo "launch: --demo takes yellow, blue, both or none" >&2; exit 2 ;; esac
+# ER-Force's realism presets by their short names: rc2021 is config/{vision,radio}/erforce_rc2021.cfg.
+[ -e "$root/config/vision/$profile.cfg" ] || [ ! -e "$root/config/vision/erforce_$profile.cfg" ] || profile=erforce_$profile
 for program in ubersim_physics ubersim_vision ubersim_radio ubersim_demo_team ubersim_logger; do
   [ -x "$bin_dir/$program" ] || { echo "launch: $bin_dir/$program not found: run tools/build.sh" >&2; exit 2; }
 done
