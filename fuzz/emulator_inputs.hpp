@@ -7,11 +7,12 @@ namespace ubersim::fuzz {
 
 // The channels the vision and radio emulators take outside bytes from.
 enum class EmulatorChannel : std::uint8_t {
-  RadioYellow,       // radio_packet_t -> radio emulator
-  RadioBlue,         // radio_packet_t -> radio emulator
-  SimState,          // sim_state_t -> both
-  SimGeometry,       // field_geometry_t -> vision emulator
-  EmulatorRealism,   // emulator_realism_t -> both
+  RadioYellow,      // radio_packet_t -> radio emulator
+  RadioBlue,        // radio_packet_t -> radio emulator
+  SimState,         // sim_state_t -> both
+  SimGeometry,      // field_geometry_t -> vision emulator
+  EmulatorRealism,  // emulator_realism_t -> both
+  VisionCameras,    // vision_cameras_t -> vision emulator
   Count
 };
 

@@ -18,6 +18,7 @@
 #include <ubersim/field_geometry_t.hpp>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/sim_state_t.hpp>
+#include <ubersim/vision_cameras_t.hpp>
 #include <vector>
 
 #include "emulator_inputs.hpp"
@@ -40,7 +41,7 @@ void check(const ubersim::vision_frame_t& frame) {
   bool ok = finite(frame.t_capture) && finite(frame.t_sent);
   for (const auto& ball : frame.balls) {
     ok = ok && finite(ball.confidence) && finite(ball.x) && finite(ball.y) &&
-         finite(ball.pixel_x) && finite(ball.pixel_y);
+         finite(ball.pixel_x) && finite(ball.pixel_y) && finite(ball.area) && ball.area >= 0;
   }
   for (const auto* robots : {&frame.robots_yellow, &frame.robots_blue}) {
     for (const auto& robot : *robots) {
@@ -144,6 +145,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     case EmulatorChannel::SimGeometry: {
       ubersim::field_geometry_t geometry;
       if (decode(bytes, length, geometry)) vision.on_field_geometry(geometry);
+      break;
+    }
+    case EmulatorChannel::VisionCameras: {
+      ubersim::vision_cameras_t cameras;
+      if (decode(bytes, length, cameras)) vision.apply_cameras(cameras);
+      (void)vision.geometry_message();
       break;
     }
     case EmulatorChannel::EmulatorRealism:

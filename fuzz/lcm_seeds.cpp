@@ -20,6 +20,7 @@
 #include <ubersim/sim_state_t.hpp>
 #include <ubersim/sync_horizon_t.hpp>
 #include <ubersim/truth_demand_t.hpp>
+#include <ubersim/vision_cameras_t.hpp>
 #include <ubersim/vision_schedule_t.hpp>
 #include <utility>
 
@@ -202,7 +203,32 @@ emulator_realism_t realism() {
   r.command_latency = 0.02;
   r.command_robot_loss = 0.05;
   r.feedback_robot_loss = -1;  // keep the profile's
+  r.ball_area_sigma = 6.5;
+  r.camera_overlap = 1;
+  r.camera_position_error = 0.1;
+  r.object_position_offset = 0.02;
   return r;
+}
+
+// Two cameras as the official Division A geometry places them (6 m up, 3.01 m either
+// side of the centre line), looking straight down, no image edge.
+vision_cameras_t cameras() {
+  vision_cameras_t set{};
+  set.request_id = 6;
+  set.sender = "ssl bridge";
+  for (int id = 0; id < 2; ++id) {
+    camera_calibration_t c{};
+    c.camera_id = id;
+    c.focal_length = 390;
+    c.principal_x = c.principal_y = 300;
+    c.position[0] = id == 0 ? -3.01 : 3.01;
+    c.position[2] = 6;
+    c.orientation[1] = 1;  // 180 deg about x: straight down, rows along -y
+    c.distortion = 0.2;
+    set.cameras.push_back(c);
+  }
+  set.num_cameras = 2;
+  return set;
 }
 
 void write_emulator_seeds(const fs::path& dir) {
@@ -220,6 +246,7 @@ void write_emulator_seeds(const fs::path& dir) {
       physics::load_world_setup(UBERSIM_FUZZ_CONFIG_DIR, "division_b_6v6", "default"));
   write(dir, "geometry", on(EmulatorChannel::SimGeometry), encode_or_abort(world.geometry()));
   write(dir, "realism", on(EmulatorChannel::EmulatorRealism), encode_or_abort(realism()));
+  write(dir, "cameras", on(EmulatorChannel::VisionCameras), encode_or_abort(cameras()));
 }
 
 void write_consumer_seeds(const fs::path& dir) {
@@ -301,6 +328,7 @@ void write_lcm_seeds(const fs::path& decode_dir, const fs::path& physics_dir,
   write_consumer_seeds(consumers_dir);
   write_decode_seed(decode_dir, "radio_packet", radio_packet(1));
   write_decode_seed(decode_dir, "emulator_realism", realism());
+  write_decode_seed(decode_dir, "vision_cameras", cameras());
   write_default_seeds(decode_dir, AllLcmTypes{});
   write_decode_seed(decode_dir, "sim_state", division_b_state());
   write_decode_seed(decode_dir, "sim_commands", commands());

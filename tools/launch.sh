@@ -17,7 +17,8 @@ usage: tools/launch.sh [options]
                        any other config/fields/NAME.cfg (erforce_2014 ... erforce_2023b):
                        the scenario of the nearest size, its places scaled to the field;
                        with --scenario: that scenario's line-up on this field
-  --profile NAME       vision and radio emulator profile (default cmdragons02)
+  --profile NAME       vision and radio emulator profile (default cmdragons02); ER-Force's realism
+                       presets as none | friendly | rc2021 | realistic (= erforce_NAME)
   --speed F            1 real time (default), 0.5, 4 ..., 0 as fast as possible
   --lockstep           physics advances only when told (referee step N)
   --sync               sync mode: as fast as the demo teams' answers allow, latency exact and
@@ -124,6 +125,8 @@ elif [ -z "$scenario" ]; then
   esac
 fi
 case "$demo" in yellow|blue|both|none) ;; *) echo "launch: --demo takes yellow, blue, both or none" >&2; exit 2 ;; esac
+# ER-Force's realism presets by their short names: rc2021 is config/{vision,radio}/erforce_rc2021.cfg.
+[ -e "$root/config/vision/$profile.cfg" ] || [ ! -e "$root/config/vision/erforce_$profile.cfg" ] || profile=erforce_$profile
 for program in ubersim_physics ubersim_vision ubersim_radio ubersim_demo_team ubersim_logger; do
   [ -x "$bin_dir/$program" ] || { echo "launch: $bin_dir/$program not found: run tools/build.sh" >&2; exit 2; }
 done

@@ -60,6 +60,7 @@ void camera_to_dds(const camera_calibration_t& from, DdsCameraCalibration& to) {
   to.image_height = from.image_height;
   std::copy(std::begin(from.position), std::end(from.position), std::begin(to.position));
   std::copy(std::begin(from.orientation), std::end(from.orientation), std::begin(to.orientation));
+  to.distortion = from.distortion;
 }
 
 camera_calibration_t camera_from_dds(const DdsCameraCalibration& from) {
@@ -72,6 +73,7 @@ camera_calibration_t camera_from_dds(const DdsCameraCalibration& from) {
   to.image_height = from.image_height;
   std::copy(std::begin(from.position), std::end(from.position), std::begin(to.position));
   std::copy(std::begin(from.orientation), std::end(from.orientation), std::begin(to.orientation));
+  to.distortion = from.distortion;
   return to;
 }
 

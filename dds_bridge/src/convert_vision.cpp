@@ -9,6 +9,7 @@ void ball_to_dds(const vision_ball_t& from, DdsVisionBall& to) {
   to.y = from.y;
   to.pixel_x = from.pixel_x;
   to.pixel_y = from.pixel_y;
+  to.area = from.area;
 }
 
 vision_ball_t ball_from_dds(const DdsVisionBall& from) {
@@ -18,6 +19,7 @@ vision_ball_t ball_from_dds(const DdsVisionBall& from) {
   to.y = from.y;
   to.pixel_x = from.pixel_x;
   to.pixel_y = from.pixel_y;
+  to.area = from.area;
   return to;
 }
 

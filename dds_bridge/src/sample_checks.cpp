@@ -110,6 +110,7 @@ std::string non_finite_field(const vision_frame_t& frame) {
     check(p + "y", b.y);
     check(p + "pixel_x", b.pixel_x);
     check(p + "pixel_y", b.pixel_y);
+    check(p + "area", b.area);
   }
   for (const auto* team : {&frame.robots_yellow, &frame.robots_blue}) {
     const std::string array = team == &frame.robots_yellow ? "robots_yellow" : "robots_blue";
@@ -145,6 +146,7 @@ std::string non_finite_field(const vision_geometry_t& geometry) {
     check(p + "principal_y", c.principal_y);
     check(p + "position", c.position);
     check(p + "orientation", c.orientation);
+    check(p + "distortion", c.distortion);
   }
   return check.first();
 }

@@ -317,6 +317,14 @@ void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
       bus_.publish(channels_.emulator_realism(), *translation.realism);
       ++counters_["realism changes"];
     }
+    if (translation.cameras) {
+      translation.cameras->request_id = next_request_id_++;
+      translation.cameras->sender = kSender;
+      bus_.publish(channels_.vision_cameras(), *translation.cameras);
+      ++counters_["camera sets"];
+      spdlog::info("cameras from the geometry's calibrations: {} camera(s)",
+                   translation.cameras->num_cameras);
+    }
     if (translation.vision_port) {
       vision_destination_.sin_port = htons(static_cast<uint16_t>(*translation.vision_port));
       spdlog::info("vision now sent to port {}", *translation.vision_port);

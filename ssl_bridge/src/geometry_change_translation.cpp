@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "ubersim/field_change.hpp"
+#include "ubersim/ssl_bridge/calibration_translation.hpp"
 #include "ubersim/ssl_bridge/units.hpp"
 
 namespace ubersim::ssl {
@@ -84,10 +85,9 @@ GeometryChange translate_geometry(const SSL_GeometryData& geometry,
   if (f.has_ball_radius()) add_ball_radius(f.ball_radius(), current, text, out.errors);
   out.field_config = text;
 
-  if (geometry.calib_size() > 0) {
-    add_error(out.errors, kErrorUnsupported,
-              "geometry.calib: the cameras are the vision emulator's profile; not applied");
-  }
+  CalibrationTranslation calibrations = translate_calibrations(geometry);
+  out.cameras = calibrations.cameras;
+  out.errors.insert(out.errors.end(), calibrations.errors.begin(), calibrations.errors.end());
   return out;
 }
 

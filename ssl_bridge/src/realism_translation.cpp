@@ -10,11 +10,15 @@ namespace ubersim::ssl {
 namespace {
 
 constexpr double kNanosecond = 1e-9;  // s
+// The vision emulator's bounds (ubersim/vision/vision_profile.hpp, not a
+// dependency of the bridge): kept equal by test_realism_translation.
+constexpr double kMaxBallAreaSigma = 1e6;   // px^2
+constexpr double kMaxCameraOverlap = 1000;  // m
+constexpr double kMaxCameraOffset = 10;     // m
 
 // ER-Force's field -> our parameter, or a note of what is not modelled.
 void map_erforce(const RealismConfigErForce& in, const std::string& field, emulator_realism_t& out,
                  Errors& errors) {
-  std::vector<std::string> ignored;
   std::vector<std::string> invalid;
   const auto non_negative = [&](bool has, double value, const char* name) {
     if (!has) return false;
@@ -28,6 +32,14 @@ void map_erforce(const RealismConfigErForce& in, const std::string& field, emula
     invalid.push_back(name);
     return false;
   };
+  // The vision emulator's bounds (vision_profile.hpp): beyond them a value is
+  // a unit mistake, and the emulator would refuse the whole change.
+  const auto bounded = [&](bool has, double value, double max, const char* name) {
+    if (!non_negative(has, value, name)) return false;
+    if (value <= max) return true;
+    invalid.push_back(name);
+    return false;
+  };
   if (non_negative(in.has_stddev_ball_p(), in.stddev_ball_p(), "stddev_ball_p")) {
     out.ball_sigma_position = in.stddev_ball_p();
   }
@@ -37,7 +49,10 @@ void map_erforce(const RealismConfigErForce& in, const std::string& field, emula
   if (non_negative(in.has_stddev_robot_phi(), in.stddev_robot_phi(), "stddev_robot_phi")) {
     out.robot_sigma_orientation = in.stddev_robot_phi();
   }
-  if (in.stddev_ball_area() > 0) ignored.push_back("stddev_ball_area (no ball area reported)");
+  if (bounded(in.has_stddev_ball_area(), in.stddev_ball_area(), kMaxBallAreaSigma,
+              "stddev_ball_area")) {
+    out.ball_area_sigma = in.stddev_ball_area();  // px^2 on the reported ball area
+  }
   // ER-Force: the ball is reported while at least this fraction of it is
   // visible; with invisible balls off, always (ours: while any of it is).
   const bool threshold_ok =
@@ -48,13 +63,16 @@ void map_erforce(const RealismConfigErForce& in, const std::string& field, emula
   } else if (threshold_ok) {
     out.ball_min_visible_fraction = in.ball_visibility_threshold();
   }
-  if (in.has_camera_overlap()) ignored.push_back("camera_overlap (the cameras are the profile's)");
+  if (bounded(in.has_camera_overlap(), in.camera_overlap(), kMaxCameraOverlap, "camera_overlap")) {
+    out.camera_overlap = in.camera_overlap();
+  }
   if (non_negative(in.has_dribbler_ball_detections(), in.dribbler_ball_detections(),
                    "dribbler_ball_detections")) {
     out.false_ball_rate = in.dribbler_ball_detections();
   }
-  if (in.camera_position_error() != 0) {
-    ignored.push_back("camera_position_error (calibration errors are the profile's)");
+  if (bounded(in.has_camera_position_error(), in.camera_position_error(), kMaxCameraOffset,
+              "camera_position_error")) {
+    out.camera_position_error = in.camera_position_error();
   }
   if (probability(in.has_robot_command_loss(), in.robot_command_loss(), "robot_command_loss")) {
     out.command_robot_loss = in.robot_command_loss();
@@ -77,8 +95,9 @@ void map_erforce(const RealismConfigErForce& in, const std::string& field, emula
                    static_cast<double>(in.vision_processing_time()), "vision_processing_time")) {
     out.vision_processing_time = static_cast<double>(in.vision_processing_time()) * kNanosecond;
   }
-  if (in.object_position_offset() != 0) {
-    ignored.push_back("object_position_offset (no systematic offset is modelled)");
+  if (bounded(in.has_object_position_offset(), in.object_position_offset(), kMaxCameraOffset,
+              "object_position_offset")) {
+    out.object_position_offset = in.object_position_offset();
   }
   if (in.has_command_delay()) {
     out.command_latency = static_cast<double>(in.command_delay()) * kNanosecond;
@@ -89,11 +108,6 @@ void map_erforce(const RealismConfigErForce& in, const std::string& field, emula
     add_error(
         errors, kErrorInvalid,
         field + ": negative, non-finite or (for a probability) above 1, not applied: " + names);
-  }
-  if (!ignored.empty()) {
-    std::string names;
-    for (const std::string& n : ignored) names += (names.empty() ? "" : "; ") + n;
-    add_error(errors, kErrorUnsupported, field + ": not modelled, ignored: " + names);
   }
 }
 
@@ -106,6 +120,7 @@ emulator_realism_t unchanged_realism() {
   r.false_ball_rate = r.ball_min_visible_fraction = -1;
   r.vision_latency = r.vision_processing_time = -1;
   r.command_latency = r.command_robot_loss = r.feedback_robot_loss = -1;
+  r.ball_area_sigma = r.camera_overlap = r.camera_position_error = r.object_position_offset = -1;
   return r;
 }
 

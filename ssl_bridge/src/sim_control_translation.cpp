@@ -190,6 +190,7 @@ void translate_config(const SimulatorConfig& config, const SimControlSettings& s
       set_field.field_config = *change.field_config;
       out.requests.push_back(set_field);
     }
+    out.cameras = change.cameras;
   }
   if (config.has_realism_config()) {
     RealismTranslation realism = translate_realism(config.realism_config());

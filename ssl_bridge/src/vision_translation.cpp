@@ -83,7 +83,7 @@ void fill_calibration(const camera_calibration_t& in, SSL_GeometryCameraCalibrat
   out.set_focal_length(static_cast<float>(in.focal_length));
   out.set_principal_point_x(static_cast<float>(in.principal_x));
   out.set_principal_point_y(static_cast<float>(in.principal_y));
-  out.set_distortion(0);  // our cameras are ideal pinholes
+  out.set_distortion(static_cast<float>(in.distortion));
   // Ours: camera -> field rotation. SSL: world -> camera, so the conjugate,
   // and t = -R_wc * centre.
   const double world_to_camera[4] = {in.orientation[0], -in.orientation[1], -in.orientation[2],
@@ -101,8 +101,10 @@ void fill_calibration(const camera_calibration_t& in, SSL_GeometryCameraCalibrat
   out.set_derived_camera_world_tx(static_cast<float>(centre_mm[0]));
   out.set_derived_camera_world_ty(static_cast<float>(centre_mm[1]));
   out.set_derived_camera_world_tz(static_cast<float>(centre_mm[2]));
-  out.set_pixel_image_width(static_cast<uint32_t>(in.image_width));
-  out.set_pixel_image_height(static_cast<uint32_t>(in.image_height));
+  if (in.image_width > 0 && in.image_height > 0) {  // 0 x 0: an image without edge
+    out.set_pixel_image_width(static_cast<uint32_t>(in.image_width));
+    out.set_pixel_image_height(static_cast<uint32_t>(in.image_height));
+  }
 }
 
 }  // namespace
@@ -120,7 +122,8 @@ bool forwardable(const vision_frame_t& frame) {
   const auto fits = [](double v) { return fits_ssl(v); };
   bool ok = fits(frame.t_capture) && fits(frame.t_sent);
   for (const vision_ball_t& b : frame.balls) {
-    ok = ok && fits(b.confidence) && fits(b.x) && fits(b.y) && fits(b.pixel_x) && fits(b.pixel_y);
+    ok = ok && fits(b.confidence) && fits(b.x) && fits(b.y) && fits(b.pixel_x) && fits(b.pixel_y) &&
+         fits(b.area) && b.area >= 0;
   }
   for (const auto* robots : {&frame.robots_yellow, &frame.robots_blue}) {
     for (const vision_robot_t& r : *robots) {
@@ -144,7 +147,7 @@ bool forwardable(const vision_geometry_t& geometry) {
             size(f.boundary_width_goal_line) && size(f.goal_substitution_area_width);
   for (const camera_calibration_t& c : geometry.cameras) {
     ok = ok && fits_ssl(c.focal_length) && fits_ssl(c.principal_x) && fits_ssl(c.principal_y) &&
-         c.image_width >= 0 && c.image_height >= 0;
+         fits_ssl(c.distortion) && c.image_width >= 0 && c.image_height >= 0;
     for (double v : c.position) ok = ok && fits_ssl(v);
     for (double v : c.orientation) ok = ok && fits_ssl(v);
   }
@@ -167,6 +170,8 @@ SSL_WrapperPacket detection_packet(const vision_frame_t& frame) {
     b->set_y(static_cast<float>(m_to_mm(ball.y)));
     b->set_pixel_x(static_cast<float>(ball.pixel_x));
     b->set_pixel_y(static_cast<float>(ball.pixel_y));
+    // SSL's area is a whole number of pixels; 0 = not measured, left out.
+    if (ball.area >= 0.5) b->set_area(static_cast<uint32_t>(std::lround(ball.area)));
   }
   for (const vision_robot_t& robot : frame.robots_yellow)
     fill_robot(robot, *out->add_robots_yellow());

@@ -49,6 +49,7 @@ vision_frame_t vision_frame(std::int64_t frame_number, int balls, int robots_per
     b.y = -0.75 - i;
     b.pixel_x = 321.5 + i;
     b.pixel_y = 123.25 + i;
+    b.area = 71.5 + i;
     f.balls.push_back(b);
   }
   for (int i = 0; i < robots_per_team; ++i) {
@@ -98,6 +99,7 @@ vision_geometry_t vision_geometry(double seed) {
     cam.image_height = 580;
     for (int i = 0; i < 3; ++i) cam.position[i] = (c == 0 ? -2.25 : 2.25) + 0.1 * i;
     for (int i = 0; i < 4; ++i) cam.orientation[i] = 0.1 * (i + 1) + 0.01 * c;
+    cam.distortion = 0.2 - 0.05 * c;
     g.cameras.push_back(cam);
   }
   g.num_cameras = static_cast<std::int32_t>(g.cameras.size());

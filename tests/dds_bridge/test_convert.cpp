@@ -80,6 +80,7 @@ TEST(DdsConvert, VisionFrameFieldsLandWhereTheIdlSays) {
     EXPECT_EQ(d.balls._buffer[i].y, frame.balls[i].y);
     EXPECT_EQ(d.balls._buffer[i].pixel_x, frame.balls[i].pixel_x);
     EXPECT_EQ(d.balls._buffer[i].pixel_y, frame.balls[i].pixel_y);
+    EXPECT_EQ(d.balls._buffer[i].area, frame.balls[i].area);
   }
   ASSERT_EQ(d.robots_yellow._length, 3u);
   ASSERT_EQ(d.robots_blue._length, 3u);

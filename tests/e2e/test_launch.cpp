@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <regex>
+#include <set>
 #include <thread>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/sim_commands_t.hpp>
@@ -173,6 +174,35 @@ TEST(Launch, CpuAllLeavesThePlacementToTheKernel) {
   ASSERT_TRUE(pids.count("physics")) << launch.output();
   EXPECT_EQ(allowed_cpus(pids.at("physics")), allowed_cpus(::getpid()));
   launch.script().stop(10, SIGINT);
+}
+
+// ER-Force's realism presets by their short names: both emulators run the
+// erforce_ profile (four cameras, the preset's values).
+TEST(Launch, ErForcePresetsByTheirShortNames) {
+  TempDir dir;
+  VisionListener listener;
+  {
+    Launch launch({"--profile", "rc2021"}, dir);
+    launch.processes();
+    std::set<int> cameras;
+    ASSERT_TRUE(listener.run_until(
+        [&] {
+          for (const auto& f : listener.frames()) cameras.insert(f.camera_id);
+          return cameras.size() == 4;
+        },
+        30))
+        << launch.output();
+    EXPECT_NE(launch.output().find("profile erforce_rc2021"), std::string::npos)
+        << launch.output();
+    EXPECT_EQ(launch.script().stop(10, SIGINT), 0) << launch.output();
+  }
+  for (const char* name : {"none", "friendly", "realistic"}) {
+    Launch launch({"--profile", name, "--no-vision", "--no-radio"}, dir);
+    launch.processes();
+    EXPECT_NE(launch.output().find(std::string("profile erforce_") + name), std::string::npos)
+        << launch.output();
+    launch.script().stop(10, SIGINT);
+  }
 }
 
 TEST(Launch, RefereePlacementsShowInVision) {

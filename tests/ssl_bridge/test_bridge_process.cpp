@@ -2,18 +2,22 @@
 // VISION / VISION_GEOMETRY / RADIO_FEEDBACK messages on real LCM, and a client
 // written against the published SSL protocols (generated protobuf classes,
 // raw UDP on loopback). ISOLATED: its own network namespace, default ports.
+#include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
 #include <ssl_gc_referee_message.pb.h>
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <thread>
 #include <ubersim/radio_feedback_t.hpp>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/referee_t.hpp>
 #include <ubersim/robot_command_t.hpp>
 #include <ubersim/team_t.hpp>
+#include <ubersim/vision_cameras_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
 #include <ubersim/vision_geometry_t.hpp>
 
@@ -338,6 +342,34 @@ TEST_F(SslBridgeProcess, UnsupportedAndUnansweredControlIsNeverSilent) {
   ASSERT_TRUE(response.has_value());
   ASSERT_EQ(response->errors_size(), 1);
   EXPECT_EQ(response->errors(0).code(), "UBERSIM_NO_ANSWER");
+}
+
+// The official simulation controller's Division A geometry: its camera
+// calibrations go out on VISION_CAMERAS, and no error names them.
+TEST_F(SslBridgeProcess, CameraCalibrationsOfAGeometryGoOutOnVisionCameras) {
+  std::vector<ubersim::vision_cameras_t> sets;
+  bus_.subscribe<ubersim::vision_cameras_t>(
+      "VISION_CAMERAS", [&](const ubersim::vision_cameras_t& s) { sets.push_back(s); });
+  std::ifstream file(UBERSIM_OFFICIAL_GEOMETRY_DIV_A);
+  std::stringstream text;
+  text << file.rdbuf();
+  SimulatorCommand command;
+  ASSERT_TRUE(google::protobuf::TextFormat::ParseFromString(
+      text.str(), command.mutable_config()->mutable_geometry()));
+  ssl_test::UdpClient control_port(ports_.control);
+  const auto response = ssl_test::command(control_port, command);
+  ASSERT_TRUE(response.has_value());
+  for (const auto& error : response->errors()) {  // no physics here: the field is not answered
+    EXPECT_EQ(error.message().find("calib"), std::string::npos) << error.message();
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (sets.empty() && std::chrono::steady_clock::now() < deadline) bus_.wait_and_handle(20);
+  ASSERT_EQ(sets.size(), 1u);
+  ASSERT_EQ(sets[0].num_cameras, 2);
+  EXPECT_NEAR(sets[0].cameras[0].position[0], -3.01, 1e-6);
+  EXPECT_NEAR(sets[0].cameras[1].position[0], 3.01, 1e-6);
+  EXPECT_NEAR(sets[0].cameras[1].position[2], 6.0, 1e-6);
+  EXPECT_EQ(sets[0].sender, "ubersim_ssl_bridge");
 }
 
 TEST(SslBridgeOptions, DefaultsAreTheLeagueConventions) {

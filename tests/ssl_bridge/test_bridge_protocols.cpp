@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <thread>
 
 #include "child_process.hpp"
@@ -445,6 +446,64 @@ TEST_F(SslProtocols, OfficialDivisionAGeometryIsTheFieldPlayedOn) {
       },
       5))
       << physics_->log();
+}
+
+// The official simulation controller's Division A geometry (camera
+// calibrations included) through the whole stack: no error, and from then on
+// the two cameras it describes decide which camera sees what, as in ER-Force.
+TEST_F(SslProtocols, OfficialGeometryCamerasDecideWhichCameraSeesWhat) {
+  ASSERT_NO_FATAL_FAILURE(start("ideal"));  // one camera over the whole field
+  std::ifstream file(std::string(UBERSIM_SOURCE_DIR) + "/tests/ssl_bridge/data/simctl_geometry_div_a.txt");
+  std::stringstream text;
+  text << file.rdbuf();
+  SimulatorCommand official;
+  ASSERT_TRUE(google::protobuf::TextFormat::ParseFromString(
+      text.str(), official.mutable_config()->mutable_geometry()));
+  // The cameras are this test's; the field sizes are another's (the file's
+  // goal_center_to_penalty_mark of 8000 mm is the field part's to answer).
+  const auto response = ssl_test::command(control_, official);
+  ASSERT_TRUE(response.has_value()) << bridge_->log();
+  // The field part applies too (penalty mark 8 m, ...): no error at all.
+  for (const auto& e : response->errors()) ADD_FAILURE() << e.code() << ": " << e.message();
+  SimulatorCommand place;
+  teleport_blue(place, 2, -2.0f, 1.0f);                           // camera 0's half
+  teleport_blue(place, 3, 2.0f, -1.0f);                           // camera 1's half
+  place.mutable_control()->mutable_teleport_ball()->set_x(0.1f);  // within both overlaps
+  place.mutable_control()->mutable_teleport_ball()->set_y(0.0f);
+  expect_done(place);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  drain();
+
+  std::map<uint32_t, int> frames, robot_2, robot_3, balls;
+  SSL_GeometryData geometry;
+  vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        if (p.has_geometry()) geometry = p.geometry();
+        if (!p.has_detection()) return false;
+        const uint32_t camera = p.detection().camera_id();
+        ++frames[camera];
+        if (find_blue(p, 2) != nullptr) ++robot_2[camera];
+        if (find_blue(p, 3) != nullptr) ++robot_3[camera];
+        balls[camera] += p.detection().balls_size();
+        return false;
+      },
+      1.5);
+  ASSERT_EQ(frames.size(), 2u) << "cameras 0 and 1 only";
+  EXPECT_GE(frames[0], 30);  // 30 Hz, the profile's first camera's rate, for both
+  EXPECT_GE(frames[1], 30);
+  EXPECT_EQ(robot_2, (std::map<uint32_t, int>{{0, frames[0]}}));
+  EXPECT_EQ(robot_3, (std::map<uint32_t, int>{{1, frames[1]}}));
+  EXPECT_EQ(balls[0], frames[0]);
+  EXPECT_EQ(balls[1], frames[1]);
+  ASSERT_EQ(geometry.calib_size(), 2);
+  EXPECT_FLOAT_EQ(geometry.calib(0).derived_camera_world_tx(), -3010.0f);
+  EXPECT_FLOAT_EQ(geometry.calib(1).derived_camera_world_tx(), 3010.0f);
+  EXPECT_FLOAT_EQ(geometry.calib(1).derived_camera_world_tz(), 6000.0f);
+  EXPECT_FLOAT_EQ(geometry.calib(1).focal_length(), 390.0f);
+  EXPECT_FLOAT_EQ(geometry.calib(1).distortion(), 0.2f);
+  std::printf(
+      "official geometry: camera 0 %d frames (robot 2 in %d), camera 1 %d (robot 3 in %d)\n",
+      frames[0], robot_2[0], frames[1], robot_3[1]);
 }
 
 namespace {

@@ -245,7 +245,7 @@ TEST(SslSimControl, GeometryBecomesSetFieldSpecsWithoutABaseTypeAreAnError) {
   config->set_vision_port(10006);
   config->mutable_geometry()->mutable_field()->set_field_width(7400);
   config->mutable_geometry()->mutable_field()->set_line_thickness(20);
-  config->mutable_geometry()->add_calib();  // cameras are the vision profile's: an error
+  config->mutable_geometry()->add_calib();  // all zero: no camera position, an invalid value
   const auto out = translate_simulator_command(command, nullptr, {});
   ASSERT_EQ(out.requests.size(), 1u);
   EXPECT_EQ(out.requests[0].action, +sim_control_t::SET_FIELD);
@@ -255,6 +255,8 @@ TEST(SslSimControl, GeometryBecomesSetFieldSpecsWithoutABaseTypeAreAnError) {
   EXPECT_EQ(out.requests[0].field_config.find("PENALTY"), std::string::npos);  // unset: unchanged
   EXPECT_EQ(out.errors.size(), 2u);  // calib; robot specs without a base type
   EXPECT_TRUE(has_code(out.errors, kErrorUnsupported));
+  EXPECT_TRUE(has_code(out.errors, kErrorInvalid));
+  EXPECT_FALSE(out.cameras.has_value());
   EXPECT_FALSE(out.realism.has_value());  // no custom config: nothing to change
   ASSERT_TRUE(out.vision_port.has_value());
   EXPECT_EQ(*out.vision_port, 10006);

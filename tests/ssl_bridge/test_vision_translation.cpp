@@ -231,3 +231,29 @@ TEST(SslVisionTranslation, CalibrationIsWorldToCameraInMillimetres) {
   for (int j = 0; j < 3; ++j) along_z += R[2][j] * below[static_cast<size_t>(j)];
   EXPECT_NEAR(along_z, 4000.0, 1e-2);
 }
+
+TEST(SslVisionTranslation, BallAreaInWholePixelsDistortionAndAnImageWithoutEdge) {
+  vision_frame_t frame{};
+  vision_ball_t ball{};
+  ball.area = 71.6;
+  frame.balls.push_back(ball);
+  ball.area = 0;  // not measured
+  frame.balls.push_back(ball);
+  frame.num_balls = 2;
+  const SSL_WrapperPacket detection = detection_packet(frame);
+  ASSERT_EQ(detection.detection().balls_size(), 2);
+  EXPECT_EQ(detection.detection().balls(0).area(), 72u);
+  EXPECT_FALSE(detection.detection().balls(1).has_area());
+  frame.balls[0].area = std::nan("");
+  EXPECT_FALSE(forwardable(frame));
+
+  vision_geometry_t geometry = division_b_like();
+  geometry.cameras[0].distortion = 0.2;
+  geometry.cameras[0].image_width = geometry.cameras[0].image_height = 0;  // no edge
+  const auto& c = geometry_packet(geometry, {}).geometry().calib(0);
+  EXPECT_FLOAT_EQ(c.distortion(), 0.2f);
+  EXPECT_FALSE(c.has_pixel_image_width());
+  EXPECT_FALSE(c.has_pixel_image_height());
+  geometry.cameras[0].distortion = INFINITY;
+  EXPECT_FALSE(forwardable(geometry));
+}

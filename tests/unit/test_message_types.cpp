@@ -62,7 +62,7 @@ TEST(MessageTypes, VisionFrame) {
   frame.t_capture = 10.0;
   frame.t_sent = 10.1;
   frame.num_balls = 1;
-  frame.balls.push_back({0.9f, 1.5, -2.5, 320.5, 240.25});
+  frame.balls.push_back({0.9f, 1.5, -2.5, 320.5, 240.25, 71.5});
   frame.num_robots_yellow = 2;
   frame.robots_yellow = {{3, 0.8f, 1.0, 2.0, -3.0, 10.0, 20.0}, {7, 1.0f, -1, -2, 3.1, 1, 2}};
   frame.num_robots_blue = 1;
@@ -72,6 +72,7 @@ TEST(MessageTypes, VisionFrame) {
   EXPECT_EQ(decoded.robots_yellow[1].robot_id, 7);
   EXPECT_DOUBLE_EQ(decoded.robots_blue[0].orientation, 0.5);
   EXPECT_DOUBLE_EQ(decoded.balls[0].pixel_y, 240.25);
+  EXPECT_DOUBLE_EQ(decoded.balls[0].area, 71.5);
 }
 
 TEST(MessageTypes, VisionGeometryWithCameras) {

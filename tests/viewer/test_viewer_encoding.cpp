@@ -100,7 +100,7 @@ TEST(ViewerEncoding, VisionFrameKeepsCameraTimesAndDetectionsPerTeam) {
   frame.frame_number = 41;
   frame.t_capture = 1.5;
   frame.t_sent = 1.6;
-  frame.balls = {{0.75f, 0.5, -0.25, 300, 200}};
+  frame.balls = {{0.75f, 0.5, -0.25, 300, 200, 60}};
   frame.num_balls = 1;
   frame.robots_yellow = {{4, 0.5f, 1.0, 2.0, 0.25, 10, 20}};
   frame.num_robots_yellow = 1;

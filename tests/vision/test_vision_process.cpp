@@ -546,6 +546,97 @@ TEST_F(VisionProcess, CalibrationErrorShiftsDetectionsByTheGeometricAmount) {
   EXPECT_NEAR(calibration[1].position[0], c.x(), 1e-12);
 }
 
+// A camera set at run time (VISION_CAMERAS, as the SSL bridge sends for an
+// SSL geometry's calibrations): from the next state on the new cameras decide
+// which camera sees what, detect through their lens, and VISION_GEOMETRY
+// reports them; a bad set is counted and changes nothing.
+TEST_F(VisionProcess, CamerasSetAtRunTimeReplaceTheProfilesCameras) {
+  auto keys = base_keys();
+  keys["CAMERA_OVERLAP"] = "0.1";  // which camera sees what: regions (ER-Force's rule)
+  keys["CAMERA_1_POSITION"] = "-2.5 0 4.0";
+  keys["CAMERA_1_ORIENTATION_DEG"] = "0 0 0";
+  keys["CAMERA_1_FOCAL_LENGTH"] = "400";
+  keys["CAMERA_1_IMAGE_SIZE"] = "1280 960";
+  keys["CAMERA_1_PHASE"] = "0";
+  start(profile(keys, 2));
+  // One robot at (1.5, -0.5): nearest camera 0 (at 0.5, -0.3), far from camera 1.
+  const World world = [](double) {
+    Truth truth;
+    TruthRobot r;
+    r.team = ubersim::team_t::BLUE;
+    r.id = 4;
+    r.x = 1.5;
+    r.y = -0.5;
+    truth.robots.push_back(r);
+    return truth;
+  };
+  lockstep(0, 59, world, 2);
+
+  // Camera 0 moves to the far left, camera 1 (a distorted lens without image
+  // edge, as the official geometry's) next to the robot; the marker camera
+  // (id 2) keeps its timing and goes where it owns no part of the field.
+  const auto calibration = [](int id, double x, double y, double z, double f, int width, int height,
+                              double distortion) {
+    ubersim::camera_calibration_t c{};
+    c.camera_id = id;
+    c.focal_length = f;
+    c.principal_x = width > 0 ? width / 2.0 : 300;
+    c.principal_y = height > 0 ? height / 2.0 : 300;
+    c.image_width = width;
+    c.image_height = height;
+    c.position[0] = x;
+    c.position[1] = y;
+    c.position[2] = z;
+    c.orientation[1] = 1;  // w x y z = 0 1 0 0: straight down, rows along field -y
+    c.distortion = distortion;
+    return c;
+  };
+  ubersim::vision_cameras_t set{};
+  set.sender = "test";
+  set.cameras = {calibration(0, -2.5, 0.0, 4.0, 400, 1280, 960, 0),
+                 calibration(1, 2.0, -0.5, 5.0, 390, 0, 0, 0.2),
+                 calibration(2, 50, 50, 20, 10000, 4, 4, 0)};
+  set.num_cameras = 3;
+  ubersim::vision_cameras_t broken = set;
+  broken.cameras[1].focal_length = std::nan("");
+  driver->publish_cameras(broken);  // refused whole: nothing changes
+  lockstep(60, 79, world, 2);
+  driver->publish_cameras(set);
+  lockstep(80, 171, world, 2);  // frames are published 12 steps (50 ms) after capture
+  driver->listen(0.3);          // the geometry sent when the set was applied
+  stop();
+
+  const double switch_time = 80 * kDt;
+  int before_0 = 0, before_1 = 0, after_0 = 0, after_1 = 0;
+  for (int camera : {0, 1}) {
+    for (const auto& r : driver->frames(camera)) {
+      const auto robots = robots_in(r.frame, ubersim::team_t::BLUE);
+      const bool before = r.frame.t_capture < switch_time - 1e-9;
+      int& seen = camera == 0 ? (before ? before_0 : after_0) : (before ? before_1 : after_1);
+      seen += static_cast<int>(robots.size());
+      for (const auto* d : robots) {  // no calibration error: the truth, through any lens
+        EXPECT_NEAR(d->x, 1.5, 1e-6);
+        EXPECT_NEAR(d->y, -0.5, 1e-6);
+      }
+    }
+  }
+  EXPECT_EQ(before_0, 20);  // 60 Hz: steps 0, 4, ..., 76
+  EXPECT_EQ(before_1, 0);
+  EXPECT_EQ(after_0, 0);
+  EXPECT_EQ(after_1, 20);  // steps 80 ... 156 (published by step 168)
+  ASSERT_FALSE(driver->geometries().empty());
+  const auto& reported = driver->geometries().back();
+  ASSERT_EQ(reported.num_cameras, 3);
+  EXPECT_DOUBLE_EQ(reported.cameras[1].position[0], 2.0);
+  EXPECT_DOUBLE_EQ(reported.cameras[1].position[2], 5.0);
+  EXPECT_DOUBLE_EQ(reported.cameras[1].focal_length, 390);
+  EXPECT_DOUBLE_EQ(reported.cameras[1].distortion, 0.2);
+  EXPECT_EQ(reported.cameras[1].image_width, 0);
+  const auto summary = exit_summary(read_text(log));
+  EXPECT_EQ(summary.at("camera sets applied"), 1);
+  EXPECT_EQ(summary.at("camera sets invalid"), 1);
+}
+
 // A chipped ball is reported where the camera's ray through it meets the ground.
 TEST_F(VisionProcess, ChippedBallIsReportedAtItsGroundProjection) {
   start(profile(base_keys()));

@@ -172,6 +172,10 @@ void SimDriver::publish_raw_state(const std::vector<std::uint8_t>& bytes) {
   bus_.publish_encoded(channels_(ubersim::Channel::SimState), bytes.data(), bytes.size());
 }
 
+void SimDriver::publish_cameras(const ubersim::vision_cameras_t& cameras) {
+  bus_.publish(channels_.vision_cameras(), cameras);
+}
+
 void SimDriver::publish_geometry(const ubersim::field_geometry_t& geometry) {
   bus_.publish(channels_(ubersim::Channel::SimGeometry), geometry);
 }

@@ -20,13 +20,14 @@
 #include <string>
 #include <ubersim/field_geometry_t.hpp>
 #include <ubersim/sim_state_t.hpp>
+#include <ubersim/vision_cameras_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
 #include <ubersim/vision_geometry_t.hpp>
 #include <vector>
 
+#include "temp_dir.hpp"
 #include "ubersim/channels.hpp"
 #include "ubersim/message_bus.hpp"
-#include "temp_dir.hpp"
 
 namespace vision_test {
 
@@ -89,6 +90,8 @@ class SimDriver {
   void publish_state(const ubersim::sim_state_t& state);
   void publish_raw_state(const std::vector<std::uint8_t>& bytes);
   void publish_geometry(const ubersim::field_geometry_t& geometry);
+  // A new camera set on VISION_CAMERAS, as the SSL bridge sends one.
+  void publish_cameras(const ubersim::vision_cameras_t& cameras);
   // Handles whatever arrives for a while (wall-clock seconds).
   void listen(double seconds);
 

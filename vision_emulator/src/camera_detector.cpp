@@ -11,10 +11,36 @@ namespace {
 
 constexpr double kHeadingProbe = 0.05;  // m: second point on a robot's pattern, for its heading
 
+// The direction in which the ER-Force simulator moves every camera's reported
+// centre by camera_position_error: (0.3, 0.7, 0.05) normalised in its own
+// coordinates, which are the SSL field's turned by 90 deg (SSL x = its y,
+// SSL y = -its x; robotics-erlangen/framework src/amun/simulator/simulator.cpp
+// and src/core/include/core/coordinates.h).
+Eigen::Vector3d erforce_position_error_direction() {
+  return Eigen::Vector3d(0.7, -0.3, 0.05).normalized();
+}
+
+// ER-Force's object_position_offset of one camera: `strength` metres from the
+// field centre towards the camera on the ground (the camera's own distance,
+// when it hangs nearer the centre than that).
+Eigen::Vector2d object_offset(const Eigen::Vector3d& camera, double strength) {
+  const Eigen::Vector2d ground = camera.head<2>();
+  if (strength < 1e-9) return Eigen::Vector2d::Zero();
+  if (ground.norm() < strength) return ground;
+  return ground.normalized() * strength;
+}
+
+CameraIntrinsics intrinsics(const CameraProfile& c, double focal_length_error) {
+  return CameraIntrinsics{c.focal_length + focal_length_error,
+                          c.principal_x,
+                          c.principal_y,
+                          c.image_width,
+                          c.image_height,
+                          c.distortion};
+}
+
 PinholeCamera true_camera(const CameraProfile& c) {
-  return PinholeCamera(c.position, overhead_rotation(c.roll_pitch_yaw),
-                       CameraIntrinsics{c.focal_length, c.principal_x, c.principal_y, c.image_width,
-                                        c.image_height});
+  return PinholeCamera(c.position, overhead_rotation(c.roll_pitch_yaw), intrinsics(c, 0.0));
 }
 
 // The camera as its calibration describes it: the error rotation is applied
@@ -22,8 +48,7 @@ PinholeCamera true_camera(const CameraProfile& c) {
 PinholeCamera believed_camera(const CameraProfile& c) {
   return PinholeCamera(c.position + c.position_error,
                        field_rotation(c.roll_pitch_yaw_error) * overhead_rotation(c.roll_pitch_yaw),
-                       CameraIntrinsics{c.focal_length + c.focal_length_error, c.principal_x,
-                                        c.principal_y, c.image_width, c.image_height});
+                       intrinsics(c, c.focal_length_error));
 }
 
 }  // namespace
@@ -36,24 +61,54 @@ CameraDetector::CameraDetector(const CameraProfile& camera, const VisionProfile&
       profile_(profile),
       processing_time_(camera.processing_time),
       false_ball_probability_(std::min(1.0, profile.false_ball_rate * camera.period())),
-      random_(seed, 2 * static_cast<std::uint64_t>(camera.id)) {}
+      random_(seed, 2 * static_cast<std::uint64_t>(camera.id)) {
+  set_model(profile, camera);
+}
 
 void CameraDetector::set_model(const VisionProfile& profile, const CameraProfile& camera) {
   profile_ = profile;
   processing_time_ = camera.processing_time;
   false_ball_probability_ = std::min(1.0, profile.false_ball_rate * camera.period());
+  position_error_ = erforce_position_error_direction() * profile.camera_position_error;
+  object_offset_ = object_offset(truth_.position(), profile.object_position_offset);
+}
+
+camera_calibration_t CameraDetector::reported_calibration() const {
+  camera_calibration_t calibration = believed_.to_calibration(id_);
+  for (int i = 0; i < 3; ++i) calibration.position[i] += position_error_[i];
+  return calibration;
+}
+
+double CameraDetector::ball_area(const Eigen::Vector3d& centre, double radius) const {
+  // A sphere at distance d fills a disc of angular radius asin(r / d): on the
+  // image (near the axis) a circle of f r / sqrt(d^2 - r^2) pixels.
+  const double d2 = (centre - truth_.position()).squaredNorm();
+  if (d2 <= radius * radius) return 0;
+  const double f = truth_.intrinsics().focal_length;
+  return M_PI * f * f * radius * radius / (d2 - radius * radius);
 }
 
 bool CameraDetector::sees(const Eigen::Vector3d& point) const {
   const auto pixel = truth_.project(point);
-  return pixel && truth_.in_image(*pixel);
+  return pixel && truth_.in_image(*pixel) && in_region(point.head<2>());
 }
 
 std::optional<Eigen::Vector2d> CameraDetector::locate(const Eigen::Vector2d& pixel,
                                                       double assumed_height) const {
-  const auto located = believed_.intersect_plane(pixel, assumed_height);
-  if (!located) return std::nullopt;
-  return located->head<2>();
+  if (position_error_.isZero()) {
+    const auto located = believed_.intersect_plane(pixel, assumed_height);
+    if (!located) return std::nullopt;
+    return located->head<2>();
+  }
+  // A camera calibrated on the field lines maps the ground right whatever
+  // centre it reports; it places an object of height h on the line from its
+  // ground point to that centre, so only what is above the ground shifts.
+  const auto ground = believed_.intersect_plane(pixel, 0.0);
+  if (!ground) return std::nullopt;
+  const Eigen::Vector3d centre = believed_.position() + position_error_;
+  if (centre.z() <= assumed_height) return std::nullopt;
+  const Eigen::Vector3d located = *ground + (centre - *ground) * (assumed_height / centre.z());
+  return located.head<2>();
 }
 
 std::optional<Eigen::Vector2d> CameraDetector::locate(const Eigen::Vector3d& point,
@@ -72,7 +127,7 @@ void CameraDetector::detect_robot(const WorldSnapshot::Robot& robot, vision_fram
   const double height = robot.size.height;  // the pattern is on top
   const Eigen::Vector3d top(robot.position.x(), robot.position.y(), height);
   const auto pixel = truth_.project(top);
-  if (!pixel || !truth_.in_image(*pixel)) return;
+  if (!pixel || !truth_.in_image(*pixel) || !in_region(robot.position)) return;
   if (!random_.chance(profile_.robot_detection_probability)) return;
   const auto center = locate(*pixel, height);
   // The heading, as the pattern shows it: a point ahead on the top, seen the same way.
@@ -87,8 +142,8 @@ void CameraDetector::detect_robot(const WorldSnapshot::Robot& robot, vision_fram
 
   vision_robot_t detection{};
   detection.robot_id = robot.id;
-  detection.x = center->x() + random_.gaussian(profile_.robot_sigma_x);
-  detection.y = center->y() + random_.gaussian(profile_.robot_sigma_y);
+  detection.x = center->x() + object_offset_.x() + random_.gaussian(profile_.robot_sigma_x);
+  detection.y = center->y() + object_offset_.y() + random_.gaussian(profile_.robot_sigma_y);
   detection.orientation = wrap_angle(std::atan2(direction.y(), direction.x()) +
                                      random_.gaussian(profile_.robot_sigma_orientation));
   detection.confidence = confidence(profile_.robot_confidence);
@@ -103,11 +158,12 @@ void CameraDetector::detect_robot(const WorldSnapshot::Robot& robot, vision_fram
 }
 
 vision_ball_t CameraDetector::make_ball(const Eigen::Vector2d& position, double radius,
-                                        double confidence_mean) {
+                                        double confidence_mean, double area) {
   vision_ball_t ball{};
   ball.x = position.x();
   ball.y = position.y();
   ball.confidence = confidence(confidence_mean);
+  ball.area = area;
   const auto pixel = believed_.project(Eigen::Vector3d(ball.x, ball.y, radius));
   if (pixel) {
     ball.pixel_x = pixel->x();
@@ -128,10 +184,16 @@ void CameraDetector::detect_ball(const WorldSnapshot& world, vision_frame_t& fra
   // radius up): a ball in the air is placed where its ray meets that plane.
   const auto seen = locate(view.visible_center, world.ball_radius);
   if (!seen) return;
-  const Eigen::Vector2d noisy(seen->x() + random_.gaussian(profile_.ball_sigma_x),
-                              seen->y() + random_.gaussian(profile_.ball_sigma_y));
+  const Eigen::Vector2d noisy(
+      seen->x() + object_offset_.x() + random_.gaussian(profile_.ball_sigma_x),
+      seen->y() + object_offset_.y() + random_.gaussian(profile_.ball_sigma_y));
+  // The blob is what is visible of the ball; its measured size is noisy
+  // (drawn only when asked for, so profiles without it keep their streams).
+  double area = ball_area(world.ball, world.ball_radius);
+  if (profile_.ball_area_sigma > 0) area += random_.gaussian(profile_.ball_area_sigma);
+  area = std::max(0.0, area * view.visible_fraction);
   frame.balls.push_back(
-      make_ball(noisy, world.ball_radius, profile_.ball_confidence * view.visible_fraction));
+      make_ball(noisy, world.ball_radius, profile_.ball_confidence * view.visible_fraction, area));
 }
 
 void CameraDetector::add_false_balls(const WorldSnapshot& world, vision_frame_t& frame) {
@@ -149,7 +211,10 @@ void CameraDetector::add_false_balls(const WorldSnapshot& world, vision_frame_t&
                                    random_.gaussian(profile_.false_ball_spread),
                                world.ball_radius);
     if (const auto seen = locate(spot, world.ball_radius)) {
-      frame.balls.push_back(make_ball(*seen, world.ball_radius, profile_.false_ball_confidence));
+      // As ER-Force's false balls: a whole ball's area, no area noise.
+      frame.balls.push_back(make_ball(*seen + object_offset_, world.ball_radius,
+                                      profile_.false_ball_confidence,
+                                      ball_area(spot, world.ball_radius)));
     }
   }
 }

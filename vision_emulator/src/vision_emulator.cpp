@@ -31,16 +31,30 @@ VisionEmulator::VisionEmulator(VisionProfile profile, RobotSizes robot_sizes)
       robot_sizes_(std::move(robot_sizes)),
       ball_radius_(profile_.ball_radius) {
   cameras_.reserve(profile_.cameras.size());
-  for (const CameraProfile& c : profile_.cameras) {
-    cameras_.push_back(Camera{CameraDetector(c, profile_, profile_.seed),
-                              CaptureSchedule(c.frame_rate, c.phase),
-                              RandomSource(profile_.seed, 2 * static_cast<std::uint64_t>(c.id) + 1),
-                              std::deque<double>{}, DelayLine<vision_frame_t>{}, c});
-    Camera& camera = cameras_.back();
-    while (camera.upcoming_jitter.size() < kFramesAhead) {
-      camera.upcoming_jitter.push_back(camera.latency_random.gaussian());
-    }
+  for (const CameraProfile& c : profile_.cameras) cameras_.push_back(make_camera(c));
+  update_regions();
+}
+
+VisionEmulator::Camera VisionEmulator::make_camera(const CameraProfile& c) const {
+  Camera camera{CameraDetector(c, profile_, profile_.seed),
+                CaptureSchedule(c.frame_rate, c.phase),
+                RandomSource(profile_.seed, 2 * static_cast<std::uint64_t>(c.id) + 1),
+                std::deque<double>{},
+                DelayLine<vision_frame_t>{},
+                c};
+  while (camera.upcoming_jitter.size() < kFramesAhead) {
+    camera.upcoming_jitter.push_back(camera.latency_random.gaussian());
   }
+  return camera;
+}
+
+void VisionEmulator::update_regions() {
+  std::vector<Eigen::Vector2d> centres;
+  for (const Camera& camera : cameras_) {
+    centres.push_back(camera.detector.truth().position().head<2>());
+  }
+  const CameraRegions regions(std::move(centres), profile_.camera_overlap);
+  for (std::size_t i = 0; i < cameras_.size(); ++i) cameras_[i].detector.set_region(regions, i);
 }
 
 bool VisionEmulator::on_field_geometry(const field_geometry_t& geometry) {
@@ -60,7 +74,7 @@ vision_geometry_t VisionEmulator::geometry_message() const {
   if (field_) message.field = *field_;
   message.num_cameras = static_cast<std::int32_t>(cameras_.size());
   for (const Camera& camera : cameras_) {
-    message.cameras.push_back(camera.detector.believed().to_calibration(camera.detector.id()));
+    message.cameras.push_back(camera.detector.reported_calibration());
   }
   return message;
 }

@@ -39,10 +39,13 @@ void log_summary(const VisionStats& s, std::uint64_t undecodable) {
   spdlog::info(
       "summary: frames published {}, captured {}, dropped at reset {}; sim states used {}, "
       "invalid {}, out of order {}, repeated {}, undecodable {}; resets {}; capture instants "
-      "missed {}; invalid geometry {}",
+      "missed {}; invalid geometry {}; camera sets applied {}, camera sets invalid {}, frames "
+      "dropped "
+      "with a camera {}",
       s.frames_published, s.frames_captured, s.frames_dropped_at_reset, s.states_used,
       s.states_invalid, s.states_out_of_order, s.states_repeated, undecodable, s.resets,
-      s.capture_instants_missed, s.geometry_invalid);
+      s.capture_instants_missed, s.geometry_invalid, s.camera_sets_applied, s.camera_sets_invalid,
+      s.frames_dropped_with_camera);
 }
 
 }  // namespace
@@ -218,10 +221,34 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
         const VisionProfile& p = emulator.profile();
         spdlog::info(
             "realism from '{}': robot sigma {} m / {} rad, ball sigma {} m, detection {} / {}, "
-            "false balls {}/s, latency {} s",
+            "false balls {}/s, latency {} s, camera overlap {} m, position error {} m, object "
+            "offset {} m, ball area sigma {}",
             realism.sender, p.robot_sigma_x, p.robot_sigma_orientation, p.ball_sigma_x,
             p.robot_detection_probability, p.ball_detection_probability, p.false_ball_rate,
-            realism.vision_latency);
+            realism.vision_latency, p.camera_overlap, p.camera_position_error,
+            p.object_position_offset, p.ball_area_sigma);
+      }));
+
+  // New cameras at run time (e.g. the calibrations of an SSL client's geometry).
+  bus.subscribe<vision_cameras_t>(
+      options.channels.vision_cameras(),
+      std::function<void(const vision_cameras_t&)>([&](const vision_cameras_t& cameras) {
+        const std::string problem = emulator.apply_cameras(cameras);
+        if (!problem.empty()) {
+          bad_content.warn("cameras",
+                           "ignored a camera set from '" + cameras.sender + "': " + problem);
+          return;
+        }
+        demand_renewal = 0;  // other capture instants: other states needed
+        spdlog::info("cameras from '{}': {} camera(s), overlap {} m", cameras.sender,
+                     emulator.camera_count(), emulator.profile().camera_overlap);
+        for (std::size_t i = 0; i < emulator.camera_count(); ++i) {
+          const PinholeCamera& c = emulator.camera(i).truth();
+          spdlog::info("camera {}: at ({}, {}, {}) m, f {} px", emulator.camera(i).id(),
+                       c.position().x(), c.position().y(), c.position().z(),
+                       c.intrinsics().focal_length);
+        }
+        publish_geometry();  // the new calibrations, at once
       }));
 
   // Ask physics for the field now rather than waiting for its next periodic message.

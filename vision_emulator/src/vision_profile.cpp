@@ -100,6 +100,9 @@ CameraProfile load_camera(const ConfigFile& config, int index, const VisionProfi
     c.principal_y = c.image_height / 2.0;
   }
 
+  c.distortion =
+      camera_real_in(config, camera_key(index, "DISTORTION"), 0.0, -kMaxDistortion, kMaxDistortion);
+
   const std::string position_error_key = camera_key(index, "CALIBRATION_ERROR_POSITION");
   c.position_error = optional_vector3(config, position_error_key);
   if (c.position_error.norm() > 10) config.fail(position_error_key, "expected at most 10 m");
@@ -147,6 +150,12 @@ VisionProfile load_vision_profile(const ConfigFile& config, const std::string& n
   p.false_ball_confidence = config.real_in("FALSE_BALL_CONFIDENCE", 0.0, 1.0);
   p.ball_min_visible_fraction = config.real_in("BALL_MIN_VISIBLE_FRACTION", 0.0, 1.0);
   p.ball_radius = config.real_in("BALL_RADIUS", 0.005, 0.2);
+  p.camera_overlap = camera_real_in(config, "CAMERA_OVERLAP", -1.0, 0.0, kMaxCameraOverlap);
+  p.camera_position_error =
+      camera_real_in(config, "CAMERA_POSITION_ERROR", 0.0, 0.0, kMaxCameraOffset);
+  p.object_position_offset =
+      camera_real_in(config, "OBJECT_POSITION_OFFSET", 0.0, 0.0, kMaxCameraOffset);
+  p.ball_area_sigma = camera_real_in(config, "BALL_AREA_SIGMA", 0.0, 0.0, kMaxBallAreaSigma);
 
   const std::int64_t count = config.integer_in("CAMERA_COUNT", 1, 64);
   for (int index = 0; index < count; ++index) {

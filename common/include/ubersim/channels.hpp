@@ -40,6 +40,8 @@ inline constexpr std::array<Channel, 11> kAllChannels{Channel::Vision,
                                                       Channel::SimGeometry};
 
 inline constexpr const char* kEmulatorRealismChannel = "EMULATOR_REALISM";
+// A new camera set for the vision emulator (vision_cameras_t; SSL bridge, tools).
+inline constexpr const char* kVisionCamerasChannel = "VISION_CAMERAS";
 // Sync mode's coordination (docs/sync.md), low rate, on the main bus.
 inline constexpr const char* kSyncClientChannel = "SYNC_CLIENT";              // sync_client_t
 inline constexpr const char* kSyncHorizonChannel = "SIM_SYNC_HORIZON";        // sync_horizon_t
@@ -50,9 +52,9 @@ inline constexpr const char* kRefereeChannel = "REFEREE";
 inline constexpr const char* kTruthDemandChannel = "SIM_TRUTH_DEMAND";  // truth_demand_t
 // Channels outside the Channel list (which the DDS bridge maps one for one
 // onto topics): these have no DDS topic.
-inline constexpr std::array<const char*, 6> kExtraChannels{
-    kEmulatorRealismChannel, kSyncClientChannel, kSyncHorizonChannel, kVisionScheduleChannel,
-    kRefereeChannel, kTruthDemandChannel};
+inline constexpr std::array<const char*, 7> kExtraChannels{
+    kEmulatorRealismChannel, kSyncClientChannel,  kSyncHorizonChannel,  kVisionScheduleChannel,
+    kRefereeChannel,         kTruthDemandChannel, kVisionCamerasChannel};
 
 // The name a channel has with no prefix and no override, e.g. "RADIO_YELLOW".
 const char* base_channel_name(Channel channel);
@@ -70,6 +72,8 @@ class ChannelNames {
   // radio emulators). Outside the Channel list, which the DDS bridge maps one
   // for one onto topics: this one has no DDS topic.
   std::string emulator_realism() const { return extra(kEmulatorRealismChannel); }
+  // VISION_CAMERAS (vision_cameras_t, SSL bridge and tools -> vision emulator).
+  std::string vision_cameras() const { return extra(kVisionCamerasChannel); }
   // One of kExtraChannels, with the prefix or its override.
   std::string extra(const char* base) const;
   // REFEREE (referee_t, automatic referee -> control software, SSL bridge).

@@ -45,6 +45,7 @@ struct SimControlTranslation {
   std::optional<int> vision_port;               // SimulatorConfig.vision_port, when valid
   std::vector<DefinedRobotType> defined_types;  // robot specs turned into robot types
   std::optional<emulator_realism_t> realism;    // for the emulators (EMULATOR_REALISM)
+  std::optional<vision_cameras_t> cameras;      // for the vision emulator (VISION_CAMERAS)
 };
 
 // `state` is the latest SIM_STATE, or null when none arrived yet.

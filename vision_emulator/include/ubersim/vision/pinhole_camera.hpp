@@ -1,7 +1,9 @@
 #pragma once
-// An ideal pinhole camera (no lens distortion) above the field. Camera frame
-// as in OpenCV: x along image columns, y along image rows, z along the optical
-// axis. Pixel (u, v) = principal point + focal_length * (x / z, y / z).
+// A pinhole camera above the field, with SSL-Vision's radial lens distortion.
+// Camera frame as in OpenCV: x along image columns, y along image rows, z
+// along the optical axis. Pixel (u, v) = principal point + focal_length * d,
+// where the undistorted point u = (x / z, y / z) appears at d, |u| = |d| *
+// (1 + distortion * |d|^2) (SSL-Vision's model; distortion 0: ideal pinhole).
 #include <Eigen/Core>
 #include <optional>
 #include <ubersim/camera_calibration_t.hpp>
@@ -12,8 +14,9 @@ struct CameraIntrinsics {
   double focal_length = 0;  // px
   double principal_x = 0;   // px
   double principal_y = 0;   // px
-  int width = 0;            // px
+  int width = 0;            // px; 0 (with height 0): the image has no edge
   int height = 0;           // px
+  double distortion = 0;    // unitless, SSL-Vision's radial distortion coefficient
 };
 
 // Rotation in the field frame: roll about x, then pitch about y, then yaw about z (rad).
@@ -30,9 +33,11 @@ class PinholeCamera {
   PinholeCamera(const Eigen::Vector3d& position, const Eigen::Matrix3d& camera_to_field,
                 const CameraIntrinsics& intrinsics);
 
-  // Pixel of a field point; empty when the point is not in front of the camera.
+  // Pixel of a field point; empty when the point is not in front of the camera
+  // (or, with a negative distortion, beyond the radius the lens can image).
   std::optional<Eigen::Vector2d> project(const Eigen::Vector3d& field_point) const;
-  // Whether a pixel lies on the image: [0, width) x [0, height).
+  // Whether a pixel lies on the image: [0, width) x [0, height); every pixel
+  // when the image has no edge (width 0).
   bool in_image(const Eigen::Vector2d& pixel) const;
   // Where the ray through `pixel` meets the horizontal plane z = plane_z; empty
   // when the ray does not reach it (plane above the camera, ray parallel).

@@ -18,6 +18,7 @@
 #include <ubersim/field_geometry_t.hpp>
 #include <ubersim/sim_state_t.hpp>
 #include <ubersim/truth_demand_t.hpp>
+#include <ubersim/vision_cameras_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
 #include <ubersim/vision_geometry_t.hpp>
 #include <vector>
@@ -43,6 +44,9 @@ struct VisionStats {
   std::uint64_t frames_dropped_at_reset = 0;  // pending frames of a world that was reset
   std::uint64_t capture_instants_missed = 0;  // no state arrived for them
   std::uint64_t geometry_invalid = 0;
+  std::uint64_t camera_sets_applied = 0;
+  std::uint64_t camera_sets_invalid = 0;         // VISION_CAMERAS refused whole
+  std::uint64_t frames_dropped_with_camera = 0;  // pending frames of a camera taken away
 };
 
 class VisionEmulator {
@@ -77,6 +81,17 @@ class VisionEmulator {
   // the profile's from the next capture on (frames already captured keep
   // their timing). Returns what was wrong (nothing applied), or "".
   std::string apply_realism(const emulator_realism_t& realism);
+
+  // A new camera set at run time (VISION_CAMERAS): every camera is replaced
+  // from the next capture on. A camera id already in use keeps its capture
+  // schedule, frame numbers, timing and random streams; a new id captures at
+  // the rate, phase and timing of the current first camera (all cameras of a
+  // set from the SSL protocol capture together, as in the ER-Force
+  // simulator). Frames still pending for a camera that is gone are dropped
+  // (counted). Without a camera overlap set so far, ER-Force's default
+  // (kErForceDefaultCameraOverlap) decides which camera sees what. Returns
+  // what was wrong (nothing applied), or "".
+  std::string apply_cameras(const vision_cameras_t& cameras);
 
   // Earliest sim time at which a frame not yet published can be published
   // (frames waiting for their release, and the next capture of each camera
@@ -122,6 +137,9 @@ class VisionEmulator {
   // Latency of the camera's frame `ahead` captures from now (0: the next).
   static double latency_of(const Camera& camera, std::size_t ahead = 0);
   void restart_after_reset();
+  // Every camera's region (profile_.camera_overlap) after a change of cameras or overlap.
+  void update_regions();
+  Camera make_camera(const CameraProfile& c) const;
   void check_step_fits(const sim_state_t& state);
 
   VisionProfile profile_;

@@ -17,6 +17,13 @@ namespace ubersim::vision {
 inline constexpr double kMaxFrameRate = 1000.0;  // Hz
 inline constexpr double kMaxSigma = 1.0;         // m
 inline constexpr double kMaxLatency = 10.0;      // s
+inline constexpr double kMaxCameraOffset = 10.0;     // m: camera position error, object offset
+inline constexpr double kMaxCameraOverlap = 1000.0;  // m (100 m already lets every camera see all)
+inline constexpr double kMaxBallAreaSigma = 1e6;     // px^2
+inline constexpr double kMaxDistortion = 10.0;       // unitless; real lenses are within +-1
+// ER-Force's camera overlap while no realism sets one: the region rule for
+// cameras given at run time (VISION_CAMERAS), as its simulator starts.
+inline constexpr double kErForceDefaultCameraOverlap = 0.3;  // m
 
 struct CameraProfile {
   int id = 0;
@@ -35,6 +42,7 @@ struct CameraProfile {
   int image_height = 0;     // px
   double principal_x = 0;   // px
   double principal_y = 0;   // px
+  double distortion = 0;    // unitless, SSL-Vision's radial distortion (0: ideal pinhole)
   // Calibration error: what the vision system believes minus the truth.
   Eigen::Vector3d position_error = Eigen::Vector3d::Zero();        // m
   Eigen::Vector3d roll_pitch_yaw_error = Eigen::Vector3d::Zero();  // rad
@@ -69,6 +77,20 @@ struct VisionProfile {
   double false_ball_confidence = 0;        // mean confidence of a false ball
   double ball_min_visible_fraction = 0;    // a ball less visible than this is not reported
   double ball_radius = 0.0215;             // m, until SIM_GEOMETRY names the ball in use
+
+  // ER-Force's camera model (its realism fields of the same names):
+  // < 0: each camera sees what its image shows. >= 0: in addition a camera
+  // sees only its region of the field (the points nearer to it, in Manhattan
+  // distance on the ground, than to any other camera) widened by this much.
+  double camera_overlap = -1;  // m
+  // Each camera's reported centre (VISION_GEOMETRY) is off by this much in
+  // ER-Force's direction; the field mapping stays right, so only what is
+  // above the ground shifts (by the error x height / camera height).
+  double camera_position_error = 0;  // m
+  // Each camera's detections shift this far, away from the field centre
+  // towards the camera (a systematic error per camera).
+  double object_position_offset = 0;  // m
+  double ball_area_sigma = 0;         // px^2, Gaussian noise on a ball's reported area
 
   std::vector<CameraProfile> cameras;
 };
