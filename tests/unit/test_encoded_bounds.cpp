@@ -162,7 +162,7 @@ TEST(EncodedBounds, EveryCountFieldOfAFrameAtMaximumIsRefused) {
   const auto bytes = encode(frame);
   // camera_id 4, frame_number 8, two doubles: then num_balls, a ball, and the two team counts.
   const std::size_t num_balls_at = 8 + 4 + 8 + 16;
-  const std::size_t yellow_at = num_balls_at + 4 + (4 + 4 * 8);  // a ball: a float, four doubles
+  const std::size_t yellow_at = num_balls_at + 4 + (4 + 5 * 8);  // a ball: a float, five doubles
   for (std::size_t at : {num_balls_at, yellow_at, yellow_at + 4}) {
     auto hostile = bytes;
     put_int32(hostile, at, 0x7fffffffu);
