@@ -156,8 +156,10 @@ class Referee {
   int geometry() {
     const auto g = link_.geometry(timeout());
     std::cout << "field " << g.name << ": " << g.field_length << " x " << g.field_width
-              << " m, boundary " << g.boundary_width << " m, goals " << g.goal_width
-              << " m wide, ball radius " << g.ball_radius << " m\n";
+              << " m, boundary " << g.boundary_width << " m (behind the goal lines "
+              << g.boundary_width_goal_line << " m), goals " << g.goal_width
+              << " m wide, penalty mark " << g.penalty_mark_distance
+              << " m from the goal attacked, ball radius " << g.ball_radius << " m\n";
     return 0;
   }
 

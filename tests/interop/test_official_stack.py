@@ -187,7 +187,8 @@ def main():
         control.team_name("BLUE", teams[1], 1.0)
         geometry = wait_for(
             "the Division A geometry in physics",
-            lambda: (lambda g: g if re.search(r"\b12(\.0+)? ?(m|x)", g) else None)(
+            lambda: (lambda g: g if re.search(r": 12 x 9 m\b", g) and
+                     re.search(r"penalty mark 8 m\b", g) else None)(
                 referee_tool(build_dir, "geometry")), 20)
         print("geometry after the simulation controller's config:", geometry.strip())
         counts = wait_for("11 robots a side",
