@@ -113,17 +113,6 @@ void map_erforce(const RealismConfigErForce& in, const std::string& field, emula
 
 }  // namespace
 
-emulator_realism_t unchanged_realism() {
-  emulator_realism_t r{};
-  r.robot_sigma_position = r.robot_sigma_orientation = r.ball_sigma_position = -1;
-  r.robot_detection_probability = r.ball_detection_probability = -1;
-  r.false_ball_rate = r.ball_min_visible_fraction = -1;
-  r.vision_latency = r.vision_processing_time = -1;
-  r.command_latency = r.command_robot_loss = r.feedback_robot_loss = -1;
-  r.ball_area_sigma = r.camera_overlap = r.camera_position_error = r.object_position_offset = -1;
-  return r;
-}
-
 RealismTranslation translate_realism(const RealismConfig& config) {
   RealismTranslation out;
   emulator_realism_t realism = unchanged_realism();

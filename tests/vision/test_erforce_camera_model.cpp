@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ubersim/config.hpp"
+#include "ubersim/emulator_realism.hpp"
 #include "ubersim/vision/pinhole_camera.hpp"
 #include "ubersim/vision/vision_emulator.hpp"
 
@@ -118,17 +119,6 @@ std::vector<vision_frame_t> run(VisionEmulator& emulator, std::int64_t first, st
   return frames;
 }
 
-emulator_realism_t unchanged() {
-  emulator_realism_t r{};
-  r.robot_sigma_position = r.robot_sigma_orientation = r.ball_sigma_position = -1;
-  r.robot_detection_probability = r.ball_detection_probability = -1;
-  r.false_ball_rate = r.ball_min_visible_fraction = -1;
-  r.vision_latency = r.vision_processing_time = -1;
-  r.command_latency = r.command_robot_loss = r.feedback_robot_loss = -1;
-  r.ball_area_sigma = r.camera_overlap = r.camera_position_error = r.object_position_offset = -1;
-  return r;
-}
-
 // Which cameras saw robot `id`, counted over the frames.
 std::map<int, int> sightings(const std::vector<vision_frame_t>& frames, int id) {
   std::map<int, int> seen;
@@ -185,7 +175,7 @@ TEST(ErForceCameraModel, CameraOverlapDecidesWhichCameraSeesAPointNearTheBorder)
   EXPECT_EQ(sightings(frames, 1), (std::map<int, int>{{0, 60}, {1, 60}}));
 
   // Camera 0 (at x = -1) owns x <= 0 and sees 0.3 m past it: robot 0, not robot 1.
-  emulator_realism_t overlap = unchanged();
+  emulator_realism_t overlap = ubersim::unchanged_realism();
   overlap.camera_overlap = 0.3;
   ASSERT_EQ(emulator.apply_realism(overlap), "");
   frames = run(emulator, 240, 479, robots);
@@ -290,7 +280,7 @@ TEST(ErForceCameraModel, CameraPositionErrorMovesTheReportedCentreAndWhatIsAbove
   const double error = 0.1;    // m
   const double sigma = 0.002;  // m of noise, so that the mean is a measurement
   VisionEmulator emulator(profile(sigma, sigma), sizes());
-  emulator_realism_t realism = unchanged();
+  emulator_realism_t realism = ubersim::unchanged_realism();
   realism.camera_position_error = error;
   ASSERT_EQ(emulator.apply_realism(realism), "");
 
@@ -349,7 +339,7 @@ TEST(ErForceCameraModel, ObjectPositionOffsetShiftsEachCamerasDetectionsTowardsI
   const double offset = 0.02;  // m
   const double sigma = 0.003;  // m
   VisionEmulator emulator(profile(sigma, sigma), sizes());
-  emulator_realism_t realism = unchanged();
+  emulator_realism_t realism = ubersim::unchanged_realism();
   realism.object_position_offset = offset;
   ASSERT_EQ(emulator.apply_realism(realism), "");
   const Placed robot{0.1, 0.5};
@@ -400,7 +390,7 @@ TEST(ErForceCameraModel, BallAreaIsThePinholeAreaWithTheConfiguredSpread) {
     EXPECT_NEAR(f.balls[0].area, pinhole, 1e-9);
   }
   const double sigma = 6.5;  // px^2, RC2021's stddev_ball_area
-  emulator_realism_t realism = unchanged();
+  emulator_realism_t realism = ubersim::unchanged_realism();
   realism.ball_area_sigma = sigma;
   ASSERT_EQ(emulator.apply_realism(realism), "");
   Mean area;

@@ -1,13 +1,15 @@
 #pragma once
 // SimulatorConfig.realism_config -> one emulator_realism_t for the vision and
 // radio emulators (EMULATOR_REALISM), which apply it between frames. ER-Force's
-// RealismConfigErForce is mapped onto our emulator parameters; what our model
-// has no place for is named in one error and otherwise ignored.
+// RealismConfigErForce is mapped onto our emulator parameters, field for field
+// (simulate_dribbling onto physics'); invalid values are named in one error,
+// and a realism config of another simulator is an error.
 #include <ssl_simulation_config.pb.h>
 
 #include <optional>
 #include <ubersim/emulator_realism_t.hpp>
 
+#include "ubersim/emulator_realism.hpp"
 #include "ubersim/ssl_bridge/errors.hpp"
 
 namespace ubersim::ssl {
@@ -18,9 +20,6 @@ struct RealismTranslation {
   std::optional<bool> perfect_dribbling;
   Errors errors;
 };
-
-// An emulator_realism_t that changes nothing (every value -1).
-emulator_realism_t unchanged_realism();
 
 RealismTranslation translate_realism(const RealismConfig& config);
 
