@@ -93,8 +93,7 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
     spdlog::info("official referee: Referee messages on {}:{} go to {}; ubersim sends none",
                  options_.referee_address, options_.referee_port, channels_.referee());
   } else {
-    bus_.subscribe<referee_t>(channels_.referee(),
-                              [this](const referee_t& r) { on_referee(r); });
+    bus_.subscribe<referee_t>(channels_.referee(), [this](const referee_t& r) { on_referee(r); });
     spdlog::info("referee messages from {} to {}:{} (ttl {})", channels_.referee(),
                  options_.referee_address, options_.referee_port, options_.referee_ttl);
   }

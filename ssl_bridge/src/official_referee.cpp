@@ -14,13 +14,14 @@ constexpr double kInPlayDistance = 0.05;  // m
 using google::protobuf::FieldDescriptor;
 using google::protobuf::Message;
 
-int8_t lcm_team(int ssl_team) { return ssl_team == ::BLUE ? team_t::BLUE : team_t::YELLOW; }
+int8_t lcm_team(int ssl_team) {
+  return ssl_team == ::BLUE ? team_t::BLUE : team_t::YELLOW;
+}
 
 // The set payload of the event's oneof, nullptr when none is.
 const Message* payload(const GameEvent& event) {
   const auto* oneof = GameEvent::descriptor()->FindOneofByName("event");
-  const FieldDescriptor* set =
-      event.GetReflection()->GetOneofFieldDescriptor(event, oneof);
+  const FieldDescriptor* set = event.GetReflection()->GetOneofFieldDescriptor(event, oneof);
   return set == nullptr ? nullptr : &event.GetReflection()->GetMessage(event, set);
 }
 
@@ -67,7 +68,8 @@ referee_event_t from_ssl_game_event(const GameEvent& event, double sim_time) {
   if (const auto* bot = set_field(*p, {"by_bot", "kicking_bot"}, FieldDescriptor::CPPTYPE_UINT32)) {
     out.robot_id = static_cast<int32_t>(r->GetUInt32(*p, bot));
   }
-  if (const auto* at = set_field(*p, {"location", "ball_location"}, FieldDescriptor::CPPTYPE_MESSAGE)) {
+  if (const auto* at =
+          set_field(*p, {"location", "ball_location"}, FieldDescriptor::CPPTYPE_MESSAGE)) {
     const auto& v = static_cast<const Vector2&>(r->GetMessage(*p, at));
     if (std::isfinite(v.x()) && std::isfinite(v.y())) {
       out.has_location = true;
@@ -111,12 +113,11 @@ referee_t OfficialRefereeTracker::translate(const Referee& in, const sim_state_t
   out.has_next_command = in.has_next_command();
   out.next_command = static_cast<int8_t>(in.next_command());
   out.ball_in_play = ball_in_play_;
-  out.action_time_left =
-      static_cast<double>(in.current_action_time_remaining()) / kMicroseconds;
+  out.action_time_left = static_cast<double>(in.current_action_time_remaining()) / kMicroseconds;
   const auto& place = in.designated_position();
   // A position that is not a number is no position: nothing NaN reaches the teams.
-  out.has_designated_position = in.has_designated_position() && std::isfinite(place.x()) &&
-                                std::isfinite(place.y());
+  out.has_designated_position =
+      in.has_designated_position() && std::isfinite(place.x()) && std::isfinite(place.y());
   if (out.has_designated_position) {
     out.designated_position[0] = place.x() / kMillimetres;
     out.designated_position[1] = place.y() / kMillimetres;

@@ -505,8 +505,7 @@ TEST_F(SslBridgeProcess, AnotherGameControllerOnTheGroupStopsOursBeingSent) {
     sent_before = ubersim_referee_packets(referee_receiver, 0.1);
   }
   ASSERT_GT(sent_before, 0) << bridge_->log();
-  ssl_test::send_to_group("224.5.23.1", ports_.referee,
-                          game_controller_referee(Referee::HALT, 1));
+  ssl_test::send_to_group("224.5.23.1", ports_.referee, game_controller_referee(Referee::HALT, 1));
   ASSERT_TRUE(bridge_->wait_for_output("another game controller", 5)) << bridge_->log();
   for (int i = 0; i < 5; ++i) bus_.publish("REFEREE", ours);
   EXPECT_EQ(ubersim_referee_packets(referee_receiver, 1.0), 0) << bridge_->log();
