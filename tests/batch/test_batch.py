@@ -177,6 +177,58 @@ class BatchTest(unittest.TestCase):
         self.assertIn("interrupted", stderr)
         self.assertEqual(ubersim_processes_under(self.folder), [])
 
+    def test_ctrl_c_keeps_the_finished_games_marks_the_rest_stopped_and_summarizes(self):
+        # Three short games one at a time: Ctrl-C once game 0 has finished.
+        text = SHORT.replace("GAMES_PER_POINT = 2", "GAMES_PER_POINT = 3")
+        out = os.path.join(self.folder, "out")
+        batch = subprocess.Popen([BATCH, "run", experiment(self.folder, text), "--out", out,
+                                  "--build-dir", BUILD, "-q", "-j", "1"],
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 60
+        while not os.path.exists(os.path.join(out, "games", "0000", "result.json")):
+            if time.monotonic() > deadline or batch.poll() is not None:
+                batch.kill()
+                self.fail("game 0 did not finish: " + batch.communicate()[1])
+            time.sleep(0.1)
+        time.sleep(0.5)  # game 1 is running
+        batch.send_signal(signal.SIGINT)
+        stdout, stderr = batch.communicate(timeout=20)
+        self.assertEqual(batch.returncode, 130, stdout + stderr)
+        games = rows(out)
+        self.assertEqual([g["game"] for g in games], ["0", "1", "2"], games)
+        self.assertEqual(games[0]["status"], "ok", games[0])
+        self.assertGreater(float(games[0]["sim_time"]), 4.0)
+        self.assertEqual(games[0]["log_dir"], os.path.join(out, "games", "0000"))
+        for g in games[1:]:
+            self.assertEqual(g["status"], "stopped", g)
+            self.assertIn("interrupted", g["reason"])
+        # The summary of the finished game, printed and written; where they are.
+        self.assertIn("point 0 (all games): 1 of 1 games finished", stdout)
+        with open(os.path.join(out, "summary.csv")) as f:
+            self.assertEqual([s["games"] for s in csv.DictReader(f)], ["1"])
+        self.assertIn(os.path.join(out, "results.csv"), stderr)
+        self.assertIn("summary.txt", stderr)
+        self.assertEqual(ubersim_processes_under(self.folder), [])
+
+    def test_sigterm_before_any_game_finished_marks_every_game_stopped_exit_143(self):
+        text = SHORT.replace("GAME_LENGTH = 4", "GAME_LENGTH = 600")
+        out = os.path.join(self.folder, "out")
+        batch = subprocess.Popen([BATCH, "run", experiment(self.folder, text), "--out", out,
+                                  "--build-dir", BUILD, "-q"],
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 30
+        while not [p for p in ubersim_processes_under(self.folder) if "ubersim_referee" in p]:
+            if time.monotonic() > deadline:
+                batch.kill()
+                self.fail("the games did not start")
+            time.sleep(0.2)
+        batch.send_signal(signal.SIGTERM)
+        stdout, stderr = batch.communicate(timeout=20)
+        self.assertEqual(batch.returncode, 143, stdout + stderr)
+        self.assertEqual([g["status"] for g in rows(out)], ["stopped", "stopped"])
+        self.assertIn("0 of 2 games had finished", stderr)
+        self.assertEqual(ubersim_processes_under(self.folder), [])
+
 
 if __name__ == "__main__":
     unittest.main(argv=[sys.argv[0], *sys.argv[3:]], verbosity=2)

@@ -59,16 +59,56 @@ def _row(result, sweep_names):
     return row
 
 
+def _columns(sweep_names):
+    return ["game", "point", "seed", *sweep_names, *GAME_COLUMNS, "event_types", "cpu_seconds"]
+
+
 def write_results(out_dir, results, sweep_names):
+    """results.csv with every row, in game order; replaces the file atomically."""
     path = os.path.join(out_dir, "results.csv")
-    columns = ["game", "point", "seed", *sweep_names, *GAME_COLUMNS, "event_types",
-               "cpu_seconds"]
-    with open(path, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=columns)
+    with open(path + ".tmp", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=_columns(sweep_names))
         writer.writeheader()
         for result in sorted(results, key=lambda r: r["index"]):
             writer.writerow(_row(result, sweep_names))
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(path + ".tmp", path)
     return path
+
+
+class ResultsFile:
+    """results.csv written as the games end: the header at once, then a row
+    (flushed to disk) the moment each game's result arrives, so a runner that
+    is killed loses no finished game. finish() rewrites it in game order."""
+
+    def __init__(self, out_dir, sweep_names):
+        self.out_dir, self.sweep_names = out_dir, sweep_names
+        self.path = os.path.join(out_dir, "results.csv")
+        self.file = open(self.path, "w", newline="")
+        self.writer = csv.DictWriter(self.file, fieldnames=_columns(sweep_names))
+        self.writer.writeheader()
+        self._flush()
+
+    def _flush(self):
+        self.file.flush()
+        os.fsync(self.file.fileno())
+
+    def append(self, result):
+        self.writer.writerow(_row(result, self.sweep_names))
+        self._flush()
+
+    def finish(self, results):
+        self.file.close()
+        return write_results(self.out_dir, results, self.sweep_names)
+
+
+def stopped(spec):
+    """The row of a game that an interrupted batch did not finish."""
+    return {"index": spec["index"], "point": spec["point"], "seed": spec["seed"],
+            "parameters": spec["parameters"], "status": "stopped",
+            "reason": "the batch was interrupted before this game finished",
+            "log_dir": spec.get("game_dir", "")}
 
 
 def summarize(results, sweep_names):
