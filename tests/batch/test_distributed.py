@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """The batch runner on a real Dask cluster on this machine: a scheduler and two
 workers as separate processes, the smoke experiment run through them and run
-locally, and the results compared. With sync mode in the build (MODE = sync)
+locally, and the results compared; then a worker SIGKILLed in the middle of a
+game: the game's processes die with it, and the game, rescheduled, writes into
+a fresh folder. With sync mode in the build (MODE = sync)
 every outcome column must be identical; without it (MODE = fast) games depend
 on load, and only what does not (games, points, seeds, parameters, status) is.
 
@@ -10,6 +12,7 @@ Usage: test_distributed.py SOURCE_DIR BUILD_DIR
 import csv
 import os
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -40,6 +43,102 @@ def has_sync(build):
 def read(out_dir):
     with open(os.path.join(out_dir, "results.csv")) as f:
         return list(csv.DictReader(f))
+
+
+def processes_mentioning(text):
+    """{pid: command line} of the live processes whose command line has `text`."""
+    found = {}
+    for pid in os.listdir("/proc"):
+        if not pid.isdigit():
+            continue
+        try:
+            with open(f"/proc/{pid}/cmdline", "rb") as f:
+                command = f.read().replace(b"\0", b" ").decode(errors="replace")
+        except OSError:
+            continue
+        if text in command:
+            found[int(pid)] = command
+    return found
+
+
+def alive(pid):
+    """Running (not gone, not a zombie waiting to be reaped)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rpartition(")")[2].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def check_killed_worker(folder, address, mode):
+    """SIGKILL the worker that runs a game, mid-game: no process of that game
+    may survive, and the scheduler's second attempt of the game must write into
+    a folder of its own, which results.csv names."""
+    experiment = os.path.join(folder, "one.cfg")
+    with open(experiment, "w") as f:
+        f.write(f"""SCENARIO = division_b_6v6
+VISION_PROFILE = cmdragons02
+RADIO_PROFILE = cmdragons02
+GAME = division_b
+GAME_LENGTH = 150
+GAMES_PER_POINT = 1
+SEED = 1
+YELLOW = demo
+BLUE = demo
+MODE = {mode}
+GAME_TIMEOUT = 120
+""")
+    out = os.path.join(folder, "killed")
+    first = os.path.join(out, "games", "0000") + "/"  # not 0000-attempt2/
+    batch = subprocess.Popen([BATCH, "run", experiment, "--out", out, "--build-dir", BUILD, "-q",
+                              "--scheduler", address],
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        deadline = time.monotonic() + 60
+        while not any("ubersim_demo_team" in c and "--team blue" in c
+                      for c in processes_mentioning(first).values()):
+            assert time.monotonic() < deadline and batch.poll() is None, \
+                f"the game did not start: {processes_mentioning(first)}"
+            time.sleep(0.1)
+        time.sleep(1.0)  # mid-game
+        game = processes_mentioning(first)
+        drivers = [pid for pid, c in game.items() if "game.py" in c and "spec.json" in c]
+        assert len(drivers) == 1, game
+        with open(f"/proc/{drivers[0]}/stat") as f:
+            worker = int(f.read().rpartition(")")[2].split()[1])  # the driver's parent
+        with open(f"/proc/{worker}/cmdline", "rb") as f:
+            assert b"python" in f.read(), f"the driver's parent {worker} is not a Dask worker"
+        assert os.path.exists(os.path.join(out, "games", "0000", "physics.log"))
+        assert not os.path.exists(os.path.join(out, "games", "0000", "result.json")), \
+            "the game ended before its worker was killed: make it longer"
+        os.kill(worker, signal.SIGKILL)
+        print(f"test_distributed: SIGKILLed Dask worker {worker} in the middle of game 0 "
+              f"({len(game)} processes)")
+        # The game would run for several more seconds: its processes must die
+        # with the worker, not when the game ends.
+        deadline = time.monotonic() + 3
+        while (processes_mentioning(first) or any(map(alive, game))) \
+                and time.monotonic() < deadline:
+            time.sleep(0.1)
+        left = processes_mentioning(first)
+        left.update({pid: game[pid] for pid in game if alive(pid)})
+        assert not left, "processes of the killed worker's game outlived it:\n" + \
+            "\n".join(f"{pid}: {c}" for pid, c in left.items())
+        output, _ = batch.communicate(timeout=240)
+        print(output)
+        assert batch.returncode == 0, f"the batch after the lost worker: status {batch.returncode}"
+    finally:
+        if batch.poll() is None:
+            batch.kill()
+    (row,) = read(out)
+    assert row["status"] == "ok", row
+    assert row["log_dir"] != first.rstrip("/"), \
+        f"the rescheduled game wrote into the killed attempt's folder {row['log_dir']}"
+    assert os.path.exists(os.path.join(row["log_dir"], "result.json")), row["log_dir"]
+    assert not os.path.exists(os.path.join(out, "games", "0000", "result.json")), \
+        "something wrote a result into the killed attempt's folder"
+    print(f"test_distributed: the killed worker's game left no process; its second attempt "
+          f"finished in {row['log_dir']}")
 
 
 def main():
@@ -111,6 +210,7 @@ def main():
         print(f"test_distributed: {len(dask_rows)} games on 2 Dask workers equal the local run "
               f"in {', '.join(compared)}" + ("" if mode == "sync" else
                                              " (no sync mode in this build: scores not compared)"))
+        check_killed_worker(folder, address, mode)
         ok = True
         return 0
     finally:

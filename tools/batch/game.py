@@ -7,6 +7,7 @@ driver's result. run_driver(spec) is that driver: it writes the game's config
 overlay, starts physics, the emulators, both teams and the referee, waits for
 the referee to end the game, stops everything and reads the event log.
 """
+import ctypes
 import json
 import os
 import shlex
@@ -22,6 +23,21 @@ STOP_GRACE = 2.0  # s between SIGTERM and SIGKILL
 
 _running = {}  # driver pid -> Popen, so that Ctrl-C can stop every game
 _running_lock = threading.Lock()
+
+PR_SET_PDEATHSIG = 1
+PARENT_ENV = "UBERSIM_BATCH_PARENT"  # pid the driver must die with
+try:
+    _libc = ctypes.CDLL(None, use_errno=True)
+except OSError:  # no C library to call: children then outlive a killed parent
+    _libc = None
+
+
+def die_with_parent():
+    """This process gets SIGKILL when the thread that started it exits, even
+    when that thread's process is SIGKILLed (prctl PR_SET_PDEATHSIG). Called in
+    the child between fork and exec (preexec_fn): no allocation, no lock."""
+    if _libc is not None:
+        _libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
 
 
 def namespaces_available():
@@ -39,10 +55,32 @@ def _unshare_flags():
                                     capture_output=True).returncode == 0 else ["-rn"]
 
 
+def claim_game_dir(game_dir):
+    """A folder of this attempt's own: game_dir, or, when an earlier attempt of
+    the same game (on a worker that was lost) made that one, game_dir-attempt2,
+    -attempt3, ... mkdir is atomic, so two copies of a game never share one."""
+    parent = os.path.dirname(game_dir)
+    os.makedirs(parent, exist_ok=True)
+    attempt = 1
+    while True:
+        path = game_dir if attempt == 1 else f"{game_dir}-attempt{attempt}"
+        try:
+            os.mkdir(path)
+            return path
+        except FileExistsError:
+            attempt += 1
+
+
 def execute_game(spec):
-    """Runs one game in a driver process; returns its result dict."""
+    """Runs one game in a driver process; returns its result dict.
+
+    The driver and every process of the game belong to the caller: they run
+    in a process group of their own (Ctrl-C stops the group), and each gets
+    SIGKILL when its parent dies (PR_SET_PDEATHSIG), so a Dask worker killed
+    mid-game takes its game with it; the scheduler's next attempt of the game
+    writes into a fresh folder (claim_game_dir), named in its result."""
+    spec = dict(spec, game_dir=claim_game_dir(spec["game_dir"]))
     game_dir = spec["game_dir"]
-    os.makedirs(game_dir, exist_ok=True)
     spec_path = os.path.join(game_dir, "spec.json")
     with open(spec_path, "w") as f:
         json.dump(spec, f, indent=1)
@@ -52,9 +90,13 @@ def execute_game(spec):
         driver = ["unshare", *_unshare_flags(), "sh", "-c",
                   'ip link set lo up && ip route add 224.0.0.0/4 dev lo && exec "$@"',
                   "game", *driver]
+    # unshare and sh exec the driver in place: its parent is this thread. The
+    # driver sets the parent-death signal again itself (unshare -r changes
+    # credentials, which clears it) and exits if this process is already gone.
+    env = dict(os.environ, **{PARENT_ENV: str(os.getpid())})
     with open(os.path.join(game_dir, "driver.log"), "w") as log:
-        process = subprocess.Popen(driver, stdout=log, stderr=subprocess.STDOUT,
-                                   start_new_session=True)
+        process = subprocess.Popen(driver, stdout=log, stderr=subprocess.STDOUT, env=env,
+                                   start_new_session=True, preexec_fn=die_with_parent)
         with _running_lock:
             _running[process.pid] = process
         try:
@@ -148,8 +190,9 @@ class ProcessSet:
         log = open(os.path.join(self.game_dir, name + ".log"), "w")
         log.write("$ " + " ".join(shlex.quote(c) for c in command) + "\n")
         log.flush()
+        # Dies with the driver even when the driver is SIGKILLed.
         p = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
-                             stdin=subprocess.DEVNULL)
+                             stdin=subprocess.DEVNULL, preexec_fn=die_with_parent)
         log.close()
         self.processes.append((name, p))
         return p
@@ -328,5 +371,9 @@ def run_driver(spec):
 
 
 if __name__ == "__main__":
+    # The driver dies with the process that started it (a Dask worker, the runner).
+    die_with_parent()
+    if PARENT_ENV in os.environ and os.getppid() != int(os.environ[PARENT_ENV]):
+        sys.exit("game driver: the process that started it is gone")
     with open(sys.argv[1]) as spec_file:
         run_driver(json.load(spec_file))
