@@ -192,6 +192,8 @@ class BatchTest(unittest.TestCase):
             time.sleep(0.1)
         time.sleep(0.5)  # game 1 is running
         batch.send_signal(signal.SIGINT)
+        time.sleep(0.2)
+        batch.send_signal(signal.SIGINT)  # an impatient user: changes nothing
         stdout, stderr = batch.communicate(timeout=20)
         self.assertEqual(batch.returncode, 130, stdout + stderr)
         games = rows(out)
