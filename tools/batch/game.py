@@ -91,8 +91,9 @@ def execute_game(spec):
                   'ip link set lo up && ip route add 224.0.0.0/4 dev lo && exec "$@"',
                   "game", *driver]
     # unshare and sh exec the driver in place: its parent is this thread. The
-    # driver sets the parent-death signal again itself (unshare -r changes
-    # credentials, which clears it) and exits if this process is already gone.
+    # driver sets the parent-death signal again itself (the kernel clears it
+    # when credentials change, as unshare -r's user namespace may make them)
+    # and exits if this process is already gone.
     env = dict(os.environ, **{PARENT_ENV: str(os.getpid())})
     with open(os.path.join(game_dir, "driver.log"), "w") as log:
         process = subprocess.Popen(driver, stdout=log, stderr=subprocess.STDOUT, env=env,
