@@ -178,8 +178,10 @@ class BatchTest(unittest.TestCase):
         self.assertEqual(ubersim_processes_under(self.folder), [])
 
     def test_ctrl_c_keeps_the_finished_games_marks_the_rest_stopped_and_summarizes(self):
-        # Three short games one at a time: Ctrl-C once game 0 has finished.
-        text = SHORT.replace("GAMES_PER_POINT = 2", "GAMES_PER_POINT = 3")
+        # Three games one at a time (a few s each): Ctrl-C once game 0 has
+        # finished and game 1 is under way.
+        text = SHORT.replace("GAMES_PER_POINT = 2", "GAMES_PER_POINT = 3").replace(
+            "GAME_LENGTH = 4", "GAME_LENGTH = 20")
         out = os.path.join(self.folder, "out")
         batch = subprocess.Popen([BATCH, "run", experiment(self.folder, text), "--out", out,
                                   "--build-dir", BUILD, "-q", "-j", "1"],
@@ -190,7 +192,12 @@ class BatchTest(unittest.TestCase):
                 batch.kill()
                 self.fail("game 0 did not finish: " + batch.communicate()[1])
             time.sleep(0.1)
-        time.sleep(0.5)  # game 1 is running
+        game_1 = os.path.join(out, "games", "0001") + "/"
+        while not [p for p in ubersim_processes_under(game_1) if "ubersim_referee" in p]:
+            if time.monotonic() > deadline or batch.poll() is not None:
+                batch.kill()
+                self.fail("game 1 did not start: " + batch.communicate()[1])
+            time.sleep(0.05)
         batch.send_signal(signal.SIGINT)
         time.sleep(0.2)
         batch.send_signal(signal.SIGINT)  # an impatient user: changes nothing
@@ -199,7 +206,7 @@ class BatchTest(unittest.TestCase):
         games = rows(out)
         self.assertEqual([g["game"] for g in games], ["0", "1", "2"], games)
         self.assertEqual(games[0]["status"], "ok", games[0])
-        self.assertGreater(float(games[0]["sim_time"]), 4.0)
+        self.assertGreater(float(games[0]["sim_time"]), 20.0)
         self.assertEqual(games[0]["log_dir"], os.path.join(out, "games", "0000"))
         for g in games[1:]:
             self.assertEqual(g["status"], "stopped", g)
