@@ -244,6 +244,11 @@ fi
 echo "Ctrl-C stops everything."
 
 failed=0
+# A process that failed said why in its log (the logger: "cannot write the
+# log ...: No space left on device"): its last lines go to the terminal too.
+show_log_tail() {
+  [ -s "$log_dir/$1.log" ] && tail -n 3 "$log_dir/$1.log" | sed "s/^/  $1| /" >&2
+}
 # Sends SIGTERM to the given indices of pids[], waits up to 2 s, kills what is left.
 stop_indices() {
   local i
@@ -278,7 +283,7 @@ stop_all() {
     wait "${pids[$i]}" 2>/dev/null
     local status=$?
     # 0, or killed by the signal we sent (128+15) / Ctrl-C (128+2): a clean stop.
-    case $status in 0|130|143) ;; 127) ;; *) echo "launch: ${names[$i]} exited with status $status" >&2; failed=1 ;; esac
+    case $status in 0|130|143) ;; 127) ;; *) echo "launch: ${names[$i]} exited with status $status" >&2; show_log_tail "${names[$i]}"; failed=1 ;; esac
   done
 }
 
@@ -306,6 +311,7 @@ while :; do
       echo "launch: the game is over ($(grep '^result' "$log_dir/referee.log" | tail -1)): stopping the rest"
     else
       echo "launch: $name exited with status $status: stopping the rest (see $log_dir/$name.log)" >&2
+      show_log_tail "$name"
       failed=1
     fi
     break

@@ -3,10 +3,17 @@
 // keeps LCM's default of 30 queued messages per subscription, and in sync
 // mode physics sends SIM_STATE in bursts of hundreds (docs/sync.md). The log
 // is an ordinary LCM log: lcm-logplayer replays it.
+//
+// A log that cannot be written (a full disk, a lost network file system) is
+// an error at once, not at the end: the logger says so in one line (file,
+// reason, messages in the file), stops recording with the file cut back to
+// its last complete message, and exits with kLogWriteFailed, so that
+// tools/launch.sh stops the run instead of playing on unrecorded.
 #include <CLI/CLI.hpp>
 #include <lcm/lcm-cpp.hpp>
 #include <string>
 
+#include "lcm_log_writer.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
@@ -15,8 +22,22 @@
 
 namespace {
 
+// Exit statuses (also in --help and docs/design.md).
+constexpr int kLogWriteFailed = 1;  // the log could not be created, written or closed
+
+void report_failure(const ubersim::LcmLogWriter& log, std::int64_t received) {
+  spdlog::error(
+      "cannot write the log '{}': {}; recording stopped, {} messages reached the file "
+      "(of {} received), the file ends with the last complete one",
+      log.path(), log.error(), log.events(), received);
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"ubersim logger: every channel of an LCM bus into an LCM log file, losslessly"};
+  app.footer(
+      "Exit status: 0 when stopped by SIGINT/SIGTERM with every received message in the file;\n"
+      "1 when the log cannot be created, written (e.g. the disk is full) or closed: the logger\n"
+      "stops at the first failed write, and the file holds every message up to it, whole.");
   std::string url = ubersim::default_lcm_url();
   std::string channels = ".*";
   std::string path;
@@ -27,25 +48,24 @@ int run(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   ubersim::setup_logging("logger", 0);
 
-  lcm::LogFile log(path, "w");
-  if (!log.good()) throw std::runtime_error("cannot write the log '" + path + "'");
+  ubersim::LcmLogWriter log(path);
   ubersim::ShutdownSignal shutdown;
   ubersim::MessageBus bus(ubersim::with_receive_buffer(url));
-  std::int64_t count = 0;
-  lcm::LogEvent event{};
+  std::int64_t received = 0;
   bus.subscribe_raw(channels, [&](const std::string& channel, const void* data, std::size_t size,
-                                  std::int64_t received) {
-    event.eventnum = count++;
-    event.timestamp = received;
-    event.channel = channel;
-    event.datalen = static_cast<std::int32_t>(size);
-    event.data = const_cast<void*>(data);
-    log.writeEvent(&event);
+                                  std::int64_t time) {
+    ++received;
+    log.write(channel, data, size, time);  // does nothing once a write failed
   });
   spdlog::info("recording {} on {} into {}", channels, url, path);
-  while (!shutdown.requested()) bus.wait_and_handle(100, &shutdown);
-  bus.handle_pending();  // what arrived before the signal
-  spdlog::info("recorded {} messages", count);
+  while (!shutdown.requested() && !log.failed()) bus.wait_and_handle(100, &shutdown);
+  if (!log.failed()) bus.handle_pending();  // what arrived before the signal
+  if (!log.close()) {
+    report_failure(log, received);
+    spdlog::info("recorded {} messages into {}", log.events(), path);
+    return kLogWriteFailed;
+  }
+  spdlog::info("recorded {} messages into {}", log.events(), path);
   return 0;
 }
 
