@@ -71,7 +71,7 @@ done
 physics=""
 for program_arg in "$@"; do [ "${program_arg%%=*}" = ubersim_physics ] && physics=${program_arg#*=}; done
 if [ -n "$physics" ]; then
-  cp -r "$source_dir/config" "$out/config"
+  cp -rL "$source_dir/config" "$out/config"
   line=$(grep -n '^GRAVITY' "$out/config/physics/default.cfg" | cut -d: -f1)
   sed -i 's/^GRAVITY/GRAVTY/' "$out/config/physics/default.cfg"
   timeout 20 "$physics" --config-dir "$out/config" --speed 0 --duration 0.01 \

@@ -59,7 +59,7 @@ after=$(ls -d /tmp/ubersim-* 2>/dev/null)
 [ "$before" = "$after" ] || fail "TMPDIR unset: a new folder in /tmp: $(comm -13 <(echo "$before") <(echo "$after"))"
 
 # Physics fails at start on a misspelt key; launch.sh shows why.
-cp -r "$source_dir/config" "$work/config"
+cp -rL "$source_dir/config" "$work/config"
 sed -i 's/^GRAVITY/GRAVTY/' "$work/config/physics/default.cfg"
 UBERSIM_CONFIG_DIR=$work/config timeout 60 "$launch" --channel-prefix "$marker" \
   --log-dir "$work/failed" >"$work/stdout" 2>"$work/stderr" </dev/null
