@@ -3,7 +3,8 @@
 # optionally demo teams and a logger. Prints what runs, where each process
 # logs and which channels to listen to. On Ctrl-C (or SIGTERM), or when any
 # process dies, it stops all the others (SIGTERM, then SIGKILL after 2 s) and
-# leaves none behind; it exits non-zero if any process failed.
+# leaves none behind; it exits non-zero if any process failed. A bad option
+# or value is told in one line and exits 2 before anything starts.
 set -uo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -61,11 +62,25 @@ usage: tools/launch.sh [options]
 USAGE
 }
 
+# A bad command line: one line on stderr, exit 2, nothing started.
+usage_error() {
+  echo "launch: $*" >&2
+  exit 2
+}
+
+# Options that take a value. A missing one (the end of the line, or the next
+# option in its place) is an error here, not an unbound $2 below.
+options_with_values=" --scenario --field --profile --speed --sync-clients --game-length --cpu --seed
+  --duration --lcm-url --channel-prefix --demo --demo-mode --log --log-dir --viewer-port "
+
 scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" truth_every_step=0 seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
 referee=none game_length="" tracked=1
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port=8080 ssl_bridge=0
 while [ $# -gt 0 ]; do
+  if [[ $options_with_values == *[[:space:]]"$1"[[:space:]]* ]] && { [ $# -lt 2 ] || [[ $2 == --* ]]; }; then
+    usage_error "$1 needs a value (tools/launch.sh --help lists the options)"
+  fi
   case "$1" in
     --scenario) scenario=$2; shift 2 ;;
     --field) field=$2; shift 2 ;;
@@ -97,12 +112,84 @@ while [ $# -gt 0 ]; do
     --viewer-port) viewer_port=$2; shift 2 ;;
     --ssl-bridge) ssl_bridge=1; shift ;;
     -h|--help) usage; exit 0 ;;
-    *) echo "launch: unknown option '$1'" >&2; usage >&2; exit 2 ;;
+    *) usage_error "unknown option '$1' (tools/launch.sh --help lists the options)" ;;
   esac
 done
 
 # The official game controller reaches ubersim only through the SSL bridge.
 [ "$referee" = official ] && ssl_bridge=1
+
+# Everything below that can be checked here is checked before anything starts,
+# in the words the programs themselves use ("--speed: -5 is not at least 0").
+# The programs read the same folder: UBERSIM_CONFIG_DIR, or the tree's config/.
+config_dir=${UBERSIM_CONFIG_DIR:-$root/config}
+
+is_number() { [[ $1 =~ ^[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?$ ]]; }
+# check_number OPTION VALUE MIN [MAX]: a number in [MIN, MAX] (MAX omitted: at least MIN).
+check_number() {
+  is_number "$2" || usage_error "$1: '$2' is not a number"
+  if [ $# -ge 4 ]; then
+    awk -v v="$2" -v lo="$3" -v hi="$4" 'BEGIN { exit !(v + 0 >= lo && v + 0 <= hi) }' ||
+      usage_error "$1: $2 is not in [$3, $4]"
+  else
+    awk -v v="$2" -v lo="$3" 'BEGIN { exit !(v + 0 >= lo) }' || usage_error "$1: $2 is not at least $3"
+  fi
+}
+# check_positive OPTION VALUE: a number greater than 0.
+check_positive() {
+  is_number "$2" || usage_error "$1: '$2' is not a number"
+  awk -v v="$2" 'BEGIN { exit !(v + 0 > 0) }' || usage_error "$1: $2 is not greater than 0"
+}
+# check_whole OPTION VALUE [MIN MAX]: a whole number (that fits 64 bits), in [MIN, MAX] if given.
+check_whole() {
+  [[ $2 =~ ^[0-9]{1,19}$ ]] || usage_error "$1: '$2' is not a whole number (0 or more, at most 19 digits)"
+  if [ $# -ge 4 ]; then
+    # Past 9 digits no range here holds it (and bash's 64-bit arithmetic may not); 10#: not octal.
+    [ ${#2} -le 9 ] && (( 10#$2 >= $3 && 10#$2 <= $4 )) || usage_error "$1: $2 is not in [$3, $4]"
+  fi
+}
+# config_path KIND NAME: the file a program reads for NAME, as it resolves it
+# (common/src/config_paths.cpp): a path if NAME has a '/' or ends in .cfg,
+# else <config folder>/KIND/NAME.cfg.
+config_path() {
+  case "$2" in */* | *.cfg) echo "$2" ;; *) echo "$config_dir/$1/$2.cfg" ;; esac
+}
+# The names a KIND of config offers, for the error: "a, b, c".
+config_names() {
+  local names=() file
+  for file in "$config_dir/$1"/*.cfg; do [ -f "$file" ] && names+=("$(basename "$file" .cfg)"); done
+  local IFS=,
+  echo "${names[*]}" | sed 's/,/, /g'
+}
+# check_config OPTION KIND WHAT NAME: NAME is a config file of that kind
+# (WHAT names one, for the error).
+check_config() {
+  [ -f "$(config_path "$2" "$4")" ] && return 0
+  [ "$(config_path "$2" "$4")" = "$config_dir/$2/$4.cfg" ] || usage_error "$1: no file '$4'"
+  local folder=${config_dir#"$root"/}/$2 names
+  names=$(config_names "$2")
+  # The names, unless they are too many for one line.
+  [ -n "$names" ] && [ ${#names} -le 160 ] && names=" (there: $names)" || names=""
+  usage_error "$1: no $3 '$4' in $folder$names"
+}
+
+check_number --speed "$speed" 0
+[ -z "$seed" ] || check_whole --seed "$seed"
+[ -z "$duration" ] || check_number --duration "$duration" 0
+[ -z "$game_length" ] || check_positive --game-length "$game_length"
+[ -z "$sync_clients" ] || check_whole --sync-clients "$sync_clients" 0 2
+# 0 (any free port) would print an address nobody can open.
+check_whole --viewer-port "$viewer_port" 1 65535
+case "$demo" in yellow|blue|both|none) ;; *) usage_error "--demo: '$demo' is not yellow, blue, both or none" ;; esac
+case "$demo_mode" in play|positions|figure8) ;; *) usage_error "--demo-mode: '$demo_mode' is not play, positions or figure8" ;; esac
+[ -z "$log_file" ] || [ -d "$(dirname "$log_file")" ] ||
+  usage_error "--log: no folder '$(dirname "$log_file")' to write '$log_file' into"
+[ -z "$scenario" ] || check_config --scenario scenarios scenario "$scenario"
+[ -z "$field" ] || check_config --field fields field "$field"
+# ER-Force's realism presets by their short names: rc2021 is config/{vision,radio}/erforce_rc2021.cfg.
+[ -e "$config_dir/vision/$profile.cfg" ] || [ ! -e "$config_dir/vision/erforce_$profile.cfg" ] || profile=erforce_$profile
+[ "$vision" = 0 ] || check_config --profile vision "vision profile" "$profile"
+[ "$radio" = 0 ] || check_config --profile radio "radio profile" "$profile"
 
 field_override=""
 if [ -n "$scenario" ] && [ -n "$field" ]; then
@@ -114,26 +201,18 @@ elif [ -z "$scenario" ]; then
     division_a) scenario=division_a_11v11 ;;
     *)
       # Another field: the line-up of the nearest size, scaled onto it by physics.
-      field_file="$root/config/fields/$field.cfg"
-      [ -f "$field_file" ] || field_file="$field"
+      field_file=$(config_path fields "$field")
       length=$(awk -F'[=#]' '/^[ \t]*FIELD_LENGTH[ \t]*=/ { gsub(/[ \t]/, "", $2); print $2 }' "$field_file" 2>/dev/null)
-      if [ -z "$length" ]; then
-        echo "launch: no field '$field' (config/fields/$field.cfg with FIELD_LENGTH)" >&2; exit 2
-      fi
+      is_number "$length" || usage_error "--field: $field_file has no FIELD_LENGTH = <m>"
       scenario=$(awk -v l="$length" 'BEGIN { print (l >= 10.5 ? "division_a_11v11" : l >= 4.5 ? "division_b_6v6" : "field2002_5v5") }')
       field_override=$field ;;
   esac
 fi
-case "$demo" in yellow|blue|both|none) ;; *) echo "launch: --demo takes yellow, blue, both or none" >&2; exit 2 ;; esac
-# ER-Force's realism presets by their short names: rc2021 is config/{vision,radio}/erforce_rc2021.cfg.
-[ -e "$root/config/vision/$profile.cfg" ] || [ ! -e "$root/config/vision/erforce_$profile.cfg" ] || profile=erforce_$profile
 for program in ubersim_physics ubersim_vision ubersim_radio ubersim_demo_team ubersim_logger; do
   [ -x "$bin_dir/$program" ] || { echo "launch: $bin_dir/$program not found: run tools/build.sh" >&2; exit 2; }
 done
 [ "$ssl_bridge" = 0 ] || [ -x "$bin_dir/ubersim_ssl_bridge" ] || { echo "launch: $bin_dir/ubersim_ssl_bridge not found (is protobuf installed?): run tools/build.sh" >&2; exit 2; }
 [ "$viewer" = 0 ] || [ -x "$bin_dir/ubersim_viewer" ] || { echo "launch: $bin_dir/ubersim_viewer not found: run tools/build.sh" >&2; exit 2; }
-[ -n "$log_dir" ] || log_dir=$(mktemp -d "${TMPDIR:-/tmp}/ubersim-XXXXXX")
-mkdir -p "$log_dir"
 
 # In real time the set uses a few percent of a core, and every message
 # between processes on different cores wakes the other core (an interrupt, in
@@ -148,15 +227,32 @@ fi
 placement=()
 if [ "$cpu" != all ]; then
   [[ "$cpu" =~ ^[0-9]+$ ]] && taskset -c "$cpu" true 2>/dev/null ||
-    { echo "launch: --cpu takes a CPU this script may use, or all (not '$cpu')" >&2; exit 2; }
+    usage_error "--cpu: '$cpu' is not a CPU this script may use, nor all"
   placement=(taskset -c "$cpu")
 fi
+
+# Only now, with every check passed, the log folder.
+[ -n "$log_dir" ] || log_dir=$(mktemp -d "${TMPDIR:-/tmp}/ubersim-XXXXXX")
+mkdir -p "$log_dir"
 
 common=(--lcm-url "$lcm_url")
 [ -n "$prefix" ] && common+=(--channel-prefix "$prefix")
 [ "$quiet" = 1 ] && common+=(-q)
 seed_args=()
 [ -n "$seed" ] && seed_args=(--seed "$seed")
+
+# Why a program failed, from its log, on the terminal: its error lines
+# (spdlog's [error], a command-line error "ubersim_x: ..."), else -- unless a
+# signal ended it -- its last lines. The log itself holds the rest.
+why_failed() {  # why_failed NAME STATUS
+  local log="$log_dir/$1.log" lines line
+  [ -s "$log" ] || return 0
+  lines=$(grep -E '\[(error|critical)\]|^(ubersim_[a-z_]+|referee|demo_team): ' "$log" | tail -n 2)
+  [ -n "$lines" ] || [ "$2" -ge 128 ] || lines=$(tail -n 2 "$log")
+  while IFS= read -r line; do
+    [ -z "$line" ] || echo "launch: $1: ${line:0:300}" >&2
+  done <<<"$lines"
+}
 
 names=() pids=()
 start() {  # start NAME COMMAND...
@@ -218,7 +314,11 @@ if [ "$referee" = builtin ]; then
   start referee "$bin_dir/ubersim_referee" --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} "${referee_args[@]}"
   # In sync mode the referee must hear the first state: the teams (whose
   # registration lets physics start) come once it listens (at most 20 s).
-  for _ in $(seq 200); do grep -q "automatic referee:" "$log_dir/referee.log" 2>/dev/null && break; sleep 0.1; done
+  for _ in $(seq 200); do
+    grep -q "automatic referee:" "$log_dir/referee.log" 2>/dev/null && break
+    kill -0 "${pids[-1]}" 2>/dev/null || break  # it failed: the wait below reports it
+    sleep 0.1
+  done
 fi
 for team in yellow blue; do
   if [ "$demo" = "$team" ] || [ "$demo" = both ]; then
@@ -244,11 +344,6 @@ fi
 echo "Ctrl-C stops everything."
 
 failed=0
-# A process that failed said why in its log (the logger: "cannot write the
-# log ...: No space left on device"): its last lines go to the terminal too.
-show_log_tail() {
-  [ -s "$log_dir/$1.log" ] && tail -n 3 "$log_dir/$1.log" | sed "s/^/  $1| /" >&2
-}
 # Sends SIGTERM to the given indices of pids[], waits up to 2 s, kills what is left.
 stop_indices() {
   local i
@@ -283,7 +378,10 @@ stop_all() {
     wait "${pids[$i]}" 2>/dev/null
     local status=$?
     # 0, or killed by the signal we sent (128+15) / Ctrl-C (128+2): a clean stop.
-    case $status in 0|130|143) ;; 127) ;; *) echo "launch: ${names[$i]} exited with status $status" >&2; show_log_tail "${names[$i]}"; failed=1 ;; esac
+    case $status in
+      0|130|143|127) ;;
+      *) echo "launch: ${names[$i]} exited with status $status" >&2; why_failed "${names[$i]}" "$status"; failed=1 ;;
+    esac
   done
 }
 
@@ -311,7 +409,7 @@ while :; do
       echo "launch: the game is over ($(grep '^result' "$log_dir/referee.log" | tail -1)): stopping the rest"
     else
       echo "launch: $name exited with status $status: stopping the rest (see $log_dir/$name.log)" >&2
-      show_log_tail "$name"
+      why_failed "$name" "$status"
       failed=1
     fi
     break

@@ -89,6 +89,57 @@ std::optional<bool> parse_boolean(std::string token) {
 // naming /dev/zero or a FIFO must not read forever).
 constexpr std::uintmax_t kMaxConfigBytes = std::uintmax_t{1} << 20;
 
+// Letters compared without case: 'gravity' is a misspelling of GRAVITY too.
+bool same_letter(char a, char b) {
+  return std::toupper(static_cast<unsigned char>(a)) == std::toupper(static_cast<unsigned char>(b));
+}
+
+// No key ubersim reads is longer; a longer one is no typo of any, and
+// comparing it would cost length squared (a config file is outside input).
+constexpr std::size_t kMaxComparedKey = 64;
+
+// Edits (insert, delete, replace, swap two neighbours) that turn a into b.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  const std::size_t width = b.size() + 1;
+  std::vector<std::size_t> d((a.size() + 1) * width);
+  const auto at = [&](std::size_t i, std::size_t j) -> std::size_t& { return d[i * width + j]; };
+  for (std::size_t i = 0; i <= a.size(); ++i) at(i, 0) = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) at(0, j) = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t replace = same_letter(a[i - 1], b[j - 1]) ? 0 : 1;
+      at(i, j) = std::min({at(i - 1, j) + 1, at(i, j - 1) + 1, at(i - 1, j - 1) + replace});
+      if (i > 1 && j > 1 && same_letter(a[i - 1], b[j - 2]) && same_letter(a[i - 2], b[j - 1])) {
+        at(i, j) = std::min(at(i, j), at(i - 2, j - 2) + 1);
+      }
+    }
+  }
+  return at(a.size(), b.size());
+}
+
+// Among `candidates`, the one spelt most nearly like `key`, if any is near
+// enough to be a typo of it: one edit in a short key, two (three beyond ten
+// letters) in a longer one. Ties go to the first candidate.
+std::optional<std::string> nearest_spelling(const std::string& key,
+                                            const std::vector<std::string>& candidates) {
+  if (key.size() > kMaxComparedKey) return std::nullopt;
+  const std::size_t limit = key.size() <= 4 ? 1 : key.size() <= 10 ? 2 : 3;
+  std::optional<std::string> best;
+  std::size_t best_distance = limit + 1;
+  for (const std::string& candidate : candidates) {
+    // Keys differ by more than the limit in length cannot be near; skip the table.
+    const std::size_t length_gap = candidate.size() > key.size() ? candidate.size() - key.size()
+                                                                 : key.size() - candidate.size();
+    if (length_gap > limit) continue;
+    const std::size_t distance = edit_distance(key, candidate);
+    if (distance < best_distance) {
+      best = candidate;
+      best_distance = distance;
+    }
+  }
+  return best;
+}
+
 std::string length_text(std::size_t n) {
   return std::to_string(n) + (n == 1 ? " value" : " values");
 }
@@ -199,6 +250,7 @@ void ConfigFile::parse_into(const std::string& text, const std::string& name,
 }
 
 bool ConfigFile::has(const std::string& key) const {
+  asked_.insert(key);
   return entries_.count(key) != 0;
 }
 
@@ -218,10 +270,19 @@ void ConfigFile::fail(const std::string& key, const std::string& what) const {
 }
 
 const ConfigEntry& ConfigFile::entry(const std::string& key, const char* expected) const {
+  asked_.insert(key);
   const auto found = entries_.find(key);
   if (found == entries_.end()) {
-    throw ConfigError(path_, 0,
-                      std::string("missing required key '") + key + "' (" + expected + ")");
+    const std::string missing = "missing required key '" + key + "' (" + expected + ")";
+    // Most often the key is there, misspelt: point at that line, which the
+    // unknown-key check would only reach once this key were fixed.
+    if (const auto typo = unasked_key_like(key)) {
+      const ConfigEntry& e = entries_.at(*typo);
+      throw ConfigError(e.file, e.line,
+                        "unknown key '" + *typo + "': did you mean '" + key +
+                            "'? (a required key: " + expected + ")");
+    }
+    throw ConfigError(path_, 0, missing);
   }
   used_[key] = true;
   return found->second;
@@ -333,9 +394,30 @@ void ConfigFile::require_all_used() const {
   for (const std::string& key : order_) {
     if (!used_.count(key)) {
       const ConfigEntry& e = entries_.at(key);
-      throw ConfigError(e.file, e.line, "unknown key '" + key + "'");
+      const auto meant = missing_key_like(key);
+      throw ConfigError(e.file, e.line,
+                        "unknown key '" + key + "'" +
+                            (meant ? ": did you mean '" + *meant + "'?" : std::string()));
     }
   }
+}
+
+std::optional<std::string> ConfigFile::unasked_key_like(const std::string& wanted) const {
+  std::vector<std::string> unasked;
+  for (const std::string& key : order_) {
+    if (!used_.count(key) && !asked_.count(key)) unasked.push_back(key);
+  }
+  return nearest_spelling(wanted, unasked);
+}
+
+std::optional<std::string> ConfigFile::missing_key_like(const std::string& unknown) const {
+  // Only keys looked for and absent: a key that is defined (CAMERA_0_... when
+  // CAMERA_1_... is one camera too many) is not what a typo was meant to be.
+  std::vector<std::string> missing;
+  for (const std::string& key : asked_) {
+    if (!entries_.count(key)) missing.push_back(key);
+  }
+  return nearest_spelling(unknown, missing);
 }
 
 }  // namespace ubersim

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 
 namespace ubersim {
@@ -12,6 +13,10 @@ namespace ubersim {
 int run_main(const char* program, const std::function<int()>& body) {
   try {
     return body();
+  } catch (const CLI::ParseError& error) {
+    // A command line parsed outside parse_command_line: the same one line, exit 2.
+    std::fprintf(stderr, "%s\n", command_line_error(program, error).c_str());
+    return 2;
   } catch (const ConfigError& error) {
     spdlog::error("configuration: {}", error.what());
     return 2;

@@ -393,7 +393,7 @@ int main(int argc, char** argv) {
     app.add_option("--rate", options.rate, "Hz, SIM_STATE rate of the latency phase")
         ->capture_default_str();
     app.add_option("--offered", options.offered, "Hz, rates tried for the sustained rate");
-    CLI11_PARSE(app, argc, argv);
+    if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
     return run(options);
   });
 }

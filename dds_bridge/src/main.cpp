@@ -89,7 +89,7 @@ int parse_and_run(int argc, char** argv) {
   CLI::App app{"ubersim DDS bridge: LCM channels <-> Cyclone DDS topics"};
   ubersim::add_common_options(app, options.common);
   app.add_option("--domain", options.domain, "DDS domain id")
-      ->check(CLI::Range(0, 232))
+      ->check(ubersim::in_range(0, 232))
       ->capture_default_str();
   app.add_flag("--network", options.network,
                "let DDS use Cyclone's default network interface (default: loopback only, as "
@@ -100,9 +100,9 @@ int parse_and_run(int argc, char** argv) {
   app.add_option("--truth-rate", options.truth_rate,
                  "SIM_STATE states per second of sim time to ask physics for, when SIM_STATE is "
                  "bridged to DDS (0 = every step)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(ubersim::at_least(0))
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
 
   ubersim::setup_logging("dds_bridge", options.common.verbosity());
   try {

@@ -245,7 +245,7 @@ int run(int argc, char** argv) {
   app.add_option("--state-rate", o.state_rate,
                  "SIM_STATE rate (Hz of sim time, 0 = every step; default: the physics config's)");
   app.add_option("--only", o.only, "run just one variant: server, world or bare (for profiling)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
   try {
     return run_benchmark(o);
   } catch (const std::exception& e) {

@@ -20,6 +20,7 @@
 #include "bench_support.hpp"
 #include "temp_folder.hpp"
 #include "ubersim/child_process.hpp"
+#include "ubersim/cli.hpp"
 #include "ubersim/process_main.hpp"
 
 namespace {
@@ -125,7 +126,7 @@ int run(int argc, char** argv) {
                  "SIM_STATE every step (physics --truth-every-step), or only on demand (the "
                  "default)")
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
 
   ubersim::test::TempFolder work_dir("ubersim_sync_bench");  // the runs' logs
   const fs::path& work = work_dir.root();

@@ -27,6 +27,7 @@
 #include "bench_support.hpp"
 #include "temp_folder.hpp"
 #include "ubersim/child_process.hpp"
+#include "ubersim/cli.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/cpu_placement.hpp"
 #include "ubersim/physics/world.hpp"
@@ -236,7 +237,7 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--listener-seconds", listener_seconds, "measuring window of figure 3")
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
   ubersim::test::TempFolder work_dir("ubersim_truth_bench");  // the runs' logs
   const fs::path& work = work_dir.root();
   std::printf("ubersim truth benchmark, %g s per figure; load average at start %s\n\n", seconds,

@@ -34,7 +34,7 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--speed", speed, "times real time (0.5, 4 ...); 0 = as fast as possible")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(ubersim::at_least(0));
   app.add_flag("--lockstep", lockstep, "advance only on STEP requests (SIM_CONTROL)");
   bool sync = false;
   app.add_flag("--sync", sync,
@@ -58,8 +58,8 @@ int run(int argc, char** argv) {
   app.add_option("--seed", seed, "seed of the solver's randomness")->capture_default_str();
   app.add_option("--duration", duration, "exit after this many seconds of sim time (0 = never)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  CLI11_PARSE(app, argc, argv);
+      ->check(ubersim::at_least(0));
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
 
   ubersim::setup_logging("physics", common.verbosity());
   ubersim::physics::WorldSetup setup =

@@ -151,14 +151,14 @@ int parse_and_run(int argc, char** argv) {
   app.add_option("--sync-timeout", options.sync_options.client_timeout,
                  "s of wall time a sync client may take to answer a frame; then it is dropped")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(ubersim::greater_than(0));
   app.add_flag("--sync-strict", options.sync_options.strict,
                "a sync client missing the timeout fails the run (exit 1)");
   app.add_option("--sync-clients", options.sync_options.expected_clients,
                  "physics holds at the start until this many clients registered")
       ->capture_default_str()
-      ->check(CLI::Range(0, 2));
-  CLI11_PARSE(app, argc, argv);
+      ->check(ubersim::in_range(0, 2));
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
 
   ubersim::setup_logging("radio", options.common.verbosity());
   return run(options);

@@ -321,7 +321,7 @@ int main(int argc, char** argv) {
   add_common_options(app, o.common);
   app.add_option("--timeout", o.timeout_s, "seconds to wait for the physics server")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(ubersim::greater_than(0));
   app.add_option("--yellow-defends", o.yellow_defends, "which goal yellow defends")
       ->check(CLI::IsMember({"negative", "positive"}))
       ->capture_default_str();
@@ -353,7 +353,7 @@ int main(int argc, char** argv) {
           [](Referee& r) { return r.step(); })
       ->add_option("n", o.steps, "steps")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(ubersim::greater_than(0));
   command("speed",
           "set the speed: 1 real time, 0.5, 4 ..., 0 as fast as possible, -1 lockstep, sync "
           "(docs/sync.md)",
@@ -424,7 +424,7 @@ int main(int argc, char** argv) {
   automatic->add_option("--game", o.game, "game config (config/referee/<name>.cfg)")
       ->capture_default_str();
   automatic->add_option("--game-length", o.game_length, "s of sim time (overrides GAME_LENGTH)")
-      ->check(CLI::PositiveNumber);
+      ->check(ubersim::greater_than(0));
   automatic->add_option("--events", o.events_file, "write the event log (JSON lines) here");
   automatic->add_flag("--keep-running", o.keep_running, "do not exit when the game is over");
   automatic->add_flag("--start", o.start_physics,
@@ -436,7 +436,7 @@ int main(int argc, char** argv) {
                       "judge every state (default: only the states where a rule could decide, "
                       "docs/autoref.md; the same decisions at a fraction of the cost)");
 
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
   const bool is_auto = app.got_subcommand("auto");
   // Quiet by default as a command-line tool; the automatic referee logs its game.
   setup_logging("referee", o.common.verbosity() - (is_auto ? 0 : 1));

@@ -60,10 +60,10 @@ int parse_and_run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--vision-port", b.vision_port, "SSL-Vision port")
       ->capture_default_str()
-      ->check(CLI::Range(1, 65535));
+      ->check(ubersim::in_range(1, 65535));
   app.add_option("--vision-ttl", b.vision_ttl, "multicast TTL (0: this host only)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 255));
+      ->check(ubersim::in_range(0, 255));
   app.add_option("--vision-interface", b.vision_interface,
                  "address of the interface vision packets leave on")
       ->capture_default_str();
@@ -72,17 +72,17 @@ int parse_and_run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--control-port", b.control_port, "simulation control port")
       ->capture_default_str()
-      ->check(CLI::Range(1, 65535));
+      ->check(ubersim::in_range(1, 65535));
   app.add_option("--blue-port", b.blue_port, "blue robot control port")
       ->capture_default_str()
-      ->check(CLI::Range(1, 65535));
+      ->check(ubersim::in_range(1, 65535));
   app.add_option("--yellow-port", b.yellow_port, "yellow robot control port")
       ->capture_default_str()
-      ->check(CLI::Range(1, 65535));
+      ->check(ubersim::in_range(1, 65535));
   app.add_option("--ack-timeout", b.ack_timeout,
                  "seconds to wait for physics' acknowledgement before answering with an error")
       ->capture_default_str()
-      ->check(CLI::Range(0.01, 60.0));
+      ->check(ubersim::in_range(0.01, 60.0));
   app.add_option("--referee-address", b.referee_address,
                  "where REFEREE goes as SSL Referee messages (multicast group)")
       ->capture_default_str();
@@ -98,13 +98,13 @@ int parse_and_run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--tracked-port", b.tracked_port, "tracked frames port")
       ->capture_default_str()
-      ->check(CLI::Range(1, 65535));
+      ->check(ubersim::in_range(1, 65535));
   app.add_option("--tracked-ttl", b.tracked_ttl, "tracked frames multicast TTL (0: this host only)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 255));
+      ->check(ubersim::in_range(0, 255));
   app.add_option("--tracked-rate", b.tracked_rate, "tracked frames per second of sim time")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 1000.0));
+      ->check(ubersim::in_range(1.0, 1000.0));
   app.add_flag("--sync", b.sync,
                "sync mode: each team's first RobotControl registers it as a sync client, then "
                "each RobotControl answers the oldest detection packet not answered yet "
@@ -113,13 +113,13 @@ int parse_and_run(int argc, char** argv) {
                  "sync mode: s of wall time a team may take to answer a detection packet before "
                  "it is dropped")
       ->capture_default_str()
-      ->check(CLI::Range(0.01, 600.0));
+      ->check(ubersim::in_range(0.01, 600.0));
   app.add_option("--robot-type", options.robot_type,
                  "robot config for robots added with present = true, and for wheel_velocity")
       ->capture_default_str();
   app.add_option("--ball", options.ball, "ball config whose model the geometry reports")
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
 
   ubersim::setup_logging("ssl_bridge", options.common.verbosity());
   return run(options);

@@ -101,6 +101,63 @@ TEST(Config, UnknownKeyIsAnErrorAtItsLine) {
   expect_config_error([&] { config.require_all_used(); }, {"f.cfg:3", "unknown key 'MAS'"});
 }
 
+// A misspelt required key: the reader looks for GRAVITY before any
+// unknown-key check, so the error must point at GRAVTY's line itself.
+TEST(Config, MisspeltRequiredKeyIsNamedAtItsLineWithTheRightName) {
+  TempDir dir;
+  const auto path = dir.write("physics.cfg",
+                              "# physics\n"
+                              "STEP_RATE = 1000\n"
+                              "GRAVTY = 9.81   # m/s^2\n"
+                              "ERP = 0.2\n");
+  const auto config = ConfigFile::load(path);
+  config.real("STEP_RATE");
+  expect_config_error([&] { config.real_in("GRAVITY", 0.1, 100.0); },
+                      {"physics.cfg:3", "unknown key 'GRAVTY'", "did you mean 'GRAVITY'?"});
+}
+
+TEST(Config, MisspellingsAreFoundWithoutCaseAndWithSwappedLetters) {
+  const auto config = ConfigFile::parse("gravity = 9.81\nSTPE_RATE = 1000\n", "p.cfg");
+  expect_config_error([&] { config.real("GRAVITY"); },
+                      {"p.cfg:1", "unknown key 'gravity'", "did you mean 'GRAVITY'?"});
+  expect_config_error([&] { config.real("STEP_RATE"); },
+                      {"p.cfg:2", "unknown key 'STPE_RATE'", "did you mean 'STEP_RATE'?"});
+}
+
+TEST(Config, MissingKeyWithNothingLikeItIsNamedAlone) {
+  const auto config = ConfigFile::parse("STEP_RATE = 1000\n", "p.cfg");
+  try {
+    config.real("GRAVITY");
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& error) {
+    EXPECT_EQ(std::string(error.what()), "p.cfg: missing required key 'GRAVITY' (a real number)");
+  }
+}
+
+// An optional key misspelt: the reader takes the fallback, and the unknown
+// key names the key it was meant to be.
+TEST(Config, UnknownKeyNamesTheOptionalKeyItMisspells) {
+  const auto config = ConfigFile::parse("MASS = 1\nRADUIS = 0.1\n", "r.cfg");
+  config.real("MASS");
+  EXPECT_DOUBLE_EQ(config.real("RADIUS", 0.09), 0.09);
+  expect_config_error([&] { config.require_all_used(); },
+                      {"r.cfg:2", "unknown key 'RADUIS'", "did you mean 'RADIUS'?"});
+}
+
+// A key that is defined is not what an unknown key meant (CAMERA_1_X when
+// only camera 0 exists), nor is a key far from it in spelling.
+TEST(Config, UnknownKeySuggestsOnlyMissingKeysSpeltNearlyLikeIt) {
+  const auto config = ConfigFile::parse("CAMERA_0_X = 1\nCAMERA_1_X = 2\nWEIGHT = 3\n", "v.cfg");
+  config.real("CAMERA_0_X");
+  config.real("MASS", 1.0);
+  try {
+    config.require_all_used();
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& error) {
+    EXPECT_EQ(std::string(error.what()), "v.cfg:2: unknown key 'CAMERA_1_X'");
+  }
+}
+
 TEST(Config, DuplicateKeyIsAnError) {
   expect_config_error([] { ConfigFile::parse("A = 1\nB = 2\nA = 3\n", "f.cfg"); },
                       {"f.cfg:3", "duplicate key 'A'", "line 1"});

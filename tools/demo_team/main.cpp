@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"negative", "positive"}));
   app.add_option("--rate", rate, "commands per second of capture time (Hz)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(ubersim::greater_than(0));
   app.add_option("--figure8-speed", figure8_speed, "m/s")->capture_default_str();
   app.add_option("--figure8-size", figure8_size, "m across")->capture_default_str();
   app.add_option("--kick-speed", team.kick_speed, "m/s")->capture_default_str();
@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
   app.add_flag("--sync", sync,
                "sync client: register on SYNC_CLIENT and answer every vision frame "
                "(docs/sync.md)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
 
   ubersim::Team own{};
   if (!ubersim::parse_team(team_text, own)) {

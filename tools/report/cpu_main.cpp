@@ -99,7 +99,7 @@ int run(int argc, char** argv) {
   app.add_option("--seconds", seconds, "measuring window (s of wall time)")->capture_default_str();
   app.add_option("--warmup", warmup, "s before the window")->capture_default_str();
   app.add_option("--demo-teams", demo_teams, "run a demo team on each side")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
   ubersim::setup_logging("report_cpu", 0);
 
   try {

@@ -53,7 +53,7 @@ int run(int argc, char** argv) {
   app.add_option("--parts", parts, "ramp sweep figure8 ball")->capture_default_str();
   app.add_option("--trials", trials, "ramp trials per robot type")->capture_default_str();
   app.add_flag("--quick", quick, "fewer sweep points, kicks and laps (a smoke run)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
   ubersim::setup_logging("report", 0);
 
   try {

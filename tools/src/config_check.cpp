@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/field_config.hpp"
@@ -50,7 +51,7 @@ int main(int argc, char** argv) {
   app.add_option("--config-dir", config_dir, "config folder")->capture_default_str();
   bool dump_keys = false;
   app.add_flag("--dump", dump_keys, "print every key, where it is defined and its values (JSON)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
 
   int failures = 0;
   for (const auto& name : names) {

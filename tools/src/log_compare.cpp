@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "ubersim/cli.hpp"
+
 namespace {
 
 using Messages = std::vector<std::vector<unsigned char>>;
@@ -36,7 +38,7 @@ int main(int argc, char** argv) {
   app.add_option("second", second, "another")->required();
   app.add_option("--channels", pattern, "regular expression of the channels to compare")
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
   try {
     const std::regex channels(pattern);
     const auto a = read_log(first, channels);

@@ -45,7 +45,7 @@ int run(int argc, char** argv) {
   app.add_option("--channels", channels, "regular expression of the channels to record")
       ->capture_default_str();
   app.add_option("file", path, "the log file to write (replaced if it exists)")->required();
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
   ubersim::setup_logging("logger", 0);
 
   ubersim::LcmLogWriter log(path);

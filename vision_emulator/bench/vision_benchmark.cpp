@@ -263,7 +263,7 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("-l,--lcm-url", url, "LCM URL for real-time mode")->capture_default_str();
   app.add_option("--config-dir", config_dir, "config folder")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
   spdlog::set_level(spdlog::level::err);
 
   const double decode_us = measure_decode_us();

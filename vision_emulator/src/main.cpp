@@ -29,7 +29,7 @@ int run(int argc, char** argv) {
   app.add_option("--seed", seed, "seed for every random draw (overrides the profile's SEED)");
   app.add_option("--field", options.field,
                  "field config to assume until physics reports one on SIM_GEOMETRY");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
   if (app.count("--seed") > 0) options.seed = seed;
 
   ubersim::setup_logging("vision", common.verbosity());

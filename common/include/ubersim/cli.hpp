@@ -3,6 +3,7 @@
 // process takes an LCM URL, a channel prefix, channel overrides, a config
 // folder and -v/-q the same way.
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,5 +31,22 @@ struct CommonOptions {
 };
 
 void add_common_options(CLI::App& app, CommonOptions& options);
+
+// Range checks for numeric options. CLI11's own (CLI::Range, NonNegativeNumber,
+// PositiveNumber) print their bounds with std::to_string, so an open side shows
+// up as the largest double, 300 digits long; these name the range in plain
+// numbers: "--speed: -5 is not in [0, 1000]", "... is not at least 0".
+CLI::Validator in_range(double min, double max);
+CLI::Validator at_least(double min);
+CLI::Validator greater_than(double min);
+
+// Parses the command line (CLI11_PARSE's job) and says whether to stop:
+// nothing to run on; 0 after --help or --version (printed on stdout); 2 after
+// a bad command line, which is told on stderr in one line, the program's name
+// first (a launcher shows it as it is).
+std::optional<int> parse_command_line(CLI::App& app, int argc, const char* const* argv);
+// The one line parse_command_line prints for a bad command line, without its
+// trailing newline: control characters replaced, cut to a readable length.
+std::string command_line_error(const std::string& program, const CLI::ParseError& error);
 
 }  // namespace ubersim

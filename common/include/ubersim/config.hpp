@@ -8,11 +8,14 @@
 // A file is parsed once into a ConfigFile; consumers read typed values out of it
 // into plain structs and then call require_all_used(), which turns every key
 // nobody asked for into an error that names its file and line. So a typo in a
-// key is an error, never silently ignored.
+// key is an error, never silently ignored; and where a key the reader looked
+// for is missing and a key nobody asked for is spelt nearly like it, the error
+// names that key's line and suggests the right name.
 #include <cstdint>
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -84,11 +87,16 @@ class ConfigFile {
                                      std::optional<std::size_t> length) const;
   void parse_into(const std::string& text, const std::string& name,
                   std::vector<std::string>& base_chain);
+  // The defined key, nobody has asked for, spelt most nearly like `wanted`.
+  std::optional<std::string> unasked_key_like(const std::string& wanted) const;
+  // The key looked for but not defined, spelt most nearly like `unknown`.
+  std::optional<std::string> missing_key_like(const std::string& unknown) const;
 
   std::string path_;
   std::map<std::string, ConfigEntry> entries_;
   std::vector<std::string> order_;  // keys in definition order, for stable errors
   mutable std::map<std::string, bool> used_;
+  mutable std::set<std::string> asked_;  // every key looked for, found or not
 };
 
 }  // namespace ubersim

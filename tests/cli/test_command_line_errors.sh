@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# Every program answers a bad command line the same way: exit 2 and one short
+# line on stderr that names the option and, for a number, its range in plain
+# numbers (never CLI11's 300-digit "largest double"); --help still exits 0.
+# Then a misspelt key in a real config folder: ubersim_physics names the
+# line of the typo and the key it meant.
+# Usage: test_command_line_errors.sh SOURCE_DIR NAME=PATH...  (the programs built)
+set -uo pipefail
+source_dir=$1
+shift
+failures=0
+fail() {
+  echo "FAIL: $*"
+  failures=$((failures + 1))
+}
+
+# A bad command line for each program, and what its error line must hold.
+declare -A bad_args expected
+bad_args[ubersim_physics]="--speed -5"
+expected[ubersim_physics]="--speed: -5 is not at least 0"
+bad_args[ubersim_vision]="--seed ten"
+expected[ubersim_vision]="--seed"
+bad_args[ubersim_radio]="--sync-clients 3"
+expected[ubersim_radio]="--sync-clients: 3 is not in [0, 2]"
+bad_args[ubersim_referee]="--timeout 0 ping"
+expected[ubersim_referee]="--timeout: 0 is not greater than 0"
+bad_args[ubersim_ssl_bridge]="--vision-port 70000"
+expected[ubersim_ssl_bridge]="--vision-port: 70000 is not in [1, 65535]"
+bad_args[ubersim_viewer]="--display-rate 0.5"
+expected[ubersim_viewer]="--display-rate: 0.5 is not in [1, 240]"
+bad_args[ubersim_demo_team]="--rate -60"
+expected[ubersim_demo_team]="--rate: -60 is not greater than 0"
+bad_args[ubersim_logger]="--no-such-option game.lcmlog"
+expected[ubersim_logger]="--no-such-option"
+bad_args[ubersim_dds_bridge]="--domain 300"
+expected[ubersim_dds_bridge]="--domain: 300 is not in [0, 232]"
+bad_args[ubersim_config_check]="nosuchkind x.cfg"
+expected[ubersim_config_check]="nosuchkind"
+bad_args[ubersim_log_compare]="--channels"
+expected[ubersim_log_compare]="--channels"
+
+out=$(mktemp -d "${TMPDIR:-/tmp}/cli-errors-XXXXXX")
+for program_arg in "$@"; do
+  name=${program_arg%%=*}
+  program=${program_arg#*=}
+  if [ -z "${bad_args[$name]+set}" ]; then
+    fail "$name: no bad command line to try (add one to this test)"
+    continue
+  fi
+  # shellcheck disable=SC2086  # the arguments are words on purpose
+  timeout 20 "$program" ${bad_args[$name]} >"$out/stdout" 2>"$out/stderr" </dev/null
+  status=$?
+  lines=$(wc -l <"$out/stderr")
+  longest=$(awk '{ if (length > n) n = length } END { print n + 0 }' "$out/stderr")
+  echo "$name ${bad_args[$name]} -> exit $status: $(head -c 300 "$out/stderr")"
+  [ "$status" = 2 ] || fail "$name ${bad_args[$name]}: exit $status, expected 2"
+  [ "$lines" = 1 ] || fail "$name: $lines lines on stderr, expected 1"
+  [ "$longest" -le 200 ] || fail "$name: a line of $longest characters"
+  grep -qF -- "${expected[$name]}" "$out/stderr" || fail "$name: no '${expected[$name]}' on stderr"
+  grep -qE '[0-9]{20}' "$out/stderr" && fail "$name: a number of 20 digits or more"
+  [ -s "$out/stdout" ] && fail "$name: printed on stdout: $(head -c 200 "$out/stdout")"
+
+  timeout 20 "$program" --help >"$out/stdout" 2>"$out/stderr" </dev/null
+  status=$?
+  [ "$status" = 0 ] || fail "$name --help: exit $status, expected 0"
+  grep -q -i "usage" "$out/stdout" || fail "$name --help: no usage on stdout"
+done
+
+# A misspelt key in a copy of the shipped config folder (GRAVTY for GRAVITY):
+# physics reads the physics config before it touches the bus.
+physics=""
+for program_arg in "$@"; do [ "${program_arg%%=*}" = ubersim_physics ] && physics=${program_arg#*=}; done
+if [ -n "$physics" ]; then
+  cp -rL "$source_dir/config" "$out/config"
+  line=$(grep -n '^GRAVITY' "$out/config/physics/default.cfg" | cut -d: -f1)
+  sed -i 's/^GRAVITY/GRAVTY/' "$out/config/physics/default.cfg"
+  timeout 20 "$physics" --config-dir "$out/config" --speed 0 --duration 0.01 \
+    >"$out/stdout" 2>"$out/stderr" </dev/null
+  status=$?
+  echo "ubersim_physics with GRAVTY -> exit $status: $(head -c 400 "$out/stderr")"
+  [ "$status" = 2 ] || fail "physics with GRAVTY: exit $status, expected 2"
+  grep -qF "default.cfg:$line: unknown key 'GRAVTY': did you mean 'GRAVITY'?" "$out/stderr" ||
+    fail "physics with GRAVTY: the error names neither the line nor GRAVITY"
+fi
+
+if [ "$failures" != 0 ]; then
+  echo "$failures failure(s); outputs in $out"
+  exit 1
+fi
+rm -rf "$out"
+echo PASS
