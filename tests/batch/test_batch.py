@@ -20,6 +20,7 @@ BATCH = os.path.join(SOURCE, "tools", "ubersim_batch")
 SMOKE = os.path.join(SOURCE, "config", "experiments", "smoke.cfg")
 sys.path.insert(0, os.path.join(SOURCE, "tools", "batch"))
 import results as results_module  # noqa: E402
+from live_processes import processes_mentioning  # noqa: E402
 
 
 def run_batch(*args, timeout=600):
@@ -55,18 +56,7 @@ GAME_TIMEOUT = 60
 
 def ubersim_processes_under(folder):
     """Processes whose command line mentions `folder` (the games' config and logs)."""
-    found = []
-    for pid in os.listdir("/proc"):
-        if not pid.isdigit():
-            continue
-        try:
-            with open(f"/proc/{pid}/cmdline", "rb") as f:
-                command = f.read().replace(b"\0", b" ").decode(errors="replace")
-        except OSError:
-            continue
-        if folder in command:
-            found.append(f"{pid}: {command}")
-    return found
+    return [f"{pid}: {command}" for pid, command in processes_mentioning(folder).items()]
 
 
 class BatchTest(unittest.TestCase):

@@ -22,6 +22,7 @@ import time
 SOURCE, BUILD = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SOURCE, "tools", "batch"))
 import results as results_module  # noqa: E402
+from live_processes import processes_mentioning  # noqa: E402
 
 BATCH = os.path.join(SOURCE, "tools", "ubersim_batch")
 PYTHON = "/usr/bin/python3"
@@ -43,22 +44,6 @@ def has_sync(build):
 def read(out_dir):
     with open(os.path.join(out_dir, "results.csv")) as f:
         return list(csv.DictReader(f))
-
-
-def processes_mentioning(text):
-    """{pid: command line} of the live processes whose command line has `text`."""
-    found = {}
-    for pid in os.listdir("/proc"):
-        if not pid.isdigit():
-            continue
-        try:
-            with open(f"/proc/{pid}/cmdline", "rb") as f:
-                command = f.read().replace(b"\0", b" ").decode(errors="replace")
-        except OSError:
-            continue
-        if text in command:
-            found[int(pid)] = command
-    return found
 
 
 def alive(pid):
