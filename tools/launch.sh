@@ -50,7 +50,7 @@ usage: tools/launch.sh [options]
   --demo WHO           start the demo team for yellow | blue | both | none (default none)
   --demo-mode MODE     play | positions | figure8 (default play)
   --log FILE           record every channel into FILE (an LCM log: lcm-logplayer replays it)
-  --log-dir DIR        where process logs go (default: a new folder under $TMPDIR or /tmp)
+  --log-dir DIR        where process logs go (default: a new folder under \$TMPDIR or /tmp)
   --viewer             start the browser viewer (ubersim_viewer) and print its address
   --viewer-port P      the viewer's port on 127.0.0.1 (default 8080)
   --ssl-bridge         start the SSL protocol bridge (SSL-Vision on 224.5.23.2:10020, tracked

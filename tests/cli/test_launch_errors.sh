@@ -73,6 +73,13 @@ grep -q "launch: physics: .*default.cfg:[0-9]*: unknown key 'GRAVTY': did you me
 sleep 0.5
 [ -z "$(processes_of_this_test)" ] || fail "GRAVTY: left processes $(processes_of_this_test)"
 
+# --help works in any environment, also with no TMPDIR (most users' shells).
+env -u TMPDIR "$launch" --help >"$work/stdout" 2>"$work/stderr" </dev/null
+status=$?
+echo "launch.sh --help without TMPDIR -> exit $status"
+[ "$status" = 0 ] || fail "--help without TMPDIR: exit $status: $(head -c 300 "$work/stderr")"
+grep -q -- "--log-dir DIR" "$work/stdout" || fail "--help without TMPDIR printed no usage"
+
 if [ "$failures" != 0 ]; then
   echo "$failures failure(s); outputs in $work"
   exit 1
