@@ -192,8 +192,7 @@ TEST(Launch, ErForcePresetsByTheirShortNames) {
         },
         30))
         << launch.output();
-    EXPECT_NE(launch.output().find("profile erforce_rc2021"), std::string::npos)
-        << launch.output();
+    EXPECT_NE(launch.output().find("profile erforce_rc2021"), std::string::npos) << launch.output();
     EXPECT_EQ(launch.script().stop(10, SIGINT), 0) << launch.output();
   }
   for (const char* name : {"none", "friendly", "realistic"}) {

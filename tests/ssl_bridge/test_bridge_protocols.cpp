@@ -467,7 +467,8 @@ TEST_F(SslProtocols, OfficialDivisionAGeometryIsTheFieldPlayedOn) {
 // the two cameras it describes decide which camera sees what, as in ER-Force.
 TEST_F(SslProtocols, OfficialGeometryCamerasDecideWhichCameraSeesWhat) {
   ASSERT_NO_FATAL_FAILURE(start("ideal"));  // one camera over the whole field
-  std::ifstream file(std::string(UBERSIM_SOURCE_DIR) + "/tests/ssl_bridge/data/simctl_geometry_div_a.txt");
+  std::ifstream file(std::string(UBERSIM_SOURCE_DIR) +
+                     "/tests/ssl_bridge/data/simctl_geometry_div_a.txt");
   std::stringstream text;
   text << file.rdbuf();
   SimulatorCommand official;

@@ -9,9 +9,9 @@
 #include <iterator>
 #include <ubersim/team_t.hpp>
 
-#include "ubersim/ssl_bridge/sim_control_translation.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/robot_type_definition.hpp"
+#include "ubersim/ssl_bridge/sim_control_translation.hpp"
 
 using namespace ubersim;
 using namespace ubersim::ssl;

@@ -47,7 +47,8 @@ GameMode RefereeFollower::mode() const {
   switch (r.command) {
     case referee_t::HALT:
     case referee_t::TIMEOUT_YELLOW:
-    case referee_t::TIMEOUT_BLUE: return GameMode::Halt;
+    case referee_t::TIMEOUT_BLUE:
+      return GameMode::Halt;
     // The demo team does not place the ball: it keeps away as at a stop, and the
     // official game controller moves on when the placement fails.
     case referee_t::BALL_PLACEMENT_YELLOW:
