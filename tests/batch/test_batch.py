@@ -143,12 +143,17 @@ class BatchTest(unittest.TestCase):
         self.assertIn("failed", run.stderr)
         self.assertEqual(ubersim_processes_under(self.folder), [])
 
-    def test_ctrl_c_stops_every_game_and_leaves_nothing_running(self):
+    def start_long_games(self):
+        """The short experiment with 600 s games, running in the background: (process, out)."""
         text = SHORT.replace("GAME_LENGTH = 4", "GAME_LENGTH = 600")
         out = os.path.join(self.folder, "out")
         batch = subprocess.Popen([BATCH, "run", experiment(self.folder, text), "--out", out,
                                   "--build-dir", BUILD, "-q"],
                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        return batch, out
+
+    def test_ctrl_c_stops_every_game_and_leaves_nothing_running(self):
+        batch, out = self.start_long_games()
         deadline = time.monotonic() + 30
         while time.monotonic() < deadline:  # wait until both games' referees run
             if len([p for p in ubersim_processes_under(self.folder)
@@ -210,11 +215,7 @@ class BatchTest(unittest.TestCase):
         self.assertEqual(ubersim_processes_under(self.folder), [])
 
     def test_sigterm_before_any_game_finished_marks_every_game_stopped_exit_143(self):
-        text = SHORT.replace("GAME_LENGTH = 4", "GAME_LENGTH = 600")
-        out = os.path.join(self.folder, "out")
-        batch = subprocess.Popen([BATCH, "run", experiment(self.folder, text), "--out", out,
-                                  "--build-dir", BUILD, "-q"],
-                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        batch, out = self.start_long_games()
         deadline = time.monotonic() + 30
         while not [p for p in ubersim_processes_under(self.folder) if "ubersim_referee" in p]:
             if time.monotonic() > deadline:
