@@ -43,16 +43,16 @@ inline ConsumerTraffic division_b_traffic() {
   ConsumerTraffic traffic;
   physics::World world(
       physics::load_world_setup(UBERSIM_FUZZ_CONFIG_DIR, "division_b_6v6", "default"));
-  vision::VisionEmulator vision(
-      vision::load_vision_profile(UBERSIM_FUZZ_CONFIG_DIR, "cmdragons02"),
-      vision::RobotSizes::from_config_dir(UBERSIM_FUZZ_CONFIG_DIR));
+  vision::VisionEmulator vision(vision::load_vision_profile(UBERSIM_FUZZ_CONFIG_DIR, "cmdragons02"),
+                                vision::RobotSizes::from_config_dir(UBERSIM_FUZZ_CONFIG_DIR));
   traffic.field = world.geometry();
   vision.on_field_geometry(traffic.field);
   traffic.vision_geometry = vision.geometry_message();
   for (int i = 0; i <= 48; ++i) {
     sim_state_t state{};
     world.fill_state(state);
-    for (auto& frame : vision.on_sim_state(state).frames) traffic.frames.push_back(std::move(frame));
+    for (auto& frame : vision.on_sim_state(state).frames)
+      traffic.frames.push_back(std::move(frame));
     traffic.states.push_back(std::move(state));
     world.step();
   }

@@ -1,7 +1,7 @@
 // Fuzz target: the config reader (ConfigFile) and the typed loaders that read
 // robot, field and scenario files out of it, and the same reader where its
-// text comes from the bus (field changes, robot types defined at run time). The contract under test: any text
-// either loads or throws ConfigError (file:line: what was expected); any other
+// text comes from the bus (field changes, robot types defined at run time). The contract under
+// test: any text either loads or throws ConfigError (file:line: what was expected); any other
 // exception, a crash, a hang or a large allocation is a finding.
 #include <cstddef>
 #include <cstdint>

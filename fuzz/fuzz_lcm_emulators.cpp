@@ -35,7 +35,9 @@ namespace {
 
 using ubersim::fuzz::EmulatorChannel;
 
-bool finite(double value) { return std::isfinite(value); }
+bool finite(double value) {
+  return std::isfinite(value);
+}
 
 void check(const ubersim::vision_frame_t& frame) {
   bool ok = finite(frame.t_capture) && finite(frame.t_sent);
@@ -55,8 +57,8 @@ void check(const ubersim::vision_frame_t& frame) {
 
 void check(const ubersim::radio::RadioEmulator::Output& out) {
   for (const ubersim::sim_commands_t& message : out.commands) {
-    bool ok = finite(message.t_received) && finite(message.t_apply) &&
-              finite(message.command_timeout);
+    bool ok =
+        finite(message.t_received) && finite(message.t_apply) && finite(message.command_timeout);
     for (const ubersim::robot_command_t& c : message.commands) {
       ok = ok && finite(c.vx) && finite(c.vy) && finite(c.omega) && finite(c.kick_speed) &&
            finite(c.chip_speed) && finite(c.chip_angle) && finite(c.dribbler_speed);
@@ -79,11 +81,12 @@ struct Fixture {
   std::vector<ubersim::sim_state_t> states;  // 0.2 s of Division B, every step
 
   Fixture()
-      : vision_profile(ubersim::vision::load_vision_profile(UBERSIM_FUZZ_CONFIG_DIR, "cmdragons02")),
+      : vision_profile(
+            ubersim::vision::load_vision_profile(UBERSIM_FUZZ_CONFIG_DIR, "cmdragons02")),
         robot_sizes(ubersim::vision::RobotSizes::from_config_dir(UBERSIM_FUZZ_CONFIG_DIR)),
         radio_profile(ubersim::radio::load_radio_profile(UBERSIM_FUZZ_CONFIG_DIR, "cmdragons02")) {
-    ubersim::physics::World world(ubersim::physics::load_world_setup(
-        UBERSIM_FUZZ_CONFIG_DIR, "division_b_6v6", "default"));
+    ubersim::physics::World world(
+        ubersim::physics::load_world_setup(UBERSIM_FUZZ_CONFIG_DIR, "division_b_6v6", "default"));
     field = world.geometry();
     for (int i = 0; i <= 48; ++i) {
       ubersim::sim_state_t state{};
@@ -131,8 +134,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     case EmulatorChannel::RadioBlue: {
       ubersim::radio_packet_t packet;
       if (decode(bytes, length, packet)) {
-        const auto team = channel == EmulatorChannel::RadioYellow ? ubersim::Team::Yellow
-                                                                  : ubersim::Team::Blue;
+        const auto team =
+            channel == EmulatorChannel::RadioYellow ? ubersim::Team::Yellow : ubersim::Team::Blue;
         check(radio.on_radio_packet(team, packet));
       }
       break;

@@ -96,8 +96,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
-  const auto channel = static_cast<PhysicsChannel>(
-      (data[0] & ubersim::fuzz::kChannelMask) % static_cast<int>(PhysicsChannel::Count));
+  const auto channel = static_cast<PhysicsChannel>((data[0] & ubersim::fuzz::kChannelMask) %
+                                                   static_cast<int>(PhysicsChannel::Count));
   ubersim::MessageBus bus("memq://");
   const ubersim::ChannelNames channels;
   ubersim::physics::ServerOptions options;

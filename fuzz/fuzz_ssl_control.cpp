@@ -23,7 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   SimulatorCommand command;
   if (!decode_datagram(data, size, command, errors).ok) return 0;
   SimControlSettings settings = fixture.settings;  // robot specs recorded per input only
-  const SimControlTranslation in_game = translate_simulator_command(command, &fixture.state, settings);
+  const SimControlTranslation in_game =
+      translate_simulator_command(command, &fixture.state, settings);
   // What goes on SIM_CONTROL must encode (counts match the arrays).
   for (const ubersim::sim_control_t& request : in_game.requests)
     ubersim::fuzz::encode_or_abort(request);

@@ -11,7 +11,9 @@ namespace ubersim::fuzz {
 
 // The code under test logs bad input (throttled); at a million inputs a
 // second that is only noise in the fuzzer's output.
-inline void quiet_logging() { spdlog::set_level(spdlog::level::off); }
+inline void quiet_logging() {
+  spdlog::set_level(spdlog::level::off);
+}
 
 // An LCM message's bytes as they go on the bus. It must encode to the size it
 // announces (its counts match its arrays; with ASan a count larger than its

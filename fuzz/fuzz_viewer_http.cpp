@@ -32,10 +32,11 @@ struct Endpoint {
     server.register_ostream(&written);
     limits.web_dir = UBERSIM_FUZZ_WEB_DIR;
     limits.max_pages = 2;  // low, so the refusal path is reached too
-    ubersim::viewer::install_request_handling(server, limits, pages, [this](const std::string& text) {
-      ++requests;
-      (void)ubersim::viewer::parse_control_request(text, 1, "viewer");
-    });
+    ubersim::viewer::install_request_handling(
+        server, limits, pages, [this](const std::string& text) {
+          ++requests;
+          (void)ubersim::viewer::parse_control_request(text, 1, "viewer");
+        });
   }
 };
 

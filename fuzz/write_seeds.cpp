@@ -67,11 +67,13 @@ void ssl_control_seeds(const fs::path& dir) {
 
   // The field as the bridge itself sends it (Division B), sent back as a change.
   ubersim::vision_geometry_t geometry{};
-  geometry.field = ubersim::load_field_config(UBERSIM_FUZZ_CONFIG_DIR, "division_b").to_message(0.0215);
+  geometry.field =
+      ubersim::load_field_config(UBERSIM_FUZZ_CONFIG_DIR, "division_b").to_message(0.0215);
   ubersim::ssl::GeometryExtras extras;
   extras.max_robot_radius = 0.09;
   SimulatorCommand field;
-  *field.mutable_config()->mutable_geometry() = ubersim::ssl::geometry_packet(geometry, extras).geometry();
+  *field.mutable_config()->mutable_geometry() =
+      ubersim::ssl::geometry_packet(geometry, extras).geometry();
   field.mutable_config()->set_vision_port(10020);
   write_message(dir, "geometry", field);
 
@@ -187,7 +189,8 @@ std::string upgrade_request(const std::string& origin) {
 void viewer_seeds(const fs::path& http_dir, const fs::path& control_dir) {
   write(http_dir, "get_index", "GET / HTTP/1.1\r\nHost: 127.0.0.1:8080\r\n\r\n");
   write(http_dir, "get_script", "GET /viewer.js?v=1 HTTP/1.1\r\nHost: localhost:8080\r\n\r\n");
-  write(http_dir, "post", "POST /x HTTP/1.1\r\nHost: 127.0.0.1:8080\r\nContent-Length: 4\r\n\r\nabcd");
+  write(http_dir, "post",
+        "POST /x HTTP/1.1\r\nHost: 127.0.0.1:8080\r\nContent-Length: 4\r\n\r\nabcd");
   std::string page = upgrade_request("http://127.0.0.1:8080");
   for (const std::string& request : kControlRequests) page += masked_text_frame(request);
   page += std::string("\x88\x82\x01\x02\x03\x04\x02\xea", 8);  // close 1000, masked

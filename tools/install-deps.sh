@@ -26,6 +26,8 @@ packages=(
   libwebsocketpp-dev libasio-dev nlohmann-json3-dev chromium
   # fuzz targets (fuzz/, tools/fuzz.sh): clang with libFuzzer and the sanitizers
   clang libclang-rt-14-dev
+  # lint test (tests/lint): the tree stays formatted with .clang-format
+  clang-format
 )
 
 missing=()

@@ -24,7 +24,9 @@ void TruthDemandAnnouncer::periodic(double rate_hz) {
   asking_ = changed_ = true;
 }
 
-void TruthDemandAnnouncer::nothing() { asking_ = changed_ = false; }
+void TruthDemandAnnouncer::nothing() {
+  asking_ = changed_ = false;
+}
 
 void TruthDemandAnnouncer::tick(Clock::time_point now) {
   if (!asking_ || (!changed_ && now < next_)) return;

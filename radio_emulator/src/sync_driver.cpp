@@ -86,10 +86,10 @@ void SyncDriver::update(bool always_publish) {
     const auto now = Clock::now();
     if (now >= next_hold_log_) {
       next_hold_log_ = now + std::chrono::seconds(5);
-      spdlog::info("sync: physics holds: waiting for {}", started_
-                                                               ? std::string("the vision emulator")
-                                                               : std::to_string(options_.expected_clients - coordinator_.clients()) +
-                                                                     " more client(s) on SYNC_CLIENT");
+      spdlog::info("sync: physics holds: waiting for {}",
+                   started_ ? std::string("the vision emulator")
+                            : std::to_string(options_.expected_clients - coordinator_.clients()) +
+                                  " more client(s) on SYNC_CLIENT");
     }
   } else {
     for (Team team : kTeams) {

@@ -58,9 +58,9 @@ class Runner {
     const std::chrono::milliseconds timeout(static_cast<long>(options_.timeout_s * 1000));
     SimLink link(bus_, channels_, "ubersim_referee auto");
     field_ = link.geometry(timeout);
-    judge_.emplace(JudgeOptions{options_.game, options_.sides, options_.sync,
-                                options_.judge_every_step},
-                   field_, [this](const std::string& type) { return radii_(type); });
+    judge_.emplace(
+        JudgeOptions{options_.game, options_.sides, options_.sync, options_.judge_every_step},
+        field_, [this](const std::string& type) { return radii_(type); });
     bus_.subscribe<sim_state_t>(
         channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 100000);
     // Physics announces its field now and then and at once after a SET_FIELD.
@@ -73,15 +73,14 @@ class Runner {
       const auto ack = link.request(resume, timeout);
       if (!ack.ok) throw std::runtime_error("physics refused to resume: " + ack.message);
     }
-    bus_.subscribe<sim_control_ack_t>(channels_(Channel::SimControlAck),
-                                      [](const sim_control_ack_t& ack) {
-                                        if (ack.request_id >= kRequestBase && !ack.ok)
-                                          spdlog::warn("physics refused a placement: {}",
-                                                       ack.message);
-                                      });
+    bus_.subscribe<sim_control_ack_t>(
+        channels_(Channel::SimControlAck), [](const sim_control_ack_t& ack) {
+          if (ack.request_id >= kRequestBase && !ack.ok)
+            spdlog::warn("physics refused a placement: {}", ack.message);
+        });
     spdlog::info("automatic referee: field {}, game {} s in {} half(s), publishing on {}{}",
-                 field_.name, options_.game.game_length, options_.game.halves,
-                 channels_.referee(), options_.sync ? " after every state (sync)" : "");
+                 field_.name, options_.game.game_length, options_.game.halves, channels_.referee(),
+                 options_.sync ? " after every state (sync)" : "");
     while (!shutdown_.requested() && !(over_ && options_.exit_at_end)) {
       announce_demand();
       bus_.wait_and_handle(100, &shutdown_);
@@ -153,17 +152,17 @@ class Runner {
   void finish() {
     over_ = true;
     const double wall =
-        started_ ? std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_)
-                       .count()
-                 : 0.0;
+        started_
+            ? std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count()
+            : 0.0;
     const RefereeState empty;
     const auto& s = judge_ ? judge_->state() : empty;
     const double last_time = judge_ ? judge_->last_time() : 0.0;
     write(result_line(s, last_time, wall));
     std::cout << "result: yellow " << s.yellow.goals << " : " << s.blue.goals << " blue ("
               << (s.game_over ? "game over" : "stopped") << " at " << last_time << " s sim time, "
-              << wall << " s wall time, " << (judge_ ? judge_->judged() : 0)
-              << " states judged)" << std::endl;
+              << wall << " s wall time, " << (judge_ ? judge_->judged() : 0) << " states judged)"
+              << std::endl;
   }
 
   const AutoOptions& options_;

@@ -29,42 +29,66 @@ std::string format(double value) {
 
 const char* stage_name(Stage stage) {
   switch (stage) {
-    case Stage::FirstHalfPre: return "NORMAL_FIRST_HALF_PRE";
-    case Stage::FirstHalf: return "NORMAL_FIRST_HALF";
-    case Stage::HalfTime: return "NORMAL_HALF_TIME";
-    case Stage::SecondHalfPre: return "NORMAL_SECOND_HALF_PRE";
-    case Stage::SecondHalf: return "NORMAL_SECOND_HALF";
-    case Stage::PostGame: return "POST_GAME";
+    case Stage::FirstHalfPre:
+      return "NORMAL_FIRST_HALF_PRE";
+    case Stage::FirstHalf:
+      return "NORMAL_FIRST_HALF";
+    case Stage::HalfTime:
+      return "NORMAL_HALF_TIME";
+    case Stage::SecondHalfPre:
+      return "NORMAL_SECOND_HALF_PRE";
+    case Stage::SecondHalf:
+      return "NORMAL_SECOND_HALF";
+    case Stage::PostGame:
+      return "POST_GAME";
   }
   return "?";
 }
 
 const char* command_name(Command command) {
   switch (command) {
-    case Command::Halt: return "HALT";
-    case Command::Stop: return "STOP";
-    case Command::NormalStart: return "NORMAL_START";
-    case Command::ForceStart: return "FORCE_START";
-    case Command::PrepareKickoffYellow: return "PREPARE_KICKOFF_YELLOW";
-    case Command::PrepareKickoffBlue: return "PREPARE_KICKOFF_BLUE";
-    case Command::PreparePenaltyYellow: return "PREPARE_PENALTY_YELLOW";
-    case Command::PreparePenaltyBlue: return "PREPARE_PENALTY_BLUE";
-    case Command::DirectFreeYellow: return "DIRECT_FREE_YELLOW";
-    case Command::DirectFreeBlue: return "DIRECT_FREE_BLUE";
+    case Command::Halt:
+      return "HALT";
+    case Command::Stop:
+      return "STOP";
+    case Command::NormalStart:
+      return "NORMAL_START";
+    case Command::ForceStart:
+      return "FORCE_START";
+    case Command::PrepareKickoffYellow:
+      return "PREPARE_KICKOFF_YELLOW";
+    case Command::PrepareKickoffBlue:
+      return "PREPARE_KICKOFF_BLUE";
+    case Command::PreparePenaltyYellow:
+      return "PREPARE_PENALTY_YELLOW";
+    case Command::PreparePenaltyBlue:
+      return "PREPARE_PENALTY_BLUE";
+    case Command::DirectFreeYellow:
+      return "DIRECT_FREE_YELLOW";
+    case Command::DirectFreeBlue:
+      return "DIRECT_FREE_BLUE";
   }
   return "?";
 }
 
 const char* event_name(EventType type) {
   switch (type) {
-    case EventType::NoProgressInGame: return "NO_PROGRESS_IN_GAME";
-    case EventType::BallLeftFieldTouchLine: return "BALL_LEFT_FIELD_TOUCH_LINE";
-    case EventType::BallLeftFieldGoalLine: return "BALL_LEFT_FIELD_GOAL_LINE";
-    case EventType::Goal: return "GOAL";
-    case EventType::AttackerDoubleTouchedBall: return "ATTACKER_DOUBLE_TOUCHED_BALL";
-    case EventType::BotKickedBallTooFast: return "BOT_KICKED_BALL_TOO_FAST";
-    case EventType::DefenderInDefenseArea: return "DEFENDER_IN_DEFENSE_AREA";
-    case EventType::TooManyRobots: return "TOO_MANY_ROBOTS";
+    case EventType::NoProgressInGame:
+      return "NO_PROGRESS_IN_GAME";
+    case EventType::BallLeftFieldTouchLine:
+      return "BALL_LEFT_FIELD_TOUCH_LINE";
+    case EventType::BallLeftFieldGoalLine:
+      return "BALL_LEFT_FIELD_GOAL_LINE";
+    case EventType::Goal:
+      return "GOAL";
+    case EventType::AttackerDoubleTouchedBall:
+      return "ATTACKER_DOUBLE_TOUCHED_BALL";
+    case EventType::BotKickedBallTooFast:
+      return "BOT_KICKED_BALL_TOO_FAST";
+    case EventType::DefenderInDefenseArea:
+      return "DEFENDER_IN_DEFENSE_AREA";
+    case EventType::TooManyRobots:
+      return "TOO_MANY_ROBOTS";
   }
   return "?";
 }
@@ -168,9 +192,9 @@ bool AutoReferee::check_goal_and_out(const sim_state_t& state, Decision& decisio
   const int side = goal_side(field_, x, y, state.ball.position[2]);
   // The team that last touched the ball, or (no touch since the restart) the
   // team whose half the ball is in: a deterministic owner for every out.
-  const Team guilty = last_touch_ ? last_touch_->team
-                                  : (sides_.defends(Team::Yellow) * x > 0 ? Team::Yellow
-                                                                          : Team::Blue);
+  const Team guilty = last_touch_
+                          ? last_touch_->team
+                          : (sides_.defends(Team::Yellow) * x > 0 ? Team::Yellow : Team::Blue);
   if (side != 0) {
     const Team scorer = sides_.defends(Team::Yellow) == side ? Team::Blue : Team::Yellow;
     GameEvent goal;
@@ -251,8 +275,7 @@ void AutoReferee::check_fouls(const sim_state_t& state, Decision& decision) {
 
   // Ball speed: a non-stopping foul of the robot that touched it last, once per touch.
   const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (speed > config_.max_ball_speed && last_touch_ &&
-      last_touch_->id != judged_speed_touch_) {
+  if (speed > config_.max_ball_speed && last_touch_ && last_touch_->id != judged_speed_touch_) {
     judged_speed_touch_ = last_touch_->id;
     GameEvent e;
     e.type = EventType::BotKickedBallTooFast;
@@ -500,9 +523,8 @@ Decision AutoReferee::update(const sim_state_t& state) {
   // Until physics has carried out the referee's placement, the ball still lies
   // where it went out: judge nothing on it.
   if (placement_pending_) {
-    const bool arrived =
-        std::hypot(state.ball.position[0] - kick_anchor_x_,
-                   state.ball.position[1] - kick_anchor_y_) < kPlacedTolerance;
+    const bool arrived = std::hypot(state.ball.position[0] - kick_anchor_x_,
+                                    state.ball.position[1] - kick_anchor_y_) < kPlacedTolerance;
     if (arrived || now_ - placement_time_ >= kPlacementWait) {
       placement_pending_ = false;
       std::fill(touching_.begin(), touching_.end(), false);

@@ -23,7 +23,8 @@ BallOut ball_out(const field_geometry_t& field, double x, double y) {
 
 double distance_to_out(const field_geometry_t& field, double x, double y) {
   const double r = field.ball_radius;
-  return std::min(field.field_length / 2 + r - std::abs(x), field.field_width / 2 + r - std::abs(y));
+  return std::min(field.field_length / 2 + r - std::abs(x),
+                  field.field_width / 2 + r - std::abs(y));
 }
 
 bool fully_in_defense_area(const field_geometry_t& field, int side, double x, double y,
@@ -41,7 +42,8 @@ void free_kick_spot(const field_geometry_t& field, double& x, double& y) {
   y = std::clamp(y, -limit_y, limit_y);
   // Out of the defence areas (and 0.2 m off them) along x, the shortest way out
   // for every spot the clamp leaves inside.
-  const double inner_x = field.field_length / 2 - field.penalty_area_depth - kFreeKickBoundaryDistance;
+  const double inner_x =
+      field.field_length / 2 - field.penalty_area_depth - kFreeKickBoundaryDistance;
   const double half_width = field.penalty_area_width / 2 + kFreeKickBoundaryDistance;
   if (std::abs(x) > inner_x && std::abs(y) < half_width) x = x > 0 ? inner_x : -inner_x;
 }

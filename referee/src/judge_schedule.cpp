@@ -34,7 +34,9 @@ constexpr double kBallSpeedFloor = 0.05;  // m/s
 // robots and under the crossbar; judged every step.
 constexpr double kAirborne = 0.005;  // m above resting height
 
-double norm3(const double v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+double norm3(const double v[3]) {
+  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
 
 }  // namespace
 
@@ -46,13 +48,24 @@ double AutoReferee::next_judge_time(const sim_state_t& state) const {
 
   // The clocks: each phase's deadline, the end of a half or of half time.
   switch (phase_) {
-    case Phase::Start: within(0); break;
-    case Phase::Stopped: within(phase_start_ + config_.stop_duration - now); break;
-    case Phase::Prepared: within(phase_start_ + config_.prepare_duration - now); break;
-    case Phase::AwaitKick: within(phase_start_ + config_.restart_timeout - now); break;
-    case Phase::HalfTime: within(stage_end_ - now); break;
+    case Phase::Start:
+      within(0);
+      break;
+    case Phase::Stopped:
+      within(phase_start_ + config_.stop_duration - now);
+      break;
+    case Phase::Prepared:
+      within(phase_start_ + config_.prepare_duration - now);
+      break;
+    case Phase::AwaitKick:
+      within(phase_start_ + config_.restart_timeout - now);
+      break;
+    case Phase::HalfTime:
+      within(stage_end_ - now);
+      break;
     case Phase::Running:
-    case Phase::Over: break;
+    case Phase::Over:
+      break;
   }
   if (state_.stage == Stage::FirstHalf || state_.stage == Stage::SecondHalf) {
     within(stage_end_ - now);
@@ -62,8 +75,8 @@ double AutoReferee::next_judge_time(const sim_state_t& state) const {
   if (state.ball_present) {
     const auto& b = state.ball;
     const double ball_speed =
-        kBallSpeedMargin * std::max(norm3(b.linear_velocity),
-                                    norm3(b.angular_velocity) * field_.ball_radius) +
+        kBallSpeedMargin *
+            std::max(norm3(b.linear_velocity), norm3(b.angular_velocity) * field_.ball_radius) +
         kBallSpeedFloor;
     if (b.position[2] > field_.ball_radius + kAirborne) within(0);
 
@@ -72,8 +85,8 @@ double AutoReferee::next_judge_time(const sim_state_t& state) const {
     double fastest = 0;
     for (const auto& r : state.robots) fastest = std::max(fastest, std::hypot(r.vx, r.vy));
     const double robot_speed = std::max(kRobotSpeedBound, kRobotSpeedMargin * fastest);
-    const double contact = std::max(config_.robot_radius + config_.touch_margin, kMaxHullRadius) +
-                           field_.ball_radius;
+    const double contact =
+        std::max(config_.robot_radius + config_.touch_margin, kMaxHullRadius) + field_.ball_radius;
     for (const auto& r : state.robots) {
       const double gap = std::hypot(r.x - b.position[0], r.y - b.position[1]) - contact;
       within(gap / (ball_speed + robot_speed));
@@ -84,14 +97,15 @@ double AutoReferee::next_judge_time(const sim_state_t& state) const {
       within(distance_to_out(field_, b.position[0], b.position[1]) / ball_speed);
       // Speed limits after a touch not yet judged: only a contact speeds the
       // ball up past where its speed (and spin) could take it now.
-      if (last_touch_ && ((last_touch_->id != judged_speed_touch_ &&
-                           ball_speed >= config_.max_ball_speed) ||
-                          (last_touch_->id != judged_shot_touch_ && ball_speed >= kShotSpeed))) {
+      if (last_touch_ &&
+          ((last_touch_->id != judged_speed_touch_ && ball_speed >= config_.max_ball_speed) ||
+           (last_touch_->id != judged_shot_touch_ && ball_speed >= kShotSpeed))) {
         within(0);
       }
     }
     if (phase_ == Phase::AwaitKick) {
-      const double moved = std::hypot(b.position[0] - kick_anchor_x_, b.position[1] - kick_anchor_y_);
+      const double moved =
+          std::hypot(b.position[0] - kick_anchor_x_, b.position[1] - kick_anchor_y_);
       within((kKickedDistance - moved) / ball_speed);
     }
     if (phase_ == Phase::Running) {

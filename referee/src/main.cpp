@@ -7,15 +7,15 @@
 #include <map>
 #include <ubersim/team_t.hpp>
 
+#include "ubersim/angles.hpp"
+#include "ubersim/cli.hpp"
+#include "ubersim/config.hpp"
+#include "ubersim/logging.hpp"
 #include "ubersim/referee/auto_runner.hpp"
 #include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/scene_io.hpp"
 #include "ubersim/referee/sim_link.hpp"
 #include "ubersim/referee/situations.hpp"
-#include "ubersim/angles.hpp"
-#include "ubersim/cli.hpp"
-#include "ubersim/config.hpp"
-#include "ubersim/logging.hpp"
 #include "ubersim/scenario_config.hpp"
 #include "ubersim/shutdown.hpp"
 
@@ -24,7 +24,6 @@ namespace {
 using namespace ubersim;
 using namespace ubersim::referee;
 using std::chrono::milliseconds;
-
 
 int8_t wire_team(Team team) {
   return team == Team::Blue ? team_t::BLUE : team_t::YELLOW;
@@ -420,7 +419,8 @@ int main(int argc, char** argv) {
           [](Referee& r) { return r.situation(Situation::Stop); });
 
   auto* automatic = app.add_subcommand(
-      "auto", "automatic referee: run the game (kick-offs, goals, outs, fouls, halves) until it ends");
+      "auto",
+      "automatic referee: run the game (kick-offs, goals, outs, fouls, halves) until it ends");
   automatic->add_option("--game", o.game, "game config (config/referee/<name>.cfg)")
       ->capture_default_str();
   automatic->add_option("--game-length", o.game_length, "s of sim time (overrides GAME_LENGTH)")

@@ -64,10 +64,9 @@ bool lengths_fit(const std::uint8_t*& p, const std::uint8_t* end,
     std::uint64_t tag = 0;
     if (!read_varint(p, end, tag)) return false;
     const std::uint64_t number = tag >> 3;
-    const FieldDescriptor* field =
-        type != nullptr && number <= 0x1fffffff
-            ? type->FindFieldByNumber(static_cast<int>(number))
-            : nullptr;
+    const FieldDescriptor* field = type != nullptr && number <= 0x1fffffff
+                                       ? type->FindFieldByNumber(static_cast<int>(number))
+                                       : nullptr;
     std::uint64_t value = 0;
     switch (tag & 7) {
       case 0:

@@ -6,12 +6,12 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "ubersim/ssl_bridge/bridge.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/process_main.hpp"
 #include "ubersim/robot_config.hpp"
+#include "ubersim/ssl_bridge/bridge.hpp"
 
 namespace {
 

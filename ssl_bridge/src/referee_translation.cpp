@@ -11,9 +11,13 @@ constexpr double kMicroseconds = 1e6;
 constexpr std::uint32_t kTimeouts = 4;
 constexpr std::uint32_t kTimeoutTime = 300'000'000;  // µs
 
-std::int64_t micros(double seconds) { return std::llround(seconds * kMicroseconds); }
+std::int64_t micros(double seconds) {
+  return std::llround(seconds * kMicroseconds);
+}
 
-::Team ssl_team(std::int8_t team) { return team == team_t::BLUE ? ::BLUE : ::YELLOW; }
+::Team ssl_team(std::int8_t team) {
+  return team == team_t::BLUE ? ::BLUE : ::YELLOW;
+}
 
 void fill_team(Referee::TeamInfo& info, std::int32_t score, std::int32_t fouls,
                std::int32_t goalkeeper) {

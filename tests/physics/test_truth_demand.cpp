@@ -83,9 +83,9 @@ TEST(TruthDemand, SilentConsumersAreForgottenAndBadDemandsRefused) {
 TEST(TruthDemand, WouldWantForeseesWantedWithoutChangingIt) {
   TruthDemand truth;
   const auto now = TruthDemand::Clock::now();
-  ASSERT_EQ(truth.on_demand(demand("vision", {1.0 / 30}, {0.0}, {10.5 * kDt, 13 * kDt}), 0, kDt,
-                            now),
-            "");
+  ASSERT_EQ(
+      truth.on_demand(demand("vision", {1.0 / 30}, {0.0}, {10.5 * kDt, 13 * kDt}), 0, kDt, now),
+      "");
   ASSERT_EQ(truth.on_demand(demand("radio", {1.0 / 20}, {0.02}, {}), 0, kDt, now), "");
   std::vector<int> foreseen, wanted;
   for (int i = 1; i <= 48; ++i) {

@@ -25,8 +25,8 @@ ubersim::sync_client_t client(int team, const std::string& name, bool leaving = 
 }
 
 // Frames captured at `captures`, published at t_state; next frame at `next`.
-ubersim::vision_schedule_t schedule(double t_state, std::int64_t step,
-                                    std::vector<double> captures, double next) {
+ubersim::vision_schedule_t schedule(double t_state, std::int64_t step, std::vector<double> captures,
+                                    double next) {
   ubersim::vision_schedule_t s{};
   s.t_state = t_state;
   s.step = step;
@@ -70,12 +70,10 @@ TEST(SyncCoordinator, DuplicatesOutOfOrderAndUnregisteredAnswersAreCountedAndIgn
   sync.on_schedule(schedule(0.13, 32, {0.033}, 0.16), now);
   EXPECT_EQ(sync.on_answer(Team::Blue, 0.0, now).verdict, SyncCoordinator::Verdict::Unregistered);
   // Answering the later frame first skips the earlier one (nothing to send for it)...
-  EXPECT_EQ(sync.on_answer(Team::Yellow, 0.033, now).verdict,
-            SyncCoordinator::Verdict::Accepted);
+  EXPECT_EQ(sync.on_answer(Team::Yellow, 0.033, now).verdict, SyncCoordinator::Verdict::Accepted);
   // ...so the earlier one's answer now comes out of order, and a repeat is a duplicate.
   EXPECT_EQ(sync.on_answer(Team::Yellow, 0.0, now).verdict, SyncCoordinator::Verdict::Unmatched);
-  EXPECT_EQ(sync.on_answer(Team::Yellow, 0.033, now).verdict,
-            SyncCoordinator::Verdict::Unmatched);
+  EXPECT_EQ(sync.on_answer(Team::Yellow, 0.033, now).verdict, SyncCoordinator::Verdict::Unmatched);
   EXPECT_EQ(sync.stats().unregistered, 1u);
   EXPECT_EQ(sync.stats().unmatched, 2u);
   EXPECT_EQ(sync.client_stats().at(0).frames_skipped, 1u);

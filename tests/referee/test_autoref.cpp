@@ -488,7 +488,7 @@ TEST(AutoRefereeStats, AKickIntoTheGoalMouthIsAShotAndTouchesGivePossession) {
   yellow.x = 2.0;
   yellow.y = 0.0;
   game.ball(2.12, 0.0);
-  game.run(1.0);  // yellow has the ball for 1 s
+  game.run(1.0);                  // yellow has the ball for 1 s
   game.ball(2.3, 0.0, 3.0, 0.2);  // kicked towards the goal
   game.tick();
   game.ball(2.4, 0.0, 3.0, 0.2);

@@ -185,8 +185,8 @@ TEST(JudgeSchedule, JudgingOnlyTheNamedStatesDecidesExactlyAsJudgingEveryState) 
   for (std::size_t i = 0; i < all.log.size(); ++i) EXPECT_EQ(all.log[i], some.log[i]) << i;
   EXPECT_EQ(all.result, some.result);
   EXPECT_EQ(all.steps, some.steps);
-  std::printf("%d kicks, %d goals, %d outs, %d fouls; judged %ld of %ld states\n", all.kicks,
-              goals, outs, fouls, some.judged, all.judged);
+  std::printf("%d kicks, %d goals, %d outs, %d fouls; judged %ld of %ld states\n", all.kicks, goals,
+              outs, fouls, some.judged, all.judged);
   // And it is worth it: most states were never looked at.
   EXPECT_LT(some.judged * 3, all.judged) << some.judged << " of " << all.judged;
 }

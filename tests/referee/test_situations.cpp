@@ -4,9 +4,9 @@
 
 #include <cmath>
 
+#include "ubersim/field_config.hpp"
 #include "ubersim/referee/placement.hpp"
 #include "ubersim/referee/situations.hpp"
-#include "ubersim/field_config.hpp"
 
 using namespace ubersim;
 using namespace ubersim::referee;

@@ -54,8 +54,8 @@ TestPorts TestPorts::from_environment() {
 }
 
 std::vector<std::string> TestPorts::bridge_options() const {
-  return {"--vision-port", std::to_string(vision), "--control-port", std::to_string(control),
-          "--blue-port",   std::to_string(blue),   "--yellow-port",  std::to_string(yellow),
+  return {"--vision-port",  std::to_string(vision), "--control-port", std::to_string(control),
+          "--blue-port",    std::to_string(blue),   "--yellow-port",  std::to_string(yellow),
           "--referee-port", std::to_string(referee)};
 }
 

@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
   long packets = 0, with_commands = 0, responses = 0;
   while (!stop_requested) {
     const auto packet = vision.receive(0.1);
-    while (robots.receive(0)) ++responses;  // errors and feedback: not used here
+    while (robots.receive(0)) ++responses;              // errors and feedback: not used here
     if (!packet || !packet->has_detection()) continue;  // geometry needs no answer
     world.update(packet->detection(), yellow);
     ++packets;

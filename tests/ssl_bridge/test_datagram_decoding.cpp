@@ -13,7 +13,8 @@ using namespace ubersim::ssl;
 
 namespace {
 
-DecodedDatagram decode(const std::string& bytes, google::protobuf::Message& message, Errors& errors) {
+DecodedDatagram decode(const std::string& bytes, google::protobuf::Message& message,
+                       Errors& errors) {
   return decode_datagram(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), message,
                          errors);
 }

@@ -94,7 +94,8 @@ TEST(RefereeTranslation, CommandTimestampIsWhenTheCommandWasFirstSeen) {
 
 TEST(RefereeTranslation, EveryEventTypeCarriesItsPayload) {
   const std::pair<int32_t, std::function<bool(const GameEvent&)>> cases[] = {
-      {referee_event_t::GOAL, [](const GameEvent& g) { return g.has_goal() && g.goal().by_team() == ::BLUE; }},
+      {referee_event_t::GOAL,
+       [](const GameEvent& g) { return g.has_goal() && g.goal().by_team() == ::BLUE; }},
       {referee_event_t::BALL_LEFT_FIELD_GOAL_LINE,
        [](const GameEvent& g) { return g.has_ball_left_field_goal_line(); }},
       {referee_event_t::BOT_KICKED_BALL_TOO_FAST,

@@ -57,7 +57,8 @@ class Socket {
     std::string text;
     char buffer[4096];
     ssize_t n;
-    while ((n = ::recv(fd_, buffer, sizeof buffer, 0)) > 0) text.append(buffer, static_cast<size_t>(n));
+    while ((n = ::recv(fd_, buffer, sizeof buffer, 0)) > 0)
+      text.append(buffer, static_cast<size_t>(n));
     return text;
   }
 
@@ -67,14 +68,17 @@ class Socket {
 };
 
 std::string handshake(const std::string& host, const std::string& origin) {
-  std::string request = "GET / HTTP/1.1\r\nHost: " + host +
-                        "\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
-                        "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n";
+  std::string request =
+      "GET / HTTP/1.1\r\nHost: " + host +
+      "\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+      "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n";
   if (!origin.empty()) request += "Origin: " + origin + "\r\n";
   return request + "\r\n";
 }
 
-bool opened(const std::string& head) { return head.rfind("HTTP/1.1 101", 0) == 0; }
+bool opened(const std::string& head) {
+  return head.rfind("HTTP/1.1 101", 0) == 0;
+}
 
 // A masked client text frame of any length (mask key 0).
 std::string text_frame(const std::string& payload) {
@@ -111,7 +115,8 @@ class ViewerHostile : public ::testing::Test {
   }
   // Waits for `count` control requests from the viewer on SIM_CONTROL.
   bool wait_for_controls(size_t count, double timeout_s = 5) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
     while (controls_.size() < count && std::chrono::steady_clock::now() < deadline) {
       bus_.wait_and_handle(20);
     }
@@ -145,8 +150,8 @@ TEST_F(ViewerHostile, OtherSitesPagesAreRefusedUnlessAllowed) {
   };
   EXPECT_TRUE(opened(head(host_, "http://" + host_))) << "the viewer's own page";
   EXPECT_TRUE(opened(head(host_, ""))) << "no Origin: not a browser";
-  EXPECT_TRUE(opened(head("localhost:" + std::to_string(port_),
-                          "http://localhost:" + std::to_string(port_))));
+  EXPECT_TRUE(opened(
+      head("localhost:" + std::to_string(port_), "http://localhost:" + std::to_string(port_))));
   const std::string other = head(host_, "http://evil.example");
   EXPECT_EQ(other.rfind("HTTP/1.1 403", 0), 0u) << other;
   // DNS rebinding: the other site's own name, pointed at 127.0.0.1.

@@ -40,8 +40,6 @@ std::string read_text(const std::string& path) {
   return text.str();
 }
 
-
-
 std::string marker_camera_keys(int id) {
   const std::string k = "CAMERA_" + std::to_string(id) + "_";
   return k + "POSITION = 0 0 20\n" + k + "ORIENTATION_DEG = 0 0 0\n" + k +

@@ -13,7 +13,7 @@ constexpr double kRobotRadius = 0.09;   // m, SSL robots
 constexpr double kBallRadius = 0.0215;  // m
 // Our defence area (Division B: 1 m deep, 2 m wide) plus a margin: only the
 // keeper may touch the ball in there, so the others leave such balls to it.
-constexpr double kDefenceDepth = 1.0 + 0.25;     // m
+constexpr double kDefenceDepth = 1.0 + 0.25;      // m
 constexpr double kDefenceHalfWidth = 1.0 + 0.25;  // m
 
 // Formation spot of the n-th robot: a grid in the own half.
@@ -88,8 +88,8 @@ std::vector<ubersim::robot_command_t> play(const WorldModel& world, const TeamSe
       commands.push_back(go_to(id, pose, x, y, facing_opponents(team), team.limits));
       continue;
     }
-    const bool ball_in_our_area = ball.x * team.defends > half - kDefenceDepth &&
-                                  std::abs(ball.y) < kDefenceHalfWidth;
+    const bool ball_in_our_area =
+        ball.x * team.defends > half - kDefenceDepth && std::abs(ball.y) < kDefenceHalfWidth;
     if (id == attacker && !ball_in_our_area) {
       // Line up behind the ball on the ball-goal line, then drive through it and kick.
       const double ux = goal_x - ball.x, uy = -ball.y;

@@ -24,13 +24,16 @@ namespace {
 
 // In play mode the referee decides what the team may do.
 std::vector<ubersim::robot_command_t> play_by_the_rules(demo::GameMode mode,
-                                                       const demo::WorldModel& world,
-                                                       const demo::TeamSetup& team) {
+                                                        const demo::WorldModel& world,
+                                                        const demo::TeamSetup& team) {
   switch (mode) {
     case demo::GameMode::Halt:
-    case demo::GameMode::Hold: return demo::halt(world);
-    case demo::GameMode::Stop: return demo::keep_away(world, team);
-    case demo::GameMode::Play: break;
+    case demo::GameMode::Hold:
+      return demo::halt(world);
+    case demo::GameMode::Stop:
+      return demo::keep_away(world, team);
+    case demo::GameMode::Play:
+      break;
   }
   return demo::play(world, team);
 }

@@ -33,10 +33,15 @@ int RefereeFollower::goalkeeper() const {
 void RefereeFollower::apply(const referee_t& referee) {
   switch (referee.command) {
     case referee_t::PREPARE_KICKOFF_YELLOW:
-    case referee_t::PREPARE_PENALTY_YELLOW: prepared_by_us_ = yellow_; break;
+    case referee_t::PREPARE_PENALTY_YELLOW:
+      prepared_by_us_ = yellow_;
+      break;
     case referee_t::PREPARE_KICKOFF_BLUE:
-    case referee_t::PREPARE_PENALTY_BLUE: prepared_by_us_ = !yellow_; break;
-    default: break;
+    case referee_t::PREPARE_PENALTY_BLUE:
+      prepared_by_us_ = !yellow_;
+      break;
+    default:
+      break;
   }
   last_ = referee;
 }
@@ -53,11 +58,13 @@ GameMode RefereeFollower::mode() const {
     // official game controller moves on when the placement fails.
     case referee_t::BALL_PLACEMENT_YELLOW:
     case referee_t::BALL_PLACEMENT_BLUE:
-    case referee_t::STOP: return GameMode::Stop;
+    case referee_t::STOP:
+      return GameMode::Stop;
     case referee_t::PREPARE_KICKOFF_YELLOW:
     case referee_t::PREPARE_KICKOFF_BLUE:
     case referee_t::PREPARE_PENALTY_YELLOW:
-    case referee_t::PREPARE_PENALTY_BLUE: return GameMode::Hold;
+    case referee_t::PREPARE_PENALTY_BLUE:
+      return GameMode::Hold;
     case referee_t::NORMAL_START:
       if (r.ball_in_play || !prepared_by_us_) return GameMode::Play;
       return *prepared_by_us_ ? GameMode::Play : GameMode::Hold;
@@ -67,7 +74,8 @@ GameMode RefereeFollower::mode() const {
       const bool ours = (r.command == referee_t::DIRECT_FREE_YELLOW) == yellow_;
       return ours ? GameMode::Play : GameMode::Hold;
     }
-    default: return GameMode::Play;
+    default:
+      return GameMode::Play;
   }
 }
 
@@ -90,7 +98,8 @@ std::vector<ubersim::robot_command_t> keep_away(const WorldModel& world, const T
     const double dx = pose.x - ball.x, dy = pose.y - ball.y;
     const double distance = std::hypot(dx, dy);
     if (distance < kStopDistance) {
-      const double ux = distance > 1e-6 ? dx / distance : static_cast<double>(team.defends);  // own goal
+      const double ux =
+          distance > 1e-6 ? dx / distance : static_cast<double>(team.defends);  // own goal
       const double uy = distance > 1e-6 ? dy / distance : 0.0;
       commands[index] = go_to(id, pose, ball.x + ux * (kStopDistance + 0.1),
                               ball.y + uy * (kStopDistance + 0.1), pose.orientation, slow.limits);

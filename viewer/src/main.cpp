@@ -192,9 +192,10 @@ int parse_and_run(int argc, char** argv) {
       ->check(ubersim::in_range(1.0, 240.0))
       ->capture_default_str();
   app.add_option("--web-dir", options.web_dir, "folder of the page's files")->capture_default_str();
-  app.add_option("--allow-origin", options.allowed_origins,
-                 "let pages of this other origin (e.g. http://example.org:8000, or * for any) open "
-                 "the WebSocket and send control requests; by default only the viewer's own page may");
+  app.add_option(
+      "--allow-origin", options.allowed_origins,
+      "let pages of this other origin (e.g. http://example.org:8000, or * for any) open "
+      "the WebSocket and send control requests; by default only the viewer's own page may");
   app.add_option("--max-pages", options.max_pages, "pages (WebSocket connections) open at once")
       ->check(ubersim::in_range(1, 1024))
       ->capture_default_str();

@@ -27,8 +27,9 @@ bool loopback_host(const std::string& host) {
   if (name == "localhost") return true;
   // 127.0.0.0/8, written as a dotted quad of digits.
   if (name.compare(0, 4, "127.") != 0) return false;
-  return std::all_of(name.begin(), name.end(),
-                     [](char c) { return c == '.' || std::isdigit(static_cast<unsigned char>(c)); });
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return c == '.' || std::isdigit(static_cast<unsigned char>(c));
+  });
 }
 
 }  // namespace
@@ -38,8 +39,9 @@ HandshakeDecision decide_handshake(const std::string& origin, const std::string&
                                    const std::vector<std::string>& allowed_origins,
                                    std::size_t open_pages, std::size_t max_pages) {
   if (open_pages >= max_pages) {
-    return {false, 503, std::to_string(open_pages) + " pages already open (at most " +
-                            std::to_string(max_pages) + ")"};
+    return {false, 503,
+            std::to_string(open_pages) + " pages already open (at most " +
+                std::to_string(max_pages) + ")"};
   }
   if (origin.empty()) return {true, 0, ""};
   const std::string wanted = lower(origin);

@@ -10,7 +10,7 @@
 namespace ubersim::vision {
 namespace {
 
-constexpr double kMaxJitter = 1.0;        // s
+constexpr double kMaxJitter = 1.0;  // s
 
 std::string camera_key(int index, const char* suffix) {
   return "CAMERA_" + std::to_string(index) + "_" + suffix;

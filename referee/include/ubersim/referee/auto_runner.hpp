@@ -1,9 +1,9 @@
 #pragma once
 // `ubersim_referee auto`: the automatic referee on the bus. It judges the
-// SIM_STATEs where a rule could decide (AutoReferee::next_judge_time), publishes referee_t on REFEREE (on each change
-// and at 10 Hz of sim time), carries out each restart's placement through the
-// safe placement (SIM_CONTROL PLACE), and writes the event log. It returns
-// when the game is over (or on SIGINT/SIGTERM).
+// SIM_STATEs where a rule could decide (AutoReferee::next_judge_time), publishes referee_t on
+// REFEREE (on each change and at 10 Hz of sim time), carries out each restart's placement through
+// the safe placement (SIM_CONTROL PLACE), and writes the event log. It returns when the game is
+// over (or on SIGINT/SIGTERM).
 #include <string>
 
 #include "ubersim/cli.hpp"

@@ -63,25 +63,27 @@ const char* event_name(EventType type);
 Command prepare_kickoff(Team team);
 Command prepare_penalty(Team team);
 Command direct_free(Team team);
-inline Team other(Team team) { return team == Team::Yellow ? Team::Blue : Team::Yellow; }
+inline Team other(Team team) {
+  return team == Team::Yellow ? Team::Blue : Team::Yellow;
+}
 
 struct GameEvent {
   EventType type = EventType::Goal;
-  double sim_time = 0;           // s
-  std::optional<Team> team;      // scoring team for a goal, the guilty team otherwise
-  int robot = -1;                // robot id, -1 = none
+  double sim_time = 0;       // s
+  std::optional<Team> team;  // scoring team for a goal, the guilty team otherwise
+  int robot = -1;            // robot id, -1 = none
   bool has_location = false;
-  double x = 0, y = 0;           // m, where it happened
-  double value = 0;              // ball speed (m/s) for too fast; robots on field for too many
-  bool foul = false;             // counts as a foul of `team`
-  std::string description;       // one line for people and the event log
+  double x = 0, y = 0;      // m, where it happened
+  double value = 0;         // ball speed (m/s) for too fast; robots on field for too many
+  bool foul = false;        // counts as a foul of `team`
+  std::string description;  // one line for people and the event log
 };
 
 struct TeamStats {
   int goals = 0;
-  int shots = 0;             // kicks whose straight path enters the opponent goal mouth
+  int shots = 0;  // kicks whose straight path enters the opponent goal mouth
   int fouls = 0;
-  double possession = 0;     // s of ball-in-play time this team touched the ball last
+  double possession = 0;  // s of ball-in-play time this team touched the ball last
 };
 
 struct RefereeState {
@@ -89,13 +91,13 @@ struct RefereeState {
   Command command = Command::Halt;
   std::optional<Command> next_command;
   int command_counter = 0;
-  double command_time = 0;         // sim time of the current command (s)
-  double stage_time_left = 0;      // s
-  double action_time_left = 0;     // s left for the restart to be taken (0 when none)
-  bool ball_in_play = false;       // the game is running (the last restart was taken)
+  double command_time = 0;      // sim time of the current command (s)
+  double stage_time_left = 0;   // s
+  double action_time_left = 0;  // s left for the restart to be taken (0 when none)
+  bool ball_in_play = false;    // the game is running (the last restart was taken)
   std::optional<std::pair<double, double>> designated_position;  // m, of the current restart
   TeamStats yellow, blue;
-  std::vector<GameEvent> events;   // since the ball was last in play (SSL: game_events)
+  std::vector<GameEvent> events;  // since the ball was last in play (SSL: game_events)
   bool game_over = false;
 
   TeamStats& of(Team team) { return team == Team::Yellow ? yellow : blue; }
@@ -107,7 +109,7 @@ struct Decision {
   std::vector<GameEvent> events;              // new events, in order
   std::optional<SituationRequest> placement;  // referee places ball and robots (ball placement)
   bool command_changed = false;
-  bool game_over = false;                     // the game just ended
+  bool game_over = false;  // the game just ended
 };
 
 class AutoReferee {
@@ -137,7 +139,8 @@ class AutoReferee {
   // Where the game is between commands.
   enum class Phase { Start, Stopped, Prepared, AwaitKick, Running, HalfTime, Over };
   struct Restart {
-    Command command = Command::ForceStart;  // PrepareKickoff*, PreparePenalty*, DirectFree*, ForceStart
+    Command command =
+        Command::ForceStart;  // PrepareKickoff*, PreparePenalty*, DirectFree*, ForceStart
     std::optional<SituationRequest> placement;
   };
   struct Touch {
@@ -176,17 +179,17 @@ class AutoReferee {
   Restart pending_;
   std::optional<Touch> last_touch_;
   std::optional<Touch> kicker_;  // took the last kick-off / free kick; no other robot touched since
-  std::vector<bool> touching_;  // per robot index of the last state
+  std::vector<bool> touching_;   // per robot index of the last state
   int touch_counter_ = 0;
   bool placement_pending_ = false;  // placed, and physics has not shown it yet
   double placement_time_ = 0;       // s
   int judged_speed_touch_ = -1;
   int judged_shot_touch_ = -1;
-  double kick_anchor_x_ = 0, kick_anchor_y_ = 0;    // ball at the restart (m)
-  double progress_x_ = 0, progress_y_ = 0;          // ball when it last moved (m)
-  double progress_time_ = 0;                        // s
-  double too_many_reported_[2] = {-1e9, -1e9};      // sim time of the last report per team
-  double stage_end_ = 0;                            // s, of a half or the half-time break
+  double kick_anchor_x_ = 0, kick_anchor_y_ = 0;  // ball at the restart (m)
+  double progress_x_ = 0, progress_y_ = 0;        // ball when it last moved (m)
+  double progress_time_ = 0;                      // s
+  double too_many_reported_[2] = {-1e9, -1e9};    // sim time of the last report per team
+  double stage_end_ = 0;                          // s, of a half or the half-time break
   Team second_half_kickoff_ = Team::Blue;
 };
 

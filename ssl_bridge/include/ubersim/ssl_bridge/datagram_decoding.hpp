@@ -25,7 +25,7 @@ inline constexpr int kDecodeRecursionLimit = 100;
 inline constexpr int kMaxRepeatedElements = 64;
 
 struct DecodedDatagram {
-  bool ok = false;               // decoded and within the limits: translate it
+  bool ok = false;                 // decoded and within the limits: translate it
   std::size_t unknown_fields = 0;  // fields the protocol lacks, dropped (message still ok)
 };
 

@@ -10,15 +10,15 @@ namespace ubersim::ssl {
 
 inline constexpr const char* kErrorMalformed = "UBERSIM_MALFORMED";  // does not decode
 inline constexpr const char* kErrorUnknownFields =
-    "UBERSIM_UNKNOWN_FIELDS";                                            // fields we do not know
+    "UBERSIM_UNKNOWN_FIELDS";  // fields we do not know
 inline constexpr const char* kErrorTooLarge =
     "UBERSIM_TOO_LARGE";  // over a size limit (datagram, repeated field)
 inline constexpr const char* kErrorUnsupported = "UBERSIM_UNSUPPORTED";  // a feature we lack
 inline constexpr const char* kErrorInvalid = "UBERSIM_INVALID_VALUE";    // NaN, negative speed ...
 inline constexpr const char* kErrorUnknownRobot = "UBERSIM_UNKNOWN_ROBOT";  // not on the field
 inline constexpr const char* kErrorPhysics = "UBERSIM_PHYSICS_REFUSED";     // physics said no
-inline constexpr const char* kErrorBusy = "UBERSIM_BUSY";  // too many commands waiting
-inline constexpr const char* kErrorNoAnswer = "UBERSIM_NO_ANSWER";          // physics silent
+inline constexpr const char* kErrorBusy = "UBERSIM_BUSY";           // too many commands waiting
+inline constexpr const char* kErrorNoAnswer = "UBERSIM_NO_ANSWER";  // physics silent
 
 using Errors = std::vector<SimulatorError>;
 

@@ -10,9 +10,9 @@
 #include <ubersim/radio_feedback_t.hpp>
 #include <ubersim/radio_packet_t.hpp>
 
-#include "ubersim/ssl_bridge/errors.hpp"
 #include "ubersim/channels.hpp"
 #include "ubersim/robot_config.hpp"
+#include "ubersim/ssl_bridge/errors.hpp"
 
 namespace ubersim::ssl {
 

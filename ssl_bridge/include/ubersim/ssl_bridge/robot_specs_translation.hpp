@@ -12,9 +12,9 @@
 #include <utility>
 #include <vector>
 
-#include "ubersim/ssl_bridge/errors.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/robot_config.hpp"
+#include "ubersim/ssl_bridge/errors.hpp"
 
 namespace ubersim::ssl {
 

@@ -17,11 +17,11 @@
 namespace ubersim::ssl {
 
 struct SyncAnswerStats {
-  std::uint64_t frames = 0;      // detection frames owed an answer
-  std::uint64_t answers = 0;     // datagrams that answered one
-  std::uint64_t extra = 0;       // datagrams while nothing was owed (not the hello): ignored
-  std::uint64_t timeouts = 0;    // times the team was dropped for answering too late
-  std::uint64_t overflows = 0;   // times the team was dropped for owing too many frames
+  std::uint64_t frames = 0;     // detection frames owed an answer
+  std::uint64_t answers = 0;    // datagrams that answered one
+  std::uint64_t extra = 0;      // datagrams while nothing was owed (not the hello): ignored
+  std::uint64_t timeouts = 0;   // times the team was dropped for answering too late
+  std::uint64_t overflows = 0;  // times the team was dropped for owing too many frames
 };
 
 class SyncAnswers {

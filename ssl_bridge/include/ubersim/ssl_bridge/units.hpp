@@ -32,7 +32,9 @@ constexpr double rad_per_s_to_rpm(double rad_per_s) {
 // 1e9 (m, px, rad, s, m/s), far beyond any field and far within SSL's float
 // millimetres. ubersim's own processes never send another; anyone on the bus
 // may. The same bound as a SIM_STATE's numbers (sim_state_numbers.hpp).
-inline bool fits_ssl(double value) { return state_number_fits(value); }
+inline bool fits_ssl(double value) {
+  return state_number_fits(value);
+}
 
 // Field sizes in SSL geometry are whole millimetres (int32).
 int m_to_whole_mm(double metres);

@@ -31,7 +31,7 @@ struct RequestLimits {
 struct Pages {
   std::set<websocketpp::connection_hdl, std::owner_less<websocketpp::connection_hdl>> open;
   std::atomic<std::uint64_t> clients{0};
-  std::atomic<std::uint64_t> refused{0};          // handshakes refused (origin, too many pages)
+  std::atomic<std::uint64_t> refused{0};           // handshakes refused (origin, too many pages)
   std::atomic<std::uint64_t> dropped_messages{0};  // binary messages from pages
   ThrottledLog log;
 };
@@ -51,7 +51,8 @@ void install_request_handling(Server& server, const RequestLimits& limits, Pages
         limits.loopback_bound, limits.allowed_origins, pages.open.size(), limits.max_pages);
     if (decision.accept) return true;
     ++pages.refused;
-    pages.log.warn("handshake_" + std::to_string(decision.status), "refused a page: " + decision.reason);
+    pages.log.warn("handshake_" + std::to_string(decision.status),
+                   "refused a page: " + decision.reason);
     connection->set_status(static_cast<value>(decision.status));
     return false;
   });

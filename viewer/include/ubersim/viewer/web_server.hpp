@@ -22,7 +22,7 @@ struct WebServerOptions {
   std::string web_dir;        // the page's files
   std::size_t max_buffered_bytes = std::size_t{64} * 1024;  // ~7 frames of 22 robots
   std::size_t max_pages = kDefaultMaxPages;                 // open pages at once
-  std::vector<std::string> allowed_origins;  // other sites' pages let in ("*": any)
+  std::vector<std::string> allowed_origins;                 // other sites' pages let in ("*": any)
 };
 
 struct WebServerStats {

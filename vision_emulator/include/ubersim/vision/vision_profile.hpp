@@ -14,9 +14,9 @@ namespace ubersim::vision {
 
 // Bounds a profile's values keep, read from a config file or changed at run
 // time (EMULATOR_REALISM): beyond them a value is a unit mistake or garbage.
-inline constexpr double kMaxFrameRate = 1000.0;  // Hz
-inline constexpr double kMaxSigma = 1.0;         // m
-inline constexpr double kMaxLatency = 10.0;      // s
+inline constexpr double kMaxFrameRate = 1000.0;      // Hz
+inline constexpr double kMaxSigma = 1.0;             // m
+inline constexpr double kMaxLatency = 10.0;          // s
 inline constexpr double kMaxCameraOffset = 10.0;     // m: camera position error, object offset
 inline constexpr double kMaxCameraOverlap = 1000.0;  // m (100 m already lets every camera see all)
 inline constexpr double kMaxBallAreaSigma = 1e6;     // px^2
