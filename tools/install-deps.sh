@@ -28,6 +28,8 @@ packages=(
   clang libclang-rt-14-dev
   # lint test (tests/lint): the tree stays formatted with .clang-format
   clang-format
+  # first-minutes test (tests/e2e/test_first_minutes.sh): a real terminal, and the desktop opener
+  tmux xdg-utils
 )
 
 missing=()

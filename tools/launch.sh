@@ -3,7 +3,8 @@
 # optionally demo teams and a logger. Prints what runs, where each process
 # logs and which channels to listen to. On Ctrl-C (or SIGTERM), or when any
 # process dies, it stops all the others (SIGTERM, then SIGKILL after 2 s) and
-# leaves none behind; it exits non-zero if any process failed. A bad option
+# leaves none behind; it exits non-zero if any process failed on its own, and
+# with 130 (Ctrl-C) or 143 (SIGTERM) when stopped by a signal. A bad option
 # or value is told in one line and exits 2 before anything starts.
 set -uo pipefail
 
@@ -52,7 +53,9 @@ usage: tools/launch.sh [options]
   --log FILE           record every channel into FILE (an LCM log: lcm-logplayer replays it)
   --log-dir DIR        where process logs go (default: a new folder under \$TMPDIR or /tmp)
   --viewer             start the browser viewer (ubersim_viewer) and print its address
-  --viewer-port P      the viewer's port on 127.0.0.1 (default 8080)
+  --viewer-port P      the viewer's port on 127.0.0.1 (default: the first free one from 8080)
+  --open-viewer        --viewer, and open it in the desktop's browser (xdg-open) when there is a
+                       desktop session (DISPLAY or WAYLAND_DISPLAY set); tools/demo.sh uses it
   --ssl-bridge         start the SSL protocol bridge (SSL-Vision on 224.5.23.2:10020, tracked
                        frames on 224.5.23.2:10010, simulation control on 10300, robot control on
                        10301 blue / 10302 yellow); with --sync an SSL team answers every detection
@@ -76,7 +79,7 @@ options_with_values=" --scenario --field --profile --speed --sync-clients --game
 scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" truth_every_step=0 seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
 referee=none game_length="" tracked=1
-vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port=8080 ssl_bridge=0
+vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port="" open_viewer=0 ssl_bridge=0
 while [ $# -gt 0 ]; do
   if [[ $options_with_values == *[[:space:]]"$1"[[:space:]]* ]] && { [ $# -lt 2 ] || [[ $2 == --* ]]; }; then
     usage_error "$1 needs a value (tools/launch.sh --help lists the options)"
@@ -110,6 +113,7 @@ while [ $# -gt 0 ]; do
     --quiet) quiet=1; shift ;;
     --viewer) viewer=1; shift ;;
     --viewer-port) viewer_port=$2; shift 2 ;;
+    --open-viewer) viewer=1; open_viewer=1; shift ;;
     --ssl-bridge) ssl_bridge=1; shift ;;
     -h|--help) usage; exit 0 ;;
     *) usage_error "unknown option '$1' (tools/launch.sh --help lists the options)" ;;
@@ -179,7 +183,7 @@ check_number --speed "$speed" 0
 [ -z "$game_length" ] || check_positive --game-length "$game_length"
 [ -z "$sync_clients" ] || check_whole --sync-clients "$sync_clients" 0 2
 # 0 (any free port) would print an address nobody can open.
-check_whole --viewer-port "$viewer_port" 1 65535
+[ -z "$viewer_port" ] || check_whole --viewer-port "$viewer_port" 1 65535
 case "$demo" in yellow|blue|both|none) ;; *) usage_error "--demo: '$demo' is not yellow, blue, both or none" ;; esac
 case "$demo_mode" in play|positions|figure8) ;; *) usage_error "--demo-mode: '$demo_mode' is not play, positions or figure8" ;; esac
 [ -z "$log_file" ] || [ -d "$(dirname "$log_file")" ] ||
@@ -230,6 +234,17 @@ if [ "$cpu" != all ]; then
     usage_error "--cpu: '$cpu' is not a CPU this script may use, nor all"
   placement=(taskset -c "$cpu")
 fi
+
+# The viewer's port: the one asked for, or the first free one from 8080 (a
+# second demo, or anything else on 8080, must not stop the demo from starting).
+port_in_use() { (exec 3<>"/dev/tcp/127.0.0.1/$1") 2>/dev/null; }
+if [ "$viewer" = 1 ] && [ -z "$viewer_port" ]; then
+  viewer_port=8080
+  while port_in_use "$viewer_port" && [ "$viewer_port" -lt 8180 ]; do viewer_port=$((viewer_port + 1)); done
+fi
+viewer_url="http://127.0.0.1:${viewer_port}/"
+# The address comes first: it is what a new user opens.
+[ "$viewer" = 1 ] && echo "viewer:   $viewer_url   (open it in a browser)"
 
 # Only now, with every check passed, the log folder.
 [ -n "$log_dir" ] || log_dir=$(mktemp -d "${TMPDIR:-/tmp}/ubersim-XXXXXX")
@@ -327,6 +342,19 @@ for team in yellow blue; do
 done
 [ "$ssl_bridge" = 1 ] && start ssl_bridge "$bin_dir/ubersim_ssl_bridge" "${common[@]}" "${bridge_args[@]}"
 [ "$viewer" = 1 ] && start viewer "$bin_dir/ubersim_viewer" "${common[@]}" --port "$viewer_port"
+if [ "$open_viewer" = 1 ]; then
+  if [ -z "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
+    echo "viewer:   no desktop session here (DISPLAY and WAYLAND_DISPLAY unset): open $viewer_url in a browser"
+  elif ! command -v xdg-open >/dev/null 2>&1; then
+    echo "viewer:   xdg-open is not installed: open $viewer_url in a browser"
+  else
+    # Open it once the viewer answers (at most 5 s), in a session of its own
+    # so that the browser outlives Ctrl-C here.
+    for _ in $(seq 50); do port_in_use "$viewer_port" && break; sleep 0.1; done
+    setsid xdg-open "$viewer_url" >"$log_dir/xdg-open.log" 2>&1 </dev/null &
+    echo "viewer:   opened in your browser (xdg-open $viewer_url)"
+  fi
+fi
 physics_pid=${pids[1]:-}
 [ -n "$log_file" ] || physics_pid=${pids[0]}
 echo "channels: ${prefix}VISION ${prefix}VISION_GEOMETRY ${prefix}RADIO_YELLOW ${prefix}RADIO_BLUE ${prefix}RADIO_FEEDBACK_YELLOW ${prefix}RADIO_FEEDBACK_BLUE ${prefix}SIM_STATE ${prefix}SIM_CONTROL"
@@ -338,7 +366,6 @@ if [ "$ssl_bridge" = 1 ]; then
   [ "$tracked" = 1 ] || tracked_note=""
   echo "ssl:      SSL-Vision 224.5.23.2:10020${tracked_note}, simulation control 127.0.0.1:10300, robot control 10301 (blue) / 10302 (yellow)"
 fi
-[ "$viewer" = 1 ] && echo "viewer:   http://127.0.0.1:$viewer_port/   (open it in a browser)"
 [ "$vision" = 0 ] && echo "vision:   not started: a real vision server must publish ${prefix}VISION"
 [ "$radio" = 0 ] && echo "radio:    not started: a real radio server must listen on ${prefix}RADIO_YELLOW / ${prefix}RADIO_BLUE"
 echo "Ctrl-C stops everything."
@@ -378,20 +405,27 @@ stop_all() {
     wait "${pids[$i]}" 2>/dev/null
     local status=$?
     # 0, or killed by the signal we sent (128+15) / Ctrl-C (128+2): a clean stop.
+    # 127 and -1: bash has no status left for it. That happens when Ctrl-C
+    # reached the process from the terminal and it exited while the trap was
+    # starting; a process that failed on its own was reported by the main loop.
     case $status in
-      0|130|143|127) ;;
+      0|130|143|127|-1) ;;
       *) echo "launch: ${names[$i]} exited with status $status" >&2; why_failed "${names[$i]}" "$status"; failed=1 ;;
     esac
   done
 }
 
+# on_signal NAME STATUS: the user stopped the set. Exit STATUS (128 + the
+# signal, as a shell does) unless a process had failed on its own.
 on_signal() {
-  echo "launch: stopping"
   trap '' INT TERM
   stop_all
-  exit $failed
+  echo "launch: stopped ($1)"
+  [ "$failed" = 0 ] || exit 1
+  exit "$2"
 }
-trap on_signal INT TERM
+trap 'on_signal Ctrl-C 130' INT
+trap 'on_signal SIGTERM 143' TERM
 
 while :; do
   finished=""
