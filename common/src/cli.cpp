@@ -1,6 +1,8 @@
 #include "ubersim/cli.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -112,6 +114,23 @@ CLI::Validator at_least(double min) {
 CLI::Validator greater_than(double min) {
   return number_check("> " + plain_number(min), "greater than " + plain_number(min),
                       [=](double v) { return v > min; });
+}
+
+CLI::Validator whole_number() {
+  return CLI::Validator(
+      [](std::string& input) -> std::string {
+        const bool digits_only =
+            !input.empty() && std::all_of(input.begin(), input.end(),
+                                          [](unsigned char c) { return std::isdigit(c) != 0; });
+        errno = 0;
+        if (digits_only) (void)std::strtoull(input.c_str(), nullptr, 10);
+        if (!digits_only || errno == ERANGE) {
+          return "'" + printable(input, kMaxEchoedValue) +
+                 "' is not a whole number (0 or more, below 2^64)";
+        }
+        return {};
+      },
+      "0 or more");
 }
 
 std::string command_line_error(const std::string& program, const CLI::ParseError& error) {

@@ -55,7 +55,9 @@ int run(int argc, char** argv) {
   app.add_flag("--truth-on-demand", truth_on_demand, "the default; kept for older scripts")
       ->excludes("--truth-every-step");
   app.add_flag("--paused", paused, "start paused (RESUME or STEP to advance)");
-  app.add_option("--seed", seed, "seed of the solver's randomness")->capture_default_str();
+  app.add_option("--seed", seed, "seed of the solver's randomness")
+      ->check(ubersim::whole_number())
+      ->capture_default_str();
   app.add_option("--duration", duration, "exit after this many seconds of sim time (0 = never)")
       ->capture_default_str()
       ->check(ubersim::at_least(0));

@@ -144,7 +144,8 @@ int parse_and_run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--yellow-profile", options.yellow_profile, "profile for the yellow team only");
   app.add_option("--blue-profile", options.blue_profile, "profile for the blue team only");
-  app.add_option("--seed", options.seed, "seed of every random draw (default: the profiles' SEED)");
+  app.add_option("--seed", options.seed, "seed of every random draw (default: the profiles' SEED)")
+      ->check(ubersim::whole_number());
   app.add_flag("--sync", options.sync,
                "sync mode: registered clients answer every frame; tell physics how far it may "
                "step (SIM_SYNC_HORIZON, docs/sync.md)");

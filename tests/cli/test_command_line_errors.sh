@@ -19,7 +19,7 @@ declare -A bad_args expected
 bad_args[ubersim_physics]="--speed -5"
 expected[ubersim_physics]="--speed: -5 is not at least 0"
 bad_args[ubersim_vision]="--seed ten"
-expected[ubersim_vision]="--seed"
+expected[ubersim_vision]="--seed: 'ten' is not a whole number"
 bad_args[ubersim_radio]="--sync-clients 3"
 expected[ubersim_radio]="--sync-clients: 3 is not in [0, 2]"
 bad_args[ubersim_referee]="--timeout 0 ping"
@@ -64,6 +64,17 @@ for program_arg in "$@"; do
   status=$?
   [ "$status" = 0 ] || fail "$name --help: exit $status, expected 0"
   grep -q -i "usage" "$out/stdout" || fail "$name --help: no usage on stdout"
+done
+
+# A negative seed: CLI11 alone would wrap it into an unsigned seed and run.
+for program_arg in "$@"; do
+  name=${program_arg%%=*}
+  case $name in ubersim_physics|ubersim_vision|ubersim_radio) ;; *) continue ;; esac
+  timeout 20 "${program_arg#*=}" --seed -5 >"$out/stdout" 2>"$out/stderr" </dev/null
+  status=$?
+  echo "$name --seed -5 -> exit $status: $(head -c 300 "$out/stderr")"
+  [ "$status" = 2 ] || fail "$name --seed -5: exit $status, expected 2"
+  grep -qF -- "--seed: '-5' is not a whole number" "$out/stderr" || fail "$name --seed -5: no 'is not a whole number'"
 done
 
 # A misspelt key in a copy of the shipped config folder (GRAVTY for GRAVITY):

@@ -26,7 +26,8 @@ int run(int argc, char** argv) {
                  "emulator profile: a name under <config-dir>/vision/ or a .cfg path")
       ->capture_default_str();
   std::uint64_t seed = 0;
-  app.add_option("--seed", seed, "seed for every random draw (overrides the profile's SEED)");
+  app.add_option("--seed", seed, "seed for every random draw (overrides the profile's SEED)")
+      ->check(ubersim::whole_number());
   app.add_option("--field", options.field,
                  "field config to assume until physics reports one on SIM_GEOMETRY");
   if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;

@@ -39,6 +39,9 @@ void add_common_options(CLI::App& app, CommonOptions& options);
 CLI::Validator in_range(double min, double max);
 CLI::Validator at_least(double min);
 CLI::Validator greater_than(double min);
+// For options held in an unsigned integer (seeds): CLI11 itself would take
+// "-5" and wrap it to 18446744073709551611; this names what was expected.
+CLI::Validator whole_number();
 
 // Parses the command line (CLI11_PARSE's job) and says whether to stop:
 // nothing to run on; 0 after --help or --version (printed on stdout); 2 after
