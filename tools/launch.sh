@@ -325,6 +325,17 @@ fi
 start physics "${placement[@]}" "$bin_dir/ubersim_physics" "${common[@]}" "${physics_args[@]}" "${seed_args[@]}"
 [ "$vision" = 1 ] && start vision "${placement[@]}" "$bin_dir/ubersim_vision" "${common[@]}" --profile "$profile" "${seed_args[@]}"
 [ "$radio" = 1 ] && start radio "${placement[@]}" "$bin_dir/ubersim_radio" "${common[@]}" --profile "$profile" "${seed_args[@]}" "${radio_args[@]}"
+# Sync mode: the radio emulator drops a client that stops answering, and logs
+# each drop and rejoin on one line (docs/sync.md, "A dropped client"): shown
+# here as it happens, by a tail of its log (--pid: it ends with this script)
+# through a filter (ended and waited for before the summary at the end).
+sync_watch="" sync_filter=""
+if [ "$sync" = 1 ] && [ "$radio" = 1 ]; then
+  exec {sync_fd}> >(sed -un 's/^.*\(sync client \(dropped\|rejoined\): .*\)$/launch: radio: \1/p' >&2)
+  sync_filter=$!
+  tail -n +1 -s 0.2 --pid=$$ -F "$log_dir/radio.log" >&"$sync_fd" 2>/dev/null &
+  sync_watch=$!
+fi
 if [ "$referee" = builtin ]; then
   start referee "$bin_dir/ubersim_referee" --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} "${referee_args[@]}"
   # In sync mode the referee must hear the first state: the teams (whose
@@ -413,6 +424,28 @@ stop_all() {
       *) echo "launch: ${names[$i]} exited with status $status" >&2; why_failed "${names[$i]}" "$status"; failed=1 ;;
     esac
   done
+  report_sync_clients
+}
+
+# The end of a sync run: the radio emulator's verdict on its clients, the
+# last line of its log that says one (docs/sync.md, "A dropped client").
+report_sync_clients() {
+  [ -n "$sync_watch" ] || return 0
+  kill "$sync_watch" 2>/dev/null
+  wait "$sync_watch" 2>/dev/null
+  exec {sync_fd}>&-
+  wait "$sync_filter" 2>/dev/null
+  sync_watch=""
+  local log="$log_dir/radio.log" summary drops
+  summary=$(grep -o 'sync: degraded run: .*' "$log" | tail -n 1)
+  drops=$(grep -c 'sync client dropped: ' "$log")
+  if [ -n "$summary" ]; then
+    echo "launch: $summary" >&2
+  elif [ "$drops" != 0 ]; then
+    echo "launch: sync: degraded run: $drops sync client drop(s), no summary from the radio emulator (see $log)" >&2
+  else
+    echo "launch: sync: no client was dropped"
+  fi
 }
 
 # on_signal NAME STATUS: the user stopped the set. Exit STATUS (128 + the
