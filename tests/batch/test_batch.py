@@ -146,10 +146,12 @@ class BatchTest(unittest.TestCase):
     def test_a_team_stopped_mid_game_in_sync_mode_makes_the_game_degraded_exit_4(self):
         # One sync game; its yellow demo team gets SIGSTOP once the game runs, so
         # the radio emulator drops it after 1 s of wall time; SIGCONT once the
-        # drop is in radio.log, and it registers again (rejoins).
+        # drop is in radio.log, and it registers again (rejoins). 120 s of game:
+        # a sync game runs at ~25x, so a shorter one could end before this test,
+        # descheduled on a busy machine, stopped yellow.
         text = SHORT.replace("MODE = fast", "MODE = sync").replace(
             "GAMES_PER_POINT = 2", "GAMES_PER_POINT = 1").replace(
-            "GAME_LENGTH = 4", "GAME_LENGTH = 20")
+            "GAME_LENGTH = 4", "GAME_LENGTH = 120")
         out = os.path.join(self.folder, "out")
         batch = subprocess.Popen([BATCH, "run", experiment(self.folder, text), "--out", out,
                                   "--build-dir", BUILD, "-q"],

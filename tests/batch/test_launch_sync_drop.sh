@@ -29,7 +29,9 @@ wait_for() {
   fail "no $what within $seconds s"
 }
 
-"$source_dir/tools/launch.sh" --sync --demo both --referee --game-length 30 --quiet \
+# 120 s of game: a sync game runs at ~25x, so a 30 s one could end (1.3 s of
+# wall time) before this script, descheduled on a busy machine, stopped yellow.
+"$source_dir/tools/launch.sh" --sync --demo both --referee --game-length 120 --quiet \
   --log-dir "$logs" > "$out" 2>&1 &
 launch=$!
 wait_for 30 "yellow demo team" grep -q '^  demo_yellow ' "$out"
