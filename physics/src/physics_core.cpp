@@ -185,6 +185,53 @@ void PhysicsCore::acknowledge(const sim_control_t& request, bool ok, const std::
   }
 }
 
+void PhysicsCore::on_step_request(const sim_control_t& request) {
+  const std::int64_t limit = world_.setup().physics.max_steps_per_request;
+  if (request.step_count < 1 || request.step_count > limit) {
+    acknowledge(request, false,
+                "step_count must be 1.." + std::to_string(limit) + ", got " +
+                    std::to_string(request.step_count));
+    return;
+  }
+  for (int i = 0; i < request.step_count; ++i) step_once(true);
+  pacer_.restart(Clock::now(), world_.step_index());
+  acknowledge(request, true, "stepped " + std::to_string(request.step_count));
+}
+
+void PhysicsCore::on_speed_request(const sim_control_t& request, Clock::time_point now) {
+  if (!std::isfinite(request.speed_factor)) {
+    acknowledge(request, false, "speed_factor must be finite");
+    return;
+  }
+  const double speed = request.speed_factor < 0 ? -1.0 : request.speed_factor;
+  pacer_.set_speed(speed, now, world_.step_index());
+  sync_ = false;
+  acknowledge(request, true,
+              speed < 0    ? std::string("lockstep")
+              : speed == 0 ? std::string("as fast as possible")
+                           : fmt::format("{:g} x real time", speed));
+}
+
+void PhysicsCore::on_define_robot_type(const sim_control_t& request) {
+  try {
+    world_.define_robot_type(request.robot_type_name, request.robot_type_config);
+    acknowledge(request, true, "robot type " + request.robot_type_name + " defined");
+  } catch (const std::exception& error) {
+    acknowledge(request, false, error.what());
+  }
+}
+
+void PhysicsCore::on_set_field(const sim_control_t& request) {
+  try {
+    const std::string done = world_.change_field(request.field_config);
+    add_state();
+    out_.geometry = world_.geometry();
+    acknowledge(request, true, done);
+  } catch (const std::exception& error) {
+    acknowledge(request, false, error.what());
+  }
+}
+
 const PhysicsCore::Output& PhysicsCore::on_control(const sim_control_t& request,
                                                    const std::string& dropped_input) {
   ++controls_handled_;
@@ -216,33 +263,12 @@ const PhysicsCore::Output& PhysicsCore::on_control(const sim_control_t& request,
       add_state();
       acknowledge(request, true, "reset to scenario " + options_.scenario);
       return out_;
-    case sim_control_t::STEP: {
-      const std::int64_t limit = world_.setup().physics.max_steps_per_request;
-      if (request.step_count < 1 || request.step_count > limit) {
-        acknowledge(request, false,
-                    "step_count must be 1.." + std::to_string(limit) + ", got " +
-                        std::to_string(request.step_count));
-        return out_;
-      }
-      for (int i = 0; i < request.step_count; ++i) step_once(true);
-      pacer_.restart(Clock::now(), world_.step_index());
-      acknowledge(request, true, "stepped " + std::to_string(request.step_count));
+    case sim_control_t::STEP:
+      on_step_request(request);
       return out_;
-    }
-    case sim_control_t::SET_SPEED: {
-      if (!std::isfinite(request.speed_factor)) {
-        acknowledge(request, false, "speed_factor must be finite");
-        return out_;
-      }
-      const double speed = request.speed_factor < 0 ? -1.0 : request.speed_factor;
-      pacer_.set_speed(speed, now, world_.step_index());
-      sync_ = false;
-      acknowledge(request, true,
-                  speed < 0    ? std::string("lockstep")
-                  : speed == 0 ? std::string("as fast as possible")
-                               : fmt::format("{:g} x real time", speed));
+    case sim_control_t::SET_SPEED:
+      on_speed_request(request, now);
       return out_;
-    }
     case sim_control_t::SET_SYNC:
       sync_ = true;
       acknowledge(request, true, "sync");
@@ -262,22 +288,10 @@ const PhysicsCore::Output& PhysicsCore::on_control(const sim_control_t& request,
                       "; other warnings (rejected contents, pacing): " + log_.counts());
       return out_;
     case sim_control_t::DEFINE_ROBOT_TYPE:
-      try {
-        world_.define_robot_type(request.robot_type_name, request.robot_type_config);
-        acknowledge(request, true, "robot type " + request.robot_type_name + " defined");
-      } catch (const std::exception& error) {
-        acknowledge(request, false, error.what());
-      }
+      on_define_robot_type(request);
       return out_;
     case sim_control_t::SET_FIELD:
-      try {
-        const std::string done = world_.change_field(request.field_config);
-        add_state();
-        out_.geometry = world_.geometry();
-        acknowledge(request, true, done);
-      } catch (const std::exception& error) {
-        acknowledge(request, false, error.what());
-      }
+      on_set_field(request);
       return out_;
     case sim_control_t::SET_DRIBBLING:
       world_.set_perfect_dribbling(request.perfect_dribbling);

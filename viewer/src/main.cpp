@@ -63,14 +63,12 @@ class ControlInbox {
   std::deque<std::string> queue_;
 };
 
-int run(const Options& options) {
-  using namespace ubersim;
-  using Clock = viewer::ViewerModel::Clock;
-  const ChannelNames channels = options.common.channels();
+using Clock = ubersim::viewer::ViewerModel::Clock;
 
-  ShutdownSignal shutdown;
-  MessageBus bus(with_receive_buffer(options.common.lcm_url));
-  viewer::ViewerModel model;
+// Everything the page shows comes in here, into the model.
+void subscribe_model(ubersim::MessageBus& bus, const ubersim::ChannelNames& channels,
+                     ubersim::viewer::ViewerModel& model) {
+  using namespace ubersim;
   model.set_channel_names({{"SIM_STATE", channels(Channel::SimState)},
                            {"VISION", channels(Channel::Vision)},
                            {"VISION_GEOMETRY", channels(Channel::VisionGeometry)},
@@ -97,16 +95,46 @@ int run(const Options& options) {
                                    [&](const sim_control_ack_t& ack) {
                                      if (ack.sender == "viewer") model.on_ack(ack);
                                    });
+}
 
-  ControlInbox inbox;
-  ThrottledLog inbox_full;
-  viewer::WebServerOptions server_options;
+ubersim::viewer::WebServerOptions server_options_of(const Options& options) {
+  ubersim::viewer::WebServerOptions server_options;
   server_options.bind_address = options.bind;
   server_options.port = static_cast<std::uint16_t>(options.port);
   server_options.web_dir = options.web_dir;
   server_options.allowed_origins = options.allowed_origins;
   server_options.max_pages = static_cast<std::size_t>(options.max_pages);
-  viewer::WebServer server(server_options, [&](const std::string& text) {
+  return server_options;
+}
+
+// The pages' requests, checked, out on SIM_CONTROL (on the main thread: LCM's).
+void forward_page_requests(ControlInbox& inbox, ubersim::MessageBus& bus,
+                           const std::string& control_channel, std::int64_t& next_request_id,
+                           ubersim::ThrottledLog& bad_request) {
+  for (const std::string& text : inbox.take()) {
+    auto parsed = ubersim::viewer::parse_control_request(text, next_request_id, "viewer");
+    if (!parsed.request) {
+      bad_request.warn("request", "ignored a page request: " + parsed.error);
+      continue;
+    }
+    ++next_request_id;
+    spdlog::debug("page request: {}", text);
+    bus.publish(control_channel, *parsed.request);
+  }
+}
+
+int run(const Options& options) {
+  using namespace ubersim;
+  const ChannelNames channels = options.common.channels();
+
+  ShutdownSignal shutdown;
+  MessageBus bus(with_receive_buffer(options.common.lcm_url));
+  viewer::ViewerModel model;
+  subscribe_model(bus, channels, model);
+
+  ControlInbox inbox;
+  ThrottledLog inbox_full;
+  viewer::WebServer server(server_options_of(options), [&](const std::string& text) {
     if (!inbox.push(text)) inbox_full.warn("inbox", "page requests arrive faster than handled");
   });
   std::printf("viewer: http://%s:%u/\n", options.bind.c_str(), server.port());
@@ -137,16 +165,7 @@ int run(const Options& options) {
     const auto wait =
         std::chrono::duration_cast<std::chrono::milliseconds>(next_frame - Clock::now());
     bus.wait_and_handle(static_cast<int>(std::max<long long>(0, wait.count())), &shutdown);
-    for (const std::string& text : inbox.take()) {
-      auto parsed = viewer::parse_control_request(text, next_request_id, "viewer");
-      if (!parsed.request) {
-        bad_request.warn("request", "ignored a page request: " + parsed.error);
-        continue;
-      }
-      ++next_request_id;
-      spdlog::debug("page request: {}", text);
-      bus.publish(channels(Channel::SimControl), *parsed.request);
-    }
+    forward_page_requests(inbox, bus, channels(Channel::SimControl), next_request_id, bad_request);
     const auto now = Clock::now();
     if (now >= next_demand) {
       // Ground truth at the display rate is all a page can show (physics

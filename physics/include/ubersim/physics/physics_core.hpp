@@ -126,6 +126,11 @@ class PhysicsCore {
   void step_once(bool publish_every_step);
   void add_state();
   void acknowledge(const sim_control_t& request, bool ok, const std::string& message);
+  // SIM_CONTROL actions with more to them than a line or two (on_control).
+  void on_step_request(const sim_control_t& request);
+  void on_speed_request(const sim_control_t& request, Clock::time_point now);
+  void on_define_robot_type(const sim_control_t& request);
+  void on_set_field(const sim_control_t& request);
   double first_state_time() const;
 
   World world_;
