@@ -28,6 +28,10 @@ packages=(
   clang libclang-rt-14-dev
   # lint test (tests/lint): the tree stays formatted with .clang-format
   clang-format
+  # Python module (python/, docs/python.md): pybind11, Python's headers, numpy, pytest;
+  # venv, pip, setuptools and wheel for `pip install --no-build-isolation .`
+  pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
+  python3-venv python3-pip python3-setuptools python3-wheel
 )
 
 missing=()
