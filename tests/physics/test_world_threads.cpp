@@ -75,8 +75,8 @@ std::vector<double> run_world(std::uint64_t seed, int steps) {
 }
 
 TEST(WorldThreads, WorldsSteppedTogetherOnThreadsMatchOneThread) {
-  constexpr int kWorlds = 4;
-  constexpr int kSteps = 480;  // 2 s
+  constexpr int kWorlds = 6;
+  constexpr int kSteps = 960;  // 4 s
   std::vector<std::vector<double>> alone(kWorlds);
   for (int w = 0; w < kWorlds; ++w) alone[w] = run_world(w + 1, kSteps);
   std::vector<std::vector<double>> together(kWorlds);
