@@ -143,7 +143,9 @@ for name in ["SSLStaticDefenders-v0", "SSLDribbling-v0", "SSLContestedPossession
     env.close()
     print("ran", name)
 """
-    path = os.pathsep.join([str(tmp_path), os.environ.get("PYTHONPATH", "")])
+    # Gymnasium from its sources when UBERSIM_GYMNASIUM_SRC names them (Debian 12 has none).
+    path = os.pathsep.join([str(tmp_path), os.environ.get("UBERSIM_GYMNASIUM_SRC", ""),
+                            os.environ.get("PYTHONPATH", "")])
     result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                             env=dict(os.environ, PYTHONPATH=path), timeout=300)
     if "No module named 'gymnasium'" in result.stderr or "No module named 'pygame'" in result.stderr:
