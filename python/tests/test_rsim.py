@@ -152,3 +152,35 @@ for name in ["SSLStaticDefenders-v0", "SSLDribbling-v0", "SSLContestedPossession
         pytest.skip("rSoccer needs gymnasium and pygame importable: " + result.stderr.strip()[-200:])
     assert result.returncode == 0, result.stdout + result.stderr
     assert result.stdout.count("ran ") == 4
+
+
+def test_side_by_side_with_rsim_itself():
+    folder = os.environ.get("UBERSIM_RSIM_BUILD")
+    if not folder:
+        pytest.skip("UBERSIM_RSIM_BUILD does not name a folder holding rSim's robosim package "
+                    "built from robocin/rSim (docs/python.md, 'rSim compatibility')")
+    sys.path.insert(0, folder)
+    try:
+        import robosim
+    finally:
+        sys.path.remove(folder)
+    for field_type in (0, 1, 2):
+        args = (field_type, 2, 3, 25, [0.2, -0.3, 0.0, 0.0],
+                [[-1.0 - 0.5 * i, 0.0, 90.0] for i in range(2)],
+                [[1.0, 0.5 * i, 180.0] for i in range(3)])
+        theirs, ours = robosim.SSL(*args), rsim.SSL(*args)
+        their_params, our_params = theirs.get_field_params(), ours.get_field_params()
+        assert set(their_params) == set(our_params)
+        for key in ("length", "width", "penalty_length", "penalty_width", "goal_width"):
+            assert our_params[key] == pytest.approx(their_params[key]), (field_type, key)
+        actions = np.zeros((5, 8))
+        theirs.step(actions)
+        ours.step(actions)
+        their_state, our_state = np.array(theirs.get_state()), ours.get_state()
+        assert their_state.shape == our_state.shape
+        # Where everything stands after one still step: the same layout and units.
+        for k in range(5):
+            base = 5 + 11 * k
+            assert our_state[base:base + 2] == pytest.approx(their_state[base:base + 2], abs=0.01)
+            assert math.cos(math.radians(our_state[base + 2] - their_state[base + 2])) > 0.999
+        assert our_state[0:2] == pytest.approx(their_state[0:2], abs=0.01)
