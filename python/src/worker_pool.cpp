@@ -5,7 +5,7 @@
 namespace ubersim::python {
 
 WorkerPool::WorkerPool(std::size_t threads) {
-  for (std::size_t i = 1; i < threads; ++i) workers_.emplace_back([this] { work_loop(); });
+  for (std::size_t i = 1; i < threads; ++i) workers_.emplace_back([this, i] { work_loop(i); });
 }
 
 WorkerPool::~WorkerPool() {
@@ -22,38 +22,33 @@ void WorkerPool::run(std::size_t count, const std::function<void(std::size_t)>& 
     std::lock_guard<std::mutex> lock(mutex_);
     job_ = &job;
     count_ = count;
-    next_ = 0;
     finished_ = 0;
     error_ = nullptr;
     ++batch_;
   }
   wake_.notify_all();
-  take_jobs();
+  do_share(0);
   std::unique_lock<std::mutex> lock(mutex_);
-  done_.wait(lock, [this] { return finished_ == count_; });
+  done_.wait(lock, [this] { return finished_ == threads(); });
   job_ = nullptr;
   if (error_) std::rethrow_exception(error_);
 }
 
-void WorkerPool::take_jobs() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  while (job_ != nullptr && next_ < count_) {
-    const std::size_t index = next_++;
-    const auto* job = job_;
-    lock.unlock();
-    std::exception_ptr error;
+void WorkerPool::do_share(std::size_t participant) {
+  std::exception_ptr error;
+  for (std::size_t index = participant; index < count_; index += threads()) {
     try {
-      (*job)(index);
+      (*job_)(index);
     } catch (...) {
-      error = std::current_exception();
+      if (!error) error = std::current_exception();
     }
-    lock.lock();
-    if (error && !error_) error_ = error;
-    if (++finished_ == count_) done_.notify_all();
   }
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (error && !error_) error_ = error;
+  if (++finished_ == threads()) done_.notify_all();
 }
 
-void WorkerPool::work_loop() {
+void WorkerPool::work_loop(std::size_t participant) {
   // ODE's collision code needs its per-thread data on every thread that steps a world.
   physics::ensure_ode_initialised();
   std::size_t seen_batch = 0;
@@ -64,7 +59,7 @@ void WorkerPool::work_loop() {
       if (stopping_) return;
       seen_batch = batch_;
     }
-    take_jobs();
+    do_share(participant);
   }
 }
 

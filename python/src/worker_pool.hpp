@@ -1,9 +1,11 @@
 #pragma once
 // A fixed set of threads that run one batch of independent jobs at a time
 // (VectorSim steps its worlds on them). The calling thread works too, so a
-// pool of n threads starts n - 1. Which thread runs which job is left to
-// chance: the jobs must not depend on it (each world is stepped by exactly
-// one thread per batch and shares nothing with the others).
+// pool of n threads starts n - 1. Thread k of n runs jobs k, k + n, k + 2n ...:
+// a fixed share, so that a worker the kernel wakes late (a busy machine)
+// still does its part instead of the caller doing everything alone. The jobs
+// must not depend on which thread runs them (each world is stepped by one
+// thread per batch and shares nothing with the others).
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -27,8 +29,9 @@ class WorkerPool {
   void run(std::size_t count, const std::function<void(std::size_t)>& job);
 
  private:
-  void work_loop();
-  void take_jobs();
+  void work_loop(std::size_t participant);
+  // Runs this participant's share of the batch (participant 0: the caller).
+  void do_share(std::size_t participant);
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
@@ -36,8 +39,7 @@ class WorkerPool {
   std::condition_variable done_;
   const std::function<void(std::size_t)>* job_ = nullptr;
   std::size_t count_ = 0;
-  std::size_t next_ = 0;      // next job index to hand out
-  std::size_t finished_ = 0;  // jobs done in this batch
+  std::size_t finished_ = 0;  // participants done with their share of this batch
   std::size_t batch_ = 0;     // batch number, to wake workers once per batch
   bool stopping_ = false;
   std::exception_ptr error_;
