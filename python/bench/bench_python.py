@@ -58,13 +58,15 @@ def sim_rate(scenario, seconds, emulated):
 
 
 def vector_rate(n, scenario, seconds, threads):
+    """(world steps per wall second, CPU seconds per wall second) of n worlds."""
     sims = ubersim.VectorSim(n, scenario=scenario, seed=1, threads=threads)
     table = weave_table(sims.reset()["robots"][0])
     steps = int(round(seconds / STEP))
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     for k in range(steps):
         sims.step([table[k % len(table)]] * n)
-    return n * steps / (time.perf_counter() - start)
+    wall = time.perf_counter() - start
+    return n * steps / wall, (time.process_time() - cpu) / wall
 
 
 def best(repeat, measure, *args):
@@ -139,13 +141,16 @@ def main():
           f"{'vs 1 world':>10s}")
     single = None
     for n in (1, 2, 4):
-        rate = best(options.repeat, vector_rate, n, SCENES["2x6"], options.seconds, 0)
+        rate, busy = best(options.repeat, vector_rate, n, SCENES["2x6"], options.seconds, 0)
         single = single or rate
-        print(f"  {n} world{'s' if n > 1 else ' '}{'':31s} {rate:13.0f} {rate / single:10.2f}")
+        print(f"  {n} world{'s' if n > 1 else ' '}{'':31s} {rate:13.0f} {rate / single:10.2f}"
+              f"   (CPU s per wall s: {busy:.2f})")
     print(f"load average at the end: {os.getloadavg()[0]:.2f}")
     print("\nvs C++: the Sim's rate over the C++ World's in this run (target >= 0.8 without "
           "emulation);\nvs 1 world: VectorSim's world steps per second over one world's "
-          "(target >= 1.7 for 2 worlds on 2 cores).")
+          "(target >= 1.7 for 2 worlds on 2 cores).\n"
+          "CPU s per wall s: how many cores the process got; on a machine busy with other work "
+          "(and\nLinux's autogroup scheduling, which shares the CPU by session) it caps VectorSim.")
 
 
 if __name__ == "__main__":
