@@ -166,6 +166,11 @@ class World {
   std::shared_ptr<std::map<std::string, std::shared_ptr<const RobotTypeConfig>>> defined_types_;
   double dt_;
   BallSurface ball_surface_;
+  // The world's own threading implementation (self-threaded: each step's
+  // jobs run on the calling thread). Without one ODE uses a process-wide
+  // default, which worlds stepped at the same time on several threads (the
+  // Python VectorSim) corrupt. Declared first: it outlives the world.
+  ThreadingHandle threading_;
   // ODE objects in creation order: destroyed in reverse, the world last.
   WorldHandle world_;
   SpaceHandle space_;
