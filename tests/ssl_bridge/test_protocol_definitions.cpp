@@ -9,6 +9,7 @@
 #include <google/protobuf/util/message_differencer.h>
 #include <gtest/gtest.h>
 #include <messages_robocup_ssl_wrapper.pb.h>
+#include <ssl_gc_ci.pb.h>
 #include <ssl_simulation_control.pb.h>
 #include <ssl_simulation_custom_erforce_realism.pb.h>
 #include <ssl_simulation_custom_erforce_robot_spec.pb.h>
@@ -89,6 +90,8 @@ void link_all_files() {
   (void)RobotControlResponse::descriptor();
   (void)RealismConfigErForce::descriptor();
   (void)RobotSpecErForce::descriptor();
+  (void)CiInput::descriptor();  // and through it every file of the GC's CI port
+  (void)Output::descriptor();
 }
 
 const char* label_name(const FieldDescriptor& field) {
@@ -118,6 +121,14 @@ const std::vector<std::string> kOurFiles = {
     "ssl_simulation_robot_feedback.proto",
     "ssl_simulation_custom_erforce_realism.proto",
     "ssl_simulation_custom_erforce_robot_spec.proto",
+    "ssl_gc_game_event.proto",
+    "ssl_gc_referee_message.proto",
+    "ssl_gc_state.proto",
+    "ssl_gc_change.proto",
+    "ssl_gc_engine.proto",
+    "ssl_gc_engine_config.proto",
+    "ssl_gc_api.proto",
+    "ssl_gc_ci.proto",
 };
 
 TEST(SslProtocolDefinitions, EveryOfficialFieldExistsWithTheSameNameNumberLabelAndType) {
