@@ -1,11 +1,21 @@
 #include "ubersim/gc_link/ci_framing.hpp"
 
+#include <google/protobuf/io/coded_stream.h>
+#include <google/protobuf/io/zero_copy_stream_impl_lite.h>
 #include <google/protobuf/message_lite.h>
 
 namespace ubersim::gc_link {
 
 std::string frame(const google::protobuf::MessageLite& message) {
-  std::string body = message.SerializeAsString();
+  // Deterministic: map entries (the GC's config deltas have maps) in key
+  // order, so that two runs send the same bytes.
+  std::string body;
+  {
+    google::protobuf::io::StringOutputStream stream(&body);
+    google::protobuf::io::CodedOutputStream coded(&stream);
+    coded.SetSerializationDeterministic(true);
+    message.SerializeToCodedStream(&coded);
+  }
   std::string out;
   std::uint64_t size = body.size();
   do {

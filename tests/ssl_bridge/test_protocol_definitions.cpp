@@ -240,8 +240,14 @@ void fill_one(Message& message, const FieldDescriptor& field, int variant, int d
   }
 }
 
+// The game controller's state and change messages nest deeper than the
+// vision and simulation ones (StateChange > State > TeamInfo > YellowCard >
+// GameEvent > ...), and GameEvent.MultipleFouls holds GameEvents: below this
+// depth repeated messages are left empty (singular ones, which may have
+// required fields, are still filled).
+constexpr int kMaxDepth = 8;
+
 void fill(Message& message, int variant, int depth) {
-  ASSERT_LT(depth, 6) << "unexpectedly deep message " << message.GetTypeName();
   const Descriptor& type = *message.GetDescriptor();
   for (int i = 0; i < type.field_count(); ++i) {
     const FieldDescriptor& field = *type.field(i);
@@ -249,14 +255,16 @@ void fill(Message& message, int variant, int depth) {
       // One member per oneof: the variant chooses which.
       if (oneof->field(variant % oneof->field_count()) != &field) continue;
     }
-    const int copies = field.is_repeated() ? 2 : 1;
+    if (depth >= kMaxDepth && field.is_repeated() && field.message_type() != nullptr) continue;
+    // Two entries of a map would have the same key: one.
+    const int copies = field.is_repeated() && !field.is_map() ? 2 : 1;
     for (int c = 0; c < copies; ++c) fill_one(message, field, variant, depth);
   }
 }
 
 int max_oneof_size(const Descriptor& type, int depth = 0) {
   int most = 1;
-  if (depth > 6) return most;
+  if (depth > kMaxDepth) return most;
   for (int i = 0; i < type.oneof_decl_count(); ++i)
     most = std::max(most, type.oneof_decl(i)->field_count());
   for (int i = 0; i < type.field_count(); ++i) {

@@ -21,7 +21,8 @@ class FramingError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The size varint followed by the message's bytes.
+// The size varint followed by the message's bytes, serialised
+// deterministically (map entries in key order).
 std::string frame(const google::protobuf::MessageLite& message);
 
 // Collects bytes as they come off a stream and cuts them into messages.
