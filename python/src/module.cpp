@@ -232,38 +232,10 @@ void set_situation(InProcessSim& sim, referee::Situation kind, const py::object&
   sim.situation(request, sides_from(yellow_defends));
 }
 
-void bind_sim(py::module_& m) {
+// Sim: robots and the ball put where the caller says.
+void bind_sim_placements(py::class_<InProcessSim>& sim_class) {
   using namespace pybind11::literals;
-  py::class_<InProcessSim>(m, "Sim", "One simulated world in this process (docs/python.md).")
-      .def(py::init([](const std::string& scenario, const std::optional<std::string>& vision,
-                       const std::optional<std::string>& radio, std::uint64_t seed, double step,
-                       const std::optional<std::string>& field, const std::string& physics,
-                       const std::optional<std::string>& config_dir) {
-             return std::make_unique<InProcessSim>(
-                 options_from(scenario, vision, radio, seed, step, field, physics, config_dir));
-           }),
-           "scenario"_a = "division_b_6v6", "vision_profile"_a = py::none(),
-           "radio_profile"_a = py::none(), "seed"_a = 0, "step"_a = 0.025, "field"_a = py::none(),
-           "physics"_a = "default", "config_dir"_a = py::none())
-      .def("reset", &reset_sim, "seed"_a = py::none(), "robots"_a = py::none(),
-           "ball"_a = py::none(), "robot_type"_a = py::none(),
-           "Back to the scenario at sim time 0 (robots (n, 5): team, id, x, y, orientation "
-           "replace its robots; ball: (x, y[, vx, vy]) or (x, y, z, vx, vy, vz)); returns the "
-           "ground truth.")
-      .def(
-          "step",
-          [](InProcessSim& sim, const py::object& commands) {
-            const std::vector<RobotOrder> orders = orders_from_array(commands, sim, "");
-            {
-              py::gil_scoped_release release;
-              sim.step(orders);
-            }
-            return step_dict(sim.last_output());
-          },
-          "commands"_a = py::none(),
-          "Sends the commands (n, 14; ubersim.COMMAND_COLUMNS) and advances one step; returns "
-          "ground truth, the vision frames and the radio feedback of the step.")
-      .def("truth", [](InProcessSim& sim) { return truth_dict(sim.truth()); })
+  sim_class
       .def(
           "place_robot",
           [](InProcessSim& sim, const py::object& team, int id, double x, double y,
@@ -308,7 +280,13 @@ void bind_sim(py::module_& m) {
             put_ball(request, py::cast(std::vector<double>{x, y, z, vx, vy, vz}));
             sim.place(request, false);
           },
-          "x"_a, "y"_a, "z"_a = 0.0, "vx"_a = 0.0, "vy"_a = 0.0, "vz"_a = 0.0)
+          "x"_a, "y"_a, "z"_a = 0.0, "vx"_a = 0.0, "vy"_a = 0.0, "vz"_a = 0.0);
+}
+
+// Sim: the referee situations, placed as the automatic referee places them.
+void bind_sim_situations(py::class_<InProcessSim>& sim_class) {
+  using namespace pybind11::literals;
+  sim_class
       .def(
           "kickoff",
           [](InProcessSim& sim, const py::object& team, const std::string& yellow_defends) {
@@ -339,8 +317,13 @@ void bind_sim(py::module_& m) {
           [](InProcessSim& sim, const std::string& yellow_defends) {
             set_situation(sim, referee::Situation::Stop, py::none(), 0, 0, yellow_defends);
           },
-          "yellow_defends"_a = "negative")
-      .def("counters", &counters_dict)
+          "yellow_defends"_a = "negative");
+}
+
+// Sim: counters, robot types and read-only properties.
+void bind_sim_properties(py::class_<InProcessSim>& sim_class) {
+  using namespace pybind11::literals;
+  sim_class.def("counters", &counters_dict)
       .def("robot_type_info", &robot_type_dict, "name"_a = py::none(),
            "A robot type's parameters (SI units, angles in rad); the scenario's type by default.")
       .def_property_readonly("field",
@@ -353,6 +336,45 @@ void bind_sim(py::module_& m) {
       .def_property_readonly("vision_emulated", &InProcessSim::vision_emulated)
       .def_property_readonly("radio_emulated", &InProcessSim::radio_emulated)
       .def_property_readonly("robot_type", &InProcessSim::default_robot_type);
+}
+
+void bind_sim(py::module_& m) {
+  using namespace pybind11::literals;
+  py::class_<InProcessSim> sim_class(m, "Sim",
+                                     "One simulated world in this process (docs/python.md).");
+  sim_class
+      .def(py::init([](const std::string& scenario, const std::optional<std::string>& vision,
+                       const std::optional<std::string>& radio, std::uint64_t seed, double step,
+                       const std::optional<std::string>& field, const std::string& physics,
+                       const std::optional<std::string>& config_dir) {
+             return std::make_unique<InProcessSim>(
+                 options_from(scenario, vision, radio, seed, step, field, physics, config_dir));
+           }),
+           "scenario"_a = "division_b_6v6", "vision_profile"_a = py::none(),
+           "radio_profile"_a = py::none(), "seed"_a = 0, "step"_a = 0.025, "field"_a = py::none(),
+           "physics"_a = "default", "config_dir"_a = py::none())
+      .def("reset", &reset_sim, "seed"_a = py::none(), "robots"_a = py::none(),
+           "ball"_a = py::none(), "robot_type"_a = py::none(),
+           "Back to the scenario at sim time 0 (robots (n, 5): team, id, x, y, orientation "
+           "replace its robots; ball: (x, y[, vx, vy]) or (x, y, z, vx, vy, vz)); returns the "
+           "ground truth.")
+      .def(
+          "step",
+          [](InProcessSim& sim, const py::object& commands) {
+            const std::vector<RobotOrder> orders = orders_from_array(commands, sim, "");
+            {
+              py::gil_scoped_release release;
+              sim.step(orders);
+            }
+            return step_dict(sim.last_output());
+          },
+          "commands"_a = py::none(),
+          "Sends the commands (n, 14; ubersim.COMMAND_COLUMNS) and advances one step; returns "
+          "ground truth, the vision frames and the radio feedback of the step.")
+      .def("truth", [](InProcessSim& sim) { return truth_dict(sim.truth()); });
+  bind_sim_placements(sim_class);
+  bind_sim_situations(sim_class);
+  bind_sim_properties(sim_class);
 }
 
 // VectorSim.step's commands: None, or one entry (array or None) per world.
