@@ -70,9 +70,10 @@ void PhysicsCore::on_sync_horizon(const sync_horizon_t& h) {
 void PhysicsCore::on_referee(const referee_t& r) {
   // The referee has judged the state at r.sim_time and needs none before
   // r.next_judge_time: every step starting before that may go (an older
-  // referee that names no later time: just the step from r.sim_time).
+  // referee that names no later time: just the step from r.sim_time). Game
+  // over: the judged state is the last, so every run of a game ends at it.
   const bool ahead = std::isfinite(r.next_judge_time) && r.next_judge_time > r.sim_time;
-  referee_horizon_ = r.game_over ? std::numeric_limits<double>::infinity()
+  referee_horizon_ = r.game_over ? r.sim_time
                      : ahead     ? r.next_judge_time
                                  : r.sim_time + world_.dt() / 2;
 }

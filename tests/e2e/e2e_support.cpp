@@ -58,6 +58,14 @@ std::map<std::string, pid_t> Launch::processes(double timeout_s) {
   throw std::runtime_error("launch script did not start its processes: " + output());
 }
 
+CpuHog::CpuHog() {
+  const long cores = std::max(1L, ::sysconf(_SC_NPROCESSORS_ONLN));
+  for (long i = 0; i < cores; ++i) {
+    hogs_.push_back(std::make_unique<ubersim::test::ChildProcess>(
+        std::vector<std::string>{"/bin/sh", "-c", "while :; do :; done"}, ""));
+  }
+}
+
 std::vector<uint8_t> encode(const ubersim::vision_frame_t& frame) {
   std::vector<uint8_t> bytes(static_cast<size_t>(frame.getEncodedSize()));
   frame.encode(bytes.data(), 0, static_cast<int>(bytes.size()));

@@ -61,4 +61,13 @@ class VisionListener {
 
 std::vector<uint8_t> encode(const ubersim::vision_frame_t& frame);
 
+// Busy loops on every core until destroyed: a loaded machine.
+class CpuHog {
+ public:
+  CpuHog();
+
+ private:
+  std::vector<std::unique_ptr<ubersim::test::ChildProcess>> hogs_;
+};
+
 }  // namespace e2e

@@ -66,21 +66,6 @@ void expect_same_channels(const GameRun& a, const GameRun& b) {
   }
 }
 
-// Busy loops on every core until destroyed.
-class CpuHog {
- public:
-  CpuHog() {
-    const long cores = std::max(1L, ::sysconf(_SC_NPROCESSORS_ONLN));
-    for (long i = 0; i < cores; ++i) {
-      hogs_.push_back(std::make_unique<ChildProcess>(
-          std::vector<std::string>{"/bin/sh", "-c", "while :; do :; done"}, ""));
-    }
-  }
-
- private:
-  std::vector<std::unique_ptr<ChildProcess>> hogs_;
-};
-
 }  // namespace
 
 // Two runs with the same seeds, one of them next to a CPU hog, record the

@@ -2,11 +2,13 @@
 // commands over the bus, and the end of --duration.
 #include <gtest/gtest.h>
 
+#include <ubersim/referee_t.hpp>
 #include <ubersim/sim_commands_t.hpp>
 #include <ubersim/sim_state_t.hpp>
 
 #include "physics_test_support.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/physics/physics_core.hpp"
 #include "ubersim/physics/physics_server.hpp"
 
 namespace ubersim::physics::testing {
@@ -57,6 +59,28 @@ TEST(PhysicsServer, CommandsOverTheBusMoveRobots) {
   // Blue faces -x: 1 m/s forward is towards -x.
   EXPECT_LT(robot.planar_state().x, x0 - 0.3);
   EXPECT_EQ(server.stats().packets_received, 1);
+}
+
+// With --sync-referee physics steps up to the state the referee judges next;
+// once the referee says the game is over, the state it judged last is the last
+// one: two runs of a game end at the same state (docs/autoref.md).
+TEST(PhysicsCore, HoldsAtTheStateTheRefereeEndedTheGameAt) {
+  ServerOptions options;
+  options.sync = true;
+  options.sync_referee = true;
+  PhysicsCore core(load_world_setup(kConfigDir, "division_b_6v6", "default"), options);
+  EXPECT_FALSE(core.below_referee_horizon()) << "holds while no referee speaks";
+  referee_t judged{};
+  judged.sim_time = 0;
+  judged.next_judge_time = 0.5;
+  core.on_referee(judged);
+  EXPECT_TRUE(core.below_referee_horizon());
+  for (int i = 0; i < 24; ++i) core.step();
+  judged.sim_time = core.world().time();
+  judged.next_judge_time = judged.sim_time + 0.5;
+  judged.game_over = true;
+  core.on_referee(judged);
+  EXPECT_FALSE(core.below_referee_horizon()) << "a step past the game's end";
 }
 
 }  // namespace
