@@ -9,17 +9,20 @@ using referee::Situation;
 using referee::SituationRequest;
 using ubersim::Team;
 
-// The kick-off or penalty a command announces, if it is one.
-std::optional<SituationRequest> set_piece(Referee::Command command) {
+// The kick-off or penalty a command announces, if it is one. A penalty's
+// keeper is the one the GC checks: the defending team's declared goalkeeper.
+std::optional<SituationRequest> set_piece(const Referee& gc, Referee::Command command) {
   switch (command) {
     case Referee::PREPARE_KICKOFF_YELLOW:
       return SituationRequest{Situation::KickOff, Team::Yellow};
     case Referee::PREPARE_KICKOFF_BLUE:
       return SituationRequest{Situation::KickOff, Team::Blue};
     case Referee::PREPARE_PENALTY_YELLOW:
-      return SituationRequest{Situation::Penalty, Team::Yellow};
+      return SituationRequest{Situation::Penalty, Team::Yellow, 0, 0,
+                              static_cast<int>(gc.blue().goalkeeper())};
     case Referee::PREPARE_PENALTY_BLUE:
-      return SituationRequest{Situation::Penalty, Team::Blue};
+      return SituationRequest{Situation::Penalty, Team::Blue, 0, 0,
+                              static_cast<int>(gc.yellow().goalkeeper())};
     default:
       return std::nullopt;
   }
@@ -33,7 +36,7 @@ std::optional<SituationRequest> FieldKeeper::decide(const Referee& gc, const sim
     counter_ = gc.command_counter();
     since_ = now;
   }
-  if (auto piece = set_piece(gc.command())) {
+  if (auto piece = set_piece(gc, gc.command())) {
     if (prepared_ == gc.command_counter()) return std::nullopt;
     prepared_ = gc.command_counter();
     last_placed_ = now;
@@ -42,7 +45,7 @@ std::optional<SituationRequest> FieldKeeper::decide(const Referee& gc, const sim
   const bool stoppage = gc.command() == Referee::STOP || gc.command() == Referee::HALT;
   if (!stoppage || now - since_ < kHold || now - last_placed_ < kHold) return std::nullopt;
   if (gc.has_next_command()) {
-    if (auto piece = set_piece(gc.next_command())) {
+    if (auto piece = set_piece(gc, gc.next_command())) {
       if (prepared_ == gc.command_counter()) return std::nullopt;
       prepared_ = gc.command_counter();  // once per stop: the teams keep their distance
       last_placed_ = now;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "ubersim/logging.hpp"
+
 namespace ubersim::gc_link {
 namespace {
 
@@ -172,6 +174,35 @@ Input stage_input(Referee::Stage stage) {
   return input;
 }
 
+std::optional<Input> Operator::restart_if_stuck(const Referee& gc, double sim_time) {
+  if (held_counter_ != gc.command_counter()) {
+    held_counter_ = gc.command_counter();
+    held_since_ = sim_time;
+  }
+  std::optional<Command::Type> restart;
+  switch (gc.command()) {
+    case Referee::STOP:
+    case Referee::BALL_PLACEMENT_YELLOW:
+    case Referee::BALL_PLACEMENT_BLUE:
+      restart = Command::FORCE_START;
+      break;
+    case Referee::PREPARE_KICKOFF_YELLOW:
+    case Referee::PREPARE_KICKOFF_BLUE:
+    case Referee::PREPARE_PENALTY_YELLOW:
+    case Referee::PREPARE_PENALTY_BLUE:
+      restart = Command::NORMAL_START;
+      break;
+    default:
+      return std::nullopt;
+  }
+  if (sim_time - held_since_ < kStuckHold) return std::nullopt;
+  held_since_ = sim_time;  // once per kStuckHold, should the GC refuse it
+  ++forced_restarts_;
+  spdlog::warn("{:.2f} s: the game controller held {} for {} s: the operator gives {}", sim_time,
+               Referee::Command_Name(gc.command()), kStuckHold, Command::Type_Name(*restart));
+  return command_input(*restart);
+}
+
 std::vector<Input> Operator::decide(const Referee& gc, double sim_time) {
   std::vector<Input> out;
   if (!started_) {  // the match starts with STOP, as the operator starts it
@@ -201,6 +232,7 @@ std::vector<Input> Operator::decide(const Referee& gc, double sim_time) {
   if (gc.stage() == Referee::NORMAL_HALF_TIME || gc.stage() == Referee::POST_GAME) return out;
   if (gc.command() != Referee::HALT) {
     halt_counter_.reset();
+    if (auto restart = restart_if_stuck(gc, sim_time)) out.push_back(std::move(*restart));
     return out;
   }
   if (halt_counter_ != gc.command_counter()) {

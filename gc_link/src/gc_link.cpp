@@ -187,8 +187,9 @@ std::string GcLink::result_line(double wall_time) const {
       << ", \"result\": " << json_string(Referee::Stage_Name(gc_.stage()))
       << ", \"game_over\": " << (over_ ? "true" : "false")
       << ", \"yellow\": " << team_figures(gc_.yellow())
-      << ", \"blue\": " << team_figures(gc_.blue()) << ", \"wall_time\": " << number(wall_time)
-      << "}";
+      << ", \"blue\": " << team_figures(gc_.blue())
+      << ", \"forced_restarts\": " << operator_.forced_restarts()
+      << ", \"wall_time\": " << number(wall_time) << "}";
   return out.str();
 }
 

@@ -162,7 +162,12 @@ class Runner {
               << (over_ ? "game over" : "stopped") << " at " << link_->last_time()
               << " s sim time, " << wall << " s wall time, " << link_->ticks()
               << " game controller ticks, " << link_->judged() << " states judged, "
-              << link_->reports() << " events reported)" << std::endl;
+              << link_->reports() << " events reported"
+              << (link_->forced_restarts() > 0
+                      ? ", " + std::to_string(link_->forced_restarts()) +
+                            " restarts forced by the operator (see the warnings above)"
+                      : std::string())
+              << ")" << std::endl;
   }
 
   const Options& options_;

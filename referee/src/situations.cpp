@@ -86,13 +86,23 @@ void plan_free_kick(PlacementScene& scene, const SituationRequest& request,
   place_nearest_kicker(scene, request.team, attacked_goal_x, "free kick");
 }
 
-void plan_penalty(PlacementScene& scene, Team kicking, const field_geometry_t& field,
-                  FieldSides sides, double attacked_goal_x) {
+// Index of `team`'s robot `id`, or -1.
+int robot_with_id(const PlacementScene& scene, Team team, int id) {
+  for (std::size_t i = 0; i < scene.robots.size(); ++i) {
+    if (scene.robots[i].team == team && scene.robots[i].id == id) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+void plan_penalty(PlacementScene& scene, const SituationRequest& request,
+                  const field_geometry_t& field, FieldSides sides, double attacked_goal_x) {
+  const Team kicking = request.team;
   const Team other = kicking == Team::Yellow ? Team::Blue : Team::Yellow;
   const double attack = attacked_goal_x > 0 ? 1.0 : -1.0;
   scene.ball_x = penalty_mark_x(field, sides, kicking);
   scene.ball_y = 0;
-  const int keeper = nearest_robot(scene, other, attacked_goal_x, 0);
+  int keeper = request.keeper >= 0 ? robot_with_id(scene, other, request.keeper) : -1;
+  if (keeper < 0) keeper = nearest_robot(scene, other, attacked_goal_x, 0);
   if (keeper >= 0) {
     auto& k = scene.robots[static_cast<std::size_t>(keeper)];
     k.x = attacked_goal_x - attack * k.radius;
@@ -160,7 +170,7 @@ PlacementScene plan_situation(const SituationRequest& request, PlacementScene sc
       plan_free_kick(scene, request, field, attacked_goal_x);
       break;
     case Situation::Penalty:
-      plan_penalty(scene, kicking, field, sides, attacked_goal_x);
+      plan_penalty(scene, request, field, sides, attacked_goal_x);
       break;
   }
 

@@ -246,6 +246,33 @@ TEST(Operator, StartsTheMatchResumesAfterAHeldHaltAndEndsHalvesAndTheBreak) {
   EXPECT_TRUE(op.decide(at_stage(Referee::POST_GAME, Referee::HALT, 0, 12), 30).empty());
 }
 
+// The GC waits for conditions the simulation may never meet (robots in
+// place for a penalty): after kStuckHold the operator restarts play, once
+// per kStuckHold, and counts it.
+TEST(Operator, RestartsPlayTheGameControllerKeepsWaitingFor) {
+  Operator op;
+  op.decide(Referee(), 0);
+  const Referee penalty =
+      at_stage(Referee::NORMAL_FIRST_HALF, Referee::PREPARE_PENALTY_YELLOW, 10'000'000, 4);
+  EXPECT_TRUE(op.decide(penalty, 10).empty());
+  EXPECT_TRUE(op.decide(penalty, 10 + Operator::kStuckHold - 0.01).empty());
+  const auto start = op.decide(penalty, 10 + Operator::kStuckHold);
+  ASSERT_EQ(start.size(), 1u);
+  EXPECT_EQ(start[0].change().new_command_change().command().type(), Command::NORMAL_START);
+  EXPECT_TRUE(op.decide(penalty, 10 + Operator::kStuckHold + 1).empty());
+  EXPECT_EQ(op.forced_restarts(), 1u);
+  const Referee stop = at_stage(Referee::NORMAL_FIRST_HALF, Referee::STOP, 10'000'000, 5);
+  EXPECT_TRUE(op.decide(stop, 40).empty());
+  const auto force = op.decide(stop, 40 + Operator::kStuckHold);
+  ASSERT_EQ(force.size(), 1u);
+  EXPECT_EQ(force[0].change().new_command_change().command().type(), Command::FORCE_START);
+  // Play that runs is never restarted.
+  const Referee running = at_stage(Referee::NORMAL_FIRST_HALF, Referee::NORMAL_START, 10'000, 6);
+  EXPECT_TRUE(op.decide(running, 70).empty());
+  EXPECT_TRUE(op.decide(running, 70 + 2 * Operator::kStuckHold).empty());
+  EXPECT_EQ(op.forced_restarts(), 2u);
+}
+
 sim_state_t ball_at(double t, double x, double y) {
   sim_state_t s{};
   s.sim_time = t;

@@ -182,6 +182,20 @@ TEST(Situations, PenaltyPutsKeeperOnLineAndOthersBehindTheBall) {
   EXPECT_EQ(kickers, 1);
 }
 
+// The official GC continues a penalty only with the declared goalkeeper in
+// the goal: a request that names it puts that robot there, not the nearest.
+TEST(Situations, PenaltyPutsTheNamedKeeperInTheGoal) {
+  const auto field = division_b();
+  for (int keeper : {0, 4}) {
+    SituationRequest request{Situation::Penalty, Team::Yellow, 0, 0, keeper};
+    const auto planned = plan_situation(request, messy_scene(), field, {});
+    const PlacedRobot* in_goal = find(planned, Team::Blue, keeper);
+    ASSERT_NE(in_goal, nullptr);
+    EXPECT_DOUBLE_EQ(in_goal->x, field.field_length / 2 - in_goal->radius) << keeper;
+    EXPECT_DOUBLE_EQ(in_goal->y, 0) << keeper;
+  }
+}
+
 // Where the official GC puts the ball, for both divisions, both teams and both sides.
 TEST(Situations, PenaltyMarkIsWhereTheOfficialGameControllerPutsTheBall) {
   struct Case {

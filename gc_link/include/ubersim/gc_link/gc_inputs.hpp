@@ -53,18 +53,29 @@ Input stage_input(Referee::Stage stage);
 
 // The operator's part, for an unattended game: what a human at the GC would
 // do now, given its last Referee and the sim time. Remembers when the GC
-// entered HALT (resume after kHaltHold).
+// entered HALT (resume after kHaltHold), and restarts play the GC keeps
+// waiting for (a STOP or PREPARE_* held kStuckHold: the GC's conditions to go
+// on, e.g. robots in place, were never met) as an operator would: FORCE_START
+// after a STOP or ball placement, NORMAL_START after a PREPARE_*.
 class Operator {
  public:
   static constexpr double kHaltHold = 0.5;  // s of HALT before STOP (the ball is placed meanwhile)
+  static constexpr double kStuckHold = 20.0;  // s of STOP or PREPARE_* before the operator restarts
 
   std::vector<Input> decide(const Referee& gc, double sim_time);
   bool started() const { return started_; }
+  // Restarts the operator forced because the GC waited kStuckHold.
+  std::uint64_t forced_restarts() const { return forced_restarts_; }
 
  private:
+  std::optional<Input> restart_if_stuck(const Referee& gc, double sim_time);
+
   bool started_ = false;
   std::optional<std::uint32_t> halt_counter_;  // command_counter of the HALT being held
   double halt_since_ = 0;                      // s
+  std::optional<std::uint32_t> held_counter_;  // command_counter of the command being held
+  double held_since_ = 0;                      // s
+  std::uint64_t forced_restarts_ = 0;
 };
 
 }  // namespace ubersim::gc_link

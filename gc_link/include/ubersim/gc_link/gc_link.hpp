@@ -60,6 +60,8 @@ class GcLink {
   std::uint64_t judged() const { return judged_; }
   std::uint64_t refused() const { return refused_; }
   std::uint64_t reports() const { return reports_; }
+  // Restarts the operator gave because the GC waited too long (Operator).
+  std::uint64_t forced_restarts() const { return operator_.forced_restarts(); }
   double last_time() const { return last_time_; }
   // The result line of the event log, from the GC's last Referee.
   std::string result_line(double wall_time) const;

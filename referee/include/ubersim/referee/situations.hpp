@@ -17,6 +17,9 @@ struct SituationRequest {
   Situation kind = Situation::Stop;
   Team team = Team::Yellow;  // the team that kicks (kick-off, free kick, penalty)
   double x = 0, y = 0;       // m, ball position for free kick and ball placement
+  // Penalty: the defending team's goalkeeper (robot id) goes into the goal; -1:
+  // its robot nearest to the goal (the official GC checks the declared keeper).
+  int keeper = -1;
 };
 
 // Which goal each team defends: yellow defends the goal at x = yellow_defends * L/2.
