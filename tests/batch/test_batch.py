@@ -6,6 +6,7 @@ temporary folder of its own and removes it when it passes.
 Usage: test_batch.py SOURCE_DIR BUILD_DIR [unittest arguments]
 """
 import csv
+import json
 import os
 import shutil
 import signal
@@ -52,6 +53,38 @@ BLUE = demo
 MODE = fast
 GAME_TIMEOUT = 60
 """
+
+
+# The CI-mode stand-in for the official game controller as a program (CI
+# machines cannot build the GC; tests/gc_link/standin_main.cpp), and the real
+# GC when UBERSIM_SSL_GC names it.
+STANDIN_GC = os.path.abspath(os.path.join(BUILD, "bin", "ubersim_standin_gc"))
+REAL_GC = os.environ.get("UBERSIM_SSL_GC", "")
+OFFICIAL = """SCENARIO = division_b_6v6
+VISION_PROFILE = cmdragons02
+RADIO_PROFILE = cmdragons02
+GAME = division_b
+GAME_LENGTH = {length}
+GAMES_PER_POINT = 2
+SEED = {seed}
+YELLOW = demo
+BLUE = demo
+REFEREE = official {gc}
+GAME_TIMEOUT = 120
+"""
+
+
+def event_log_counts(game_dir):
+    """Game events by type, and the result line, of a game's event log."""
+    counts, result = {}, None
+    with open(os.path.join(game_dir, "events.jsonl")) as f:
+        for line in f:
+            record = json.loads(line)
+            if "event" in record:
+                counts[record["event"]] = counts.get(record["event"], 0) + 1
+            elif "result" in record:
+                result = record
+    return counts, result
 
 
 def ubersim_processes_under(folder):
@@ -121,12 +154,59 @@ class BatchTest(unittest.TestCase):
             (SHORT.replace("SCENARIO = division_b_6v6\n", ""), "missing key SCENARIO"),
             (SHORT + "JUDGING = sometimes\n",
              "experiment.cfg:12: JUDGING: expected adaptive or every_step, got 'sometimes'"),
+            (SHORT + "REFEREE = autoref\n",
+             "experiment.cfg:12: REFEREE: expected builtin or official PATH"),
+            (SHORT + "REFEREE = official no-such-gc\n",
+             "experiment.cfg:12: REFEREE: 'no-such-gc' is not an executable file"),
+            (SHORT + f"REFEREE = official {STANDIN_GC}\n",  # SHORT is MODE = fast
+             "experiment.cfg:12: REFEREE: the official game controller referees in its CI mode"),
         ]
         for text, message in cases:
             path = experiment(self.folder, text)
             run = run_batch(path, "--out", os.path.join(self.folder, "out"))
             self.assertEqual(run.returncode, 2, run.stderr)
             self.assertIn(message, run.stderr)
+
+    def official_games(self, gc, length, seed):
+        """A batch of two games under the official game controller `gc`: the
+        rows take score, cards and game events from the GC's messages (the
+        link's event log); shots and possession, which the GC does not keep,
+        are empty."""
+        path = experiment(self.folder, OFFICIAL.format(gc=gc, length=length, seed=seed))
+        out = os.path.join(self.folder, "official")
+        run = run_batch(path, "--out", out)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        self.assertIn("the official game controller", run.stdout)
+        games = rows(out)
+        self.assertEqual(len(games), 2)
+        for g in games:
+            self.assertEqual(g["status"], "ok", g)
+            counts, result = event_log_counts(g["log_dir"])
+            self.assertTrue(result["game_over"], result)
+            for team in ("yellow", "blue"):
+                self.assertEqual(int(g[f"{team}_goals"]), result[team]["goals"])
+                self.assertEqual(int(g[f"{team}_fouls"]), result[team]["fouls"])
+                self.assertEqual(int(g[f"{team}_yellow_cards"]), result[team]["yellow_cards"])
+                self.assertEqual(int(g[f"{team}_red_cards"]), result[team]["red_cards"])
+                self.assertEqual(g[f"{team}_shots"], "")
+                self.assertEqual(g[f"{team}_possession"], "")
+            self.assertEqual(g["event_types"],
+                             " ".join(f"{k}:{counts[k]}" for k in sorted(counts)))
+            self.assertGreater(float(g["sim_time"]), length)
+            self.assertTrue(os.path.isdir(os.path.join(g["log_dir"], "gc")), g["log_dir"])
+        self.assertTrue(any(g["event_types"] for g in games), games)
+        return games
+
+    @unittest.skipUnless(os.access(STANDIN_GC, os.X_OK), "ubersim_standin_gc is not built")
+    def test_official_referee_takes_the_result_from_the_game_controller(self):
+        self.official_games(STANDIN_GC, 6, 4)
+
+    @unittest.skipUnless(REAL_GC, "UBERSIM_SSL_GC does not name the ssl-game-controller binary")
+    def test_official_referee_with_the_real_game_controller(self):
+        games = self.official_games(REAL_GC, 24, 4)
+        # Seed 4: the demo teams score once, and the GC decides it is a goal.
+        self.assertEqual(games[0]["yellow_goals"], "1")
+        self.assertIn("GOAL:1", games[0]["event_types"])
 
     def test_a_crashing_team_program_fails_its_game_with_logs_and_the_batch_goes_on(self):
         text = SHORT.replace("YELLOW = demo", 'YELLOW = "sh -c \'echo yellow crashes; exit 7\'"')

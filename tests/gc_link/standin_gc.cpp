@@ -12,7 +12,18 @@ namespace standin {
 namespace {
 
 constexpr std::int64_t kSecond = 1'000'000'000;  // ns
-constexpr std::int64_t kHalf = 20'000'000;       // us of a half
+
+// The stage NORMAL_START leads to from a pre-stage.
+std::optional<Referee::Stage> started_stage(Referee::Stage stage) {
+  switch (stage) {
+    case Referee::NORMAL_FIRST_HALF_PRE:
+      return Referee::NORMAL_FIRST_HALF;
+    case Referee::NORMAL_SECOND_HALF_PRE:
+      return Referee::NORMAL_SECOND_HALF;
+    default:
+      return std::nullopt;
+  }
+}
 
 Referee::Command referee_command(const Command& c) {
   const bool blue = c.for_team() == BLUE;
@@ -36,11 +47,14 @@ Referee::Command referee_command(const Command& c) {
 
 }  // namespace
 
-StandInGc::StandInGc() {
+StandInGc::StandInGc(int port, StandInTimes times) : times_(times) {
   listener_ = ::socket(AF_INET, SOCK_STREAM, 0);
+  const int one = 1;
+  ::setsockopt(listener_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
   sockaddr_in address{};
   address.sin_family = AF_INET;
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
   socklen_t size = sizeof address;
   if (::bind(listener_, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 ||
       ::listen(listener_, 1) != 0 ||
@@ -62,14 +76,18 @@ StandInGc::StandInGc() {
   referee_.set_stage(Referee::NORMAL_FIRST_HALF_PRE);
   referee_.set_command(Referee::HALT);
   referee_.set_command_counter(0);
-  referee_.set_stage_time_left(kHalf);
+  referee_.set_stage_time_left(times_.half_us);
   thread_ = std::thread([this] { serve(); });
 }
 
 StandInGc::~StandInGc() {
   ::shutdown(listener_, SHUT_RDWR);
   ::close(listener_);
-  thread_.join();
+  if (thread_.joinable()) thread_.join();
+}
+
+void StandInGc::wait_until_disconnected() {
+  if (thread_.joinable()) thread_.join();
 }
 
 std::vector<CiInput> StandInGc::inputs() const {
@@ -114,9 +132,8 @@ void StandInGc::handle(const std::string& bytes, int fd) {
     send(fd);
     if (next) {  // queued by the tick, applied after its answer, as the GC's engine does
       set_command(*next);
-      if (*next == Referee::NORMAL_START && referee_.stage() == Referee::NORMAL_FIRST_HALF_PRE) {
-        referee_.set_stage(Referee::NORMAL_FIRST_HALF);
-      }
+      const auto half = started_stage(referee_.stage());
+      if (*next == Referee::NORMAL_START && half) referee_.set_stage(*half);
       send(fd);
     }
   }
@@ -134,8 +151,10 @@ void StandInGc::apply(const Change& change) {
   } else if (change.has_new_command_change()) {
     set_command(referee_command(change.new_command_change().command()));
   } else if (change.has_change_stage_change()) {
-    referee_.set_stage(change.change_stage_change().new_stage());
-    referee_.set_stage_time_left(kHalf);
+    const Referee::Stage stage = change.change_stage_change().new_stage();
+    referee_.set_stage(stage);
+    referee_.set_stage_time_left(stage == Referee::NORMAL_HALF_TIME ? times_.break_us
+                                                                    : times_.half_us);
     set_command(Referee::HALT);
   } else if (change.has_update_config_change()) {
     first_kickoff_ = change.update_config_change().first_kickoff_team();
@@ -155,7 +174,8 @@ std::optional<Referee::Command> StandInGc::tick(std::int64_t timestamp) {
   const std::int64_t delta = last_time_ < 0 ? 0 : timestamp - last_time_;
   last_time_ = timestamp;
   const auto command = referee_.command();
-  if (command == Referee::NORMAL_START || command == Referee::FORCE_START) {
+  if (command == Referee::NORMAL_START || command == Referee::FORCE_START ||
+      referee_.stage() == Referee::NORMAL_HALF_TIME) {
     referee_.set_stage_time_left(referee_.stage_time_left() - delta / 1000);
   }
   // Its auto-continue: STOP held 1 s, then the kick-off; 1 s later NORMAL_START.

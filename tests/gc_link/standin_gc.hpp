@@ -6,7 +6,10 @@
 // tick (a CiInput with a timestamp), the status message of SetStatusMessage
 // in its Referee, the timestamp as its clock. Its game is a small one: STOP
 // held 1 s -> PREPARE_KICKOFF of the first kick-off team, 1 s later
-// NORMAL_START (and the first half); a POSSIBLE_GOAL halts and scores.
+// NORMAL_START (and the half its pre-stage leads to); a POSSIBLE_GOAL halts
+// and scores; the stage clock runs while the ball is in play and in the
+// break. ubersim_standin_gc (standin_main.cpp) runs it as a program, started
+// by the link as it starts the GC.
 #include <ssl_gc_ci.pb.h>
 
 #include <atomic>
@@ -18,10 +21,19 @@
 
 namespace standin {
 
+// How long the stand-in's halves and break are (the GC's config).
+struct StandInTimes {
+  std::int64_t half_us = 20'000'000;
+  std::int64_t break_us = 5'000'000;
+};
+
 class StandInGc {
  public:
-  StandInGc();
+  // port 0: a free one.
+  explicit StandInGc(int port = 0, StandInTimes times = {});
   ~StandInGc();
+  // Returns once the link closed the connection.
+  void wait_until_disconnected();
   int port() const { return port_; }
   // Every CiInput received so far, in order.
   std::vector<CiInput> inputs() const;
@@ -46,6 +58,7 @@ class StandInGc {
   std::int64_t last_time_ = -1;  // ns
   std::int64_t command_since_ = 0;
   Team first_kickoff_ = YELLOW;
+  StandInTimes times_;
 };
 
 }  // namespace standin

@@ -24,9 +24,12 @@ KEYS = {
     "GAME_TIMEOUT": "s of wall time after which a game counts as failed",
     "JUDGING": "adaptive (the referee judges the states where a rule could decide) or "
                "every_step (every state: slower, the same decisions)",
+    "REFEREE": "builtin (ubersim's automatic referee) or official PATH (the official "
+               "ssl-game-controller at PATH, in its CI mode; MODE = sync)",
 }
-OPTIONAL = {"SWEEP", "GAME_TIMEOUT", "MODE", "JUDGING"}
-DEFAULTS = {"GAME_TIMEOUT": ["900"], "MODE": ["sync"], "JUDGING": ["adaptive"]}
+OPTIONAL = {"SWEEP", "GAME_TIMEOUT", "MODE", "JUDGING", "REFEREE"}
+DEFAULTS = {"GAME_TIMEOUT": ["900"], "MODE": ["sync"], "JUDGING": ["adaptive"],
+            "REFEREE": ["builtin"]}
 
 # Short names of the files a sweep key may change: kind folder, experiment key
 # naming the file.
@@ -133,6 +136,7 @@ class Experiment:
         if self.judging not in ("adaptive", "every_step"):
             raise ExperimentError(f"{entries['JUDGING']['where']}: JUDGING: expected adaptive or "
                                   f"every_step, got '{self.judging}'")
+        self.referee, self.game_controller = self._referee(entries["REFEREE"])
         self.teams = {}
         for team in ("YELLOW", "BLUE"):
             values = entries[team]["values"]
@@ -148,6 +152,27 @@ class Experiment:
         self.sweeps = []
         for key in sorted(k for k in entries if k.startswith("SWEEP")):
             self.sweeps.append(self._sweep(entries, key, bin_dir, config_dir))
+
+    def _referee(self, entry):
+        """("builtin", None) or ("official", absolute path of the game controller)."""
+        values, where = entry["values"], entry["where"]
+        if values == ["builtin"]:
+            return "builtin", None
+        if len(values) != 2 or values[0] != "official":
+            raise ExperimentError(f"{where}: REFEREE: expected builtin or official PATH (the "
+                                  f"ssl-game-controller binary), got '{' '.join(values)}'")
+        path = os.path.join(os.path.dirname(os.path.abspath(self.path)),
+                            os.path.expanduser(values[1]))
+        if not (os.path.isfile(path) and os.access(path, os.X_OK)):
+            raise ExperimentError(f"{where}: REFEREE: '{values[1]}' is not an executable file "
+                                  f"(the ssl-game-controller binary)")
+        if self.mode != "sync":
+            raise ExperimentError(f"{where}: REFEREE: the official game controller referees in "
+                                  f"its CI mode, sim time its clock: MODE must be sync")
+        if self.judging != "adaptive":
+            raise ExperimentError(f"{where}: REFEREE: JUDGING = every_step is the built-in "
+                                  f"referee's; with the official game controller leave it out")
+        return "official", os.path.normpath(path)
 
     def _sweep(self, entries, key, bin_dir, config_dir):
         entry = entries[key]
@@ -202,6 +227,8 @@ class Experiment:
                     "game_length": self.game_length,
                     "mode": self.mode,
                     "judging": self.judging,
+                    "referee": self.referee,
+                    "game_controller": self.game_controller,
                     "teams": self.teams,
                     "timeout": self.game_timeout,
                 })

@@ -317,6 +317,50 @@ def degraded_reason(losses, end):
     return "; ".join(parts) + " (see radio.log)"
 
 
+def _referee_command(spec, lcm_url, config_dir, events_path):
+    """The referee's command line, and the line its log has once it listens:
+    the built-in automatic referee, or the link to the official game
+    controller (REFEREE = official PATH, sync mode only), which starts the GC
+    in CI mode with its folder in the game's (gc/)."""
+    bin_dir = spec["bin_dir"]
+    # The referee logs its game at info level (its log is the game's story).
+    common = ["--lcm-url", lcm_url, "--config-dir", config_dir, "--timeout", "20"]
+    game = ["--game", spec["game"], "--game-length", str(spec["game_length"]),
+            "--events", events_path]
+    if spec.get("referee") == "official":
+        return ([f"{bin_dir}/ubersim_gc_link", *common, *game,
+                 "--game-controller", spec["game_controller"],
+                 "--gc-dir", os.path.join(spec["game_dir"], "gc")],
+                "official game controller on")
+    referee = [f"{bin_dir}/ubersim_referee", *common, "auto", *game]
+    referee += ["--sync"] if spec["mode"] == "sync" else ["--start"]
+    if spec.get("judging") == "every_step":
+        referee += ["--judge-every-step"]
+    return referee, "automatic referee:"
+
+
+def outcome(result_line):
+    """The game's figures from the referee's result line. The built-in referee
+    keeps shots and possession and gives no cards; the official game
+    controller gives cards and keeps neither: what a referee does not keep is
+    "" (empty in results.csv, left out of the summary)."""
+    y, b = result_line["yellow"], result_line["blue"]
+    figures = {"yellow_goals": y["goals"], "blue_goals": b["goals"],
+               "score_difference": y["goals"] - b["goals"],
+               "yellow_fouls": y["fouls"], "blue_fouls": b["fouls"]}
+    for team, t in (("yellow", y), ("blue", b)):
+        figures[f"{team}_shots"] = t.get("shots", "")
+        figures[f"{team}_yellow_cards"] = t.get("yellow_cards", "")
+        figures[f"{team}_red_cards"] = t.get("red_cards", "")
+    played = y.get("possession", 0) + b.get("possession", 0)
+    if "possession" not in y:
+        figures["yellow_possession"] = figures["blue_possession"] = ""
+    else:
+        figures["yellow_possession"] = round(y["possession"] / played, 4) if played > 0 else 0.5
+        figures["blue_possession"] = round(b["possession"] / played, 4) if played > 0 else 0.5
+    return figures
+
+
 def run_driver(spec):
     """Runs the game in this process's network (namespace); writes result.json."""
     game_dir = spec["game_dir"]
@@ -350,13 +394,7 @@ def run_driver(spec):
              "--seed", seed]
     if sync:
         radio += ["--sync", "--sync-clients", "2"]
-    # The referee logs its game at info level (its log is the game's story).
-    referee = [f"{bin_dir}/ubersim_referee", "--lcm-url", lcm_url, "--config-dir", config_dir,
-               "--timeout", "20", "auto", "--game", spec["game"], "--game-length",
-               str(spec["game_length"]), "--events", events_path]
-    referee += ["--sync"] if sync else ["--start"]
-    if spec.get("judging") == "every_step":
-        referee += ["--judge-every-step"]
+    referee, referee_ready = _referee_command(spec, lcm_url, config_dir, events_path)
     wall_start = time.monotonic()
     reason = None
     try:
@@ -366,7 +404,7 @@ def run_driver(spec):
         processes.start("radio", radio)
         if sync:
             processes.start("referee", referee)
-            reason = _wait_for_line(processes, "referee", "automatic referee:", 30)
+            reason = _wait_for_line(processes, "referee", referee_ready, 30)
         if reason is None:
             for team in ("yellow", "blue"):
                 processes.start(team, _team_command(spec, team, config_dir, lcm_url))
@@ -397,8 +435,6 @@ def run_driver(spec):
     if reason is not None:
         result = failed(spec, reason)
     else:
-        y, b = result_line["yellow"], result_line["blue"]
-        played = y["possession"] + b["possession"]
         sim_time = result_line["t"]
         # A team whose client was dropped played part of the game without
         # control: the score is not that of a fair game.
@@ -407,12 +443,7 @@ def run_driver(spec):
             "index": spec["index"], "point": spec["point"], "seed": spec["seed"],
             "parameters": spec["parameters"], "status": "degraded" if losses else "ok",
             "reason": degraded_reason(losses, sim_time) if losses else "",
-            "yellow_goals": y["goals"], "blue_goals": b["goals"],
-            "score_difference": y["goals"] - b["goals"],
-            "yellow_shots": y["shots"], "blue_shots": b["shots"],
-            "yellow_possession": round(y["possession"] / played, 4) if played > 0 else 0.5,
-            "blue_possession": round(b["possession"] / played, 4) if played > 0 else 0.5,
-            "yellow_fouls": y["fouls"], "blue_fouls": b["fouls"],
+            **outcome(result_line),
             "events": sum(by_type.values()),
             "events_by_type": by_type,
             "sim_time": sim_time,

@@ -9,13 +9,18 @@ import subprocess
 
 GAME_COLUMNS = [
     "status", "yellow_goals", "blue_goals", "score_difference", "yellow_shots", "blue_shots",
-    "yellow_possession", "blue_possession", "yellow_fouls", "blue_fouls", "events",
+    "yellow_possession", "blue_possession", "yellow_fouls", "blue_fouls",
+    "yellow_yellow_cards", "blue_yellow_cards", "yellow_red_cards", "blue_red_cards", "events",
     "sim_time", "wall_time", "speed", "yellow_without_control", "blue_without_control",
     "reason", "log_dir",
 ]
 # Columns that depend only on what happened in the game (not on the machine):
 # two runs of the same experiment in sync mode give the same values.
-GAME_OUTCOME_COLUMNS = GAME_COLUMNS[:12]
+GAME_OUTCOME_COLUMNS = GAME_COLUMNS[:GAME_COLUMNS.index("sim_time") + 1]
+
+# The figures summary.csv gives the mean and 95 % CI of, per sweep point.
+SUMMARY_FIGURES = ("score_difference", "yellow_goals", "blue_goals", "yellow_shots", "blue_shots",
+                   "yellow_possession", "yellow_fouls", "blue_fouls", "speed")
 
 # Two-sided 95 % quantiles of Student's t for 1..30 degrees of freedom.
 T95 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179,
@@ -35,7 +40,9 @@ def read_results(out_dir):
 
 
 def mean_and_ci(values):
-    """Mean and half width of its 95 % confidence interval (nan with one value)."""
+    """Mean and half width of its 95 % confidence interval (nan with one value).
+    Values that are "" (a figure the game's referee does not keep) are left out."""
+    values = [v for v in values if v != ""]
     n = len(values)
     if n == 0:
         return math.nan, math.nan
@@ -128,8 +135,7 @@ def summarize(results, sweep_names):
                  "degraded": degraded}
         for name in sweep_names:
             entry[name] = games[0]["parameters"].get(name, "")
-        for key in ("score_difference", "yellow_goals", "blue_goals", "yellow_shots",
-                    "blue_shots", "yellow_possession", "yellow_fouls", "blue_fouls", "speed"):
+        for key in SUMMARY_FIGURES:
             mean, ci = mean_and_ci([g[key] for g in ok])
             entry[key] = mean
             entry[key + "_ci95"] = ci
@@ -149,8 +155,7 @@ def _format(value):
 def write_summary(out_dir, summary, sweep_names):
     columns = ["point", *sweep_names, "games", "failed", "degraded", "yellow_wins", "draws",
                "blue_wins"]
-    for key in ("score_difference", "yellow_goals", "blue_goals", "yellow_shots", "blue_shots",
-                "yellow_possession", "yellow_fouls", "blue_fouls", "speed"):
+    for key in SUMMARY_FIGURES:
         columns += [key, key + "_ci95"]
     with open(os.path.join(out_dir, "summary.csv"), "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=columns)
