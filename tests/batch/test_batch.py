@@ -101,6 +101,8 @@ class BatchTest(unittest.TestCase):
         result = result or self.defaultTestResult()
         failures = len(result.failures) + len(result.errors)
         super().run(result)
+        if not hasattr(self, "folder"):  # skipped: setUp did not run
+            return result
         if len(result.failures) + len(result.errors) == failures:
             shutil.rmtree(self.folder, ignore_errors=True)
         else:
