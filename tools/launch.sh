@@ -282,6 +282,11 @@ physics_args=(--scenario "$scenario" --speed "$speed")
 [ -n "$field_override" ] && physics_args+=(--field "$field_override")
 [ "$lockstep" = 1 ] && physics_args+=(--lockstep)
 [ "$truth_every_step" = 1 ] && physics_args+=(--truth-every-step)
+# As fast as possible physics waits for the vision emulator to keep up; from
+# the first state on, so that no frame of the run's start is lost (docs/vision.md).
+if [ "$vision" = 1 ] && [ "$sync" = 0 ] && [ "$lockstep" = 0 ] && awk -v s="$speed" 'BEGIN { exit !(s == 0) }'; then
+  physics_args+=(--wait-for-vision)
+fi
 radio_args=() demo_args=() bridge_args=()
 if [ "$sync" = 1 ]; then
   # Physics holds at sim time 0 until every demo team has registered, so
@@ -385,10 +390,22 @@ stop_all() {
   done
 }
 
+# A loss is said where the user looks: frames the vision emulator lost
+# (from its exit summary) are named on the terminal.
+report_losses() {
+  local lost
+  lost=$(grep -o 'summary: frames lost [0-9]*' "$log_dir/vision.log" 2>/dev/null | tail -n 1)
+  lost=${lost##* }
+  if [ -n "$lost" ] && [ "$lost" != 0 ]; then
+    echo "launch: vision lost $lost frames: no ground truth reached it for their capture instants (see $log_dir/vision.log)" >&2
+  fi
+}
+
 on_signal() {
   echo "launch: stopping"
   trap '' INT TERM
   stop_all
+  report_losses
   exit $failed
 }
 trap on_signal INT TERM
@@ -416,5 +433,6 @@ while :; do
   done
   trap '' INT TERM
   stop_all
+  report_losses
   exit $failed
 done
