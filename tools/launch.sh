@@ -20,7 +20,8 @@ usage: tools/launch.sh [options]
                        with --scenario: that scenario's line-up on this field
   --profile NAME       vision and radio emulator profile (default cmdragons02); ER-Force's realism
                        presets as none | friendly | rc2021 | realistic (= erforce_NAME)
-  --speed F            1 real time (default), 0.5, 4 ..., 0 as fast as possible
+  --speed F            1 real time (default), 0.5, 4 ..., 0 as fast as possible (never ahead
+                       of what the vision emulator can take: no frame lost; docs/vision.md)
   --lockstep           physics advances only when told (referee step N)
   --sync               sync mode: as fast as the demo teams' answers allow, latency exact and
                        runs reproducible (docs/sync.md); the demo teams answer every frame
