@@ -11,7 +11,7 @@ GAME_COLUMNS = [
     "status", "yellow_goals", "blue_goals", "score_difference", "yellow_shots", "blue_shots",
     "yellow_possession", "blue_possession", "yellow_fouls", "blue_fouls", "events",
     "sim_time", "wall_time", "speed", "yellow_without_control", "blue_without_control",
-    "reason", "log_dir",
+    "vision_frames_lost", "reason", "log_dir",
 ]
 # Columns that depend only on what happened in the game (not on the machine):
 # two runs of the same experiment in sync mode give the same values.
