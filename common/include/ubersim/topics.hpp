@@ -81,8 +81,9 @@ std::string channel_name(const ChannelNames& channels, const Topic<Msg>& topic) 
 
 template <class Msg>
 void subscribe(MessageBus& bus, const ChannelNames& channels, const Topic<Msg>& topic,
-               std::function<void(const typename Topic<Msg>::Message&)> handler) {
-  bus.subscribe<Msg>(channel_name(channels, topic), std::move(handler));
+               std::function<void(const typename Topic<Msg>::Message&)> handler,
+               int queue_capacity = 1000) {
+  bus.subscribe<Msg>(channel_name(channels, topic), std::move(handler), queue_capacity);
 }
 
 template <class Msg>
