@@ -30,6 +30,10 @@ packages=(
   clang-format
   # first-minutes test (tests/e2e/test_first_minutes.sh): a real terminal, and the desktop opener
   tmux xdg-utils
+  # Python module (python/, docs/python.md): pybind11, Python's headers, numpy, pytest;
+  # venv, pip, setuptools and wheel for `pip install --no-build-isolation .`
+  pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
+  python3-venv python3-pip python3-setuptools python3-wheel
 )
 
 missing=()

@@ -21,7 +21,8 @@ usage: tools/launch.sh [options]
                        with --scenario: that scenario's line-up on this field
   --profile NAME       vision and radio emulator profile (default cmdragons02); ER-Force's realism
                        presets as none | friendly | rc2021 | realistic (= erforce_NAME)
-  --speed F            1 real time (default), 0.5, 4 ..., 0 as fast as possible
+  --speed F            1 real time (default), 0.5, 4 ..., 0 as fast as possible (never ahead
+                       of what the vision emulator can take: no frame lost; docs/vision.md)
   --lockstep           physics advances only when told (referee step N)
   --sync               sync mode: as fast as the demo teams' answers allow, latency exact and
                        runs reproducible (docs/sync.md); the demo teams answer every frame
@@ -34,7 +35,12 @@ usage: tools/launch.sh [options]
                        stops when it is over; with --sync, reproducibly.
                        official: the official ssl-game-controller you run referees (its Referee
                        messages on 224.5.23.1:10003); implies --ssl-bridge, which forwards them to
-                       REFEREE and sends no Referee of ubersim's (docs/official_stack.md)
+                       REFEREE and sends no Referee of ubersim's (docs/official_stack.md).
+                       official with --sync: the game controller given by --game-controller
+                       referees at full speed in its CI mode, sim time its clock (ubersim_gc_link,
+                       docs/official_gc.md); everything stops when the game is over
+  --game-controller PATH
+                       the ssl-game-controller binary for --referee official --sync
   --game-length S      the refereed game's length in s of sim time (default: config/referee)
   --truth-every-step   physics publishes SIM_STATE after every step (default: only at the
                        instants its consumers ask for: vision captures and releases, radio
@@ -74,11 +80,11 @@ usage_error() {
 # Options that take a value. A missing one (the end of the line, or the next
 # option in its place) is an error here, not an unbound $2 below.
 options_with_values=" --scenario --field --profile --speed --sync-clients --game-length --cpu --seed
-  --duration --lcm-url --channel-prefix --demo --demo-mode --log --log-dir --viewer-port "
+  --game-controller --duration --lcm-url --channel-prefix --demo --demo-mode --log --log-dir --viewer-port "
 
 scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" truth_every_step=0 seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
-referee=none game_length="" tracked=1
+referee=none game_length="" tracked=1 game_controller=""
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port="" open_viewer=0 ssl_bridge=0
 while [ $# -gt 0 ]; do
   if [[ $options_with_values == *[[:space:]]"$1"[[:space:]]* ]] && { [ $# -lt 2 ] || [[ $2 == --* ]]; }; then
@@ -97,6 +103,7 @@ while [ $# -gt 0 ]; do
       case "${2:-}" in builtin|official) referee=$2; shift 2 ;; *) referee=builtin; shift ;; esac ;;
     --no-tracked) tracked=0; shift ;;
     --game-length) game_length=$2; shift 2 ;;
+    --game-controller) game_controller=$2; shift 2 ;;
     --truth-every-step) truth_every_step=1; shift ;;
     --truth-on-demand) shift ;;  # the default; accepted for older scripts
     --cpu) cpu=$2; shift 2 ;;
@@ -120,8 +127,17 @@ while [ $# -gt 0 ]; do
   esac
 done
 
-# The official game controller reaches ubersim only through the SSL bridge.
-[ "$referee" = official ] && ssl_bridge=1
+# The official game controller in CI mode (--referee official --sync): ubersim_gc_link drives it
+# with sim time as its clock. In real time it reaches ubersim only through the SSL bridge.
+gc_ci=0
+if [ "$referee" = official ] && [ "$sync" = 1 ]; then
+  gc_ci=1
+  [ -n "$game_controller" ] || usage_error "--referee official with --sync needs --game-controller PATH (the game controller runs in its CI mode)"
+  [ -x "$game_controller" ] && [ -f "$game_controller" ] || usage_error "--game-controller: '$game_controller' is not an executable file"
+elif [ -n "$game_controller" ]; then
+  usage_error "--game-controller: only with --referee official --sync (real time: run the game controller yourself, docs/official_stack.md)"
+fi
+[ "$referee" = official ] && [ "$gc_ci" = 0 ] && ssl_bridge=1
 
 # Everything below that can be checked here is checked before anything starts,
 # in the words the programs themselves use ("--speed: -5 is not at least 0").
@@ -215,6 +231,7 @@ fi
 for program in ubersim_physics ubersim_vision ubersim_radio ubersim_demo_team ubersim_logger; do
   [ -x "$bin_dir/$program" ] || { echo "launch: $bin_dir/$program not found: run tools/build.sh" >&2; exit 2; }
 done
+[ "$gc_ci" = 0 ] || [ -x "$bin_dir/ubersim_gc_link" ] || { echo "launch: $bin_dir/ubersim_gc_link not found (is protobuf installed?): run tools/build.sh" >&2; exit 2; }
 [ "$ssl_bridge" = 0 ] || [ -x "$bin_dir/ubersim_ssl_bridge" ] || { echo "launch: $bin_dir/ubersim_ssl_bridge not found (is protobuf installed?): run tools/build.sh" >&2; exit 2; }
 [ "$viewer" = 0 ] || [ -x "$bin_dir/ubersim_viewer" ] || { echo "launch: $bin_dir/ubersim_viewer not found: run tools/build.sh" >&2; exit 2; }
 
@@ -297,6 +314,11 @@ physics_args=(--scenario "$scenario" --speed "$speed")
 [ -n "$field_override" ] && physics_args+=(--field "$field_override")
 [ "$lockstep" = 1 ] && physics_args+=(--lockstep)
 [ "$truth_every_step" = 1 ] && physics_args+=(--truth-every-step)
+# As fast as possible physics waits for the vision emulator to keep up; from
+# the first state on, so that no frame of the run's start is lost (docs/vision.md).
+if [ "$vision" = 1 ] && [ "$sync" = 0 ] && [ "$lockstep" = 0 ] && awk -v s="$speed" 'BEGIN { exit !(s == 0) }'; then
+  physics_args+=(--wait-for-vision)
+fi
 radio_args=() demo_args=() bridge_args=()
 if [ "$sync" = 1 ]; then
   # Physics holds at sim time 0 until every demo team has registered, so
@@ -316,21 +338,47 @@ fi
 referee_args=(auto --events "$log_dir/events.jsonl")
 [ -n "$game_length" ] && referee_args+=(--game-length "$game_length")
 [ "$tracked" = 1 ] && bridge_args+=(--tracked)
-[ "$referee" = official ] && bridge_args+=(--official-referee)
+[ "$referee" = official ] && [ "$gc_ci" = 0 ] && bridge_args+=(--official-referee)
 if [ "$referee" = builtin ] && [ "$sync" = 1 ]; then
   # Physics steps only past states the referee judged (docs/autoref.md).
   physics_args+=(--sync-referee)
   referee_args+=(--sync)
 fi
+if [ "$gc_ci" = 1 ]; then
+  # The link answers every state physics stops at, as the built-in referee does.
+  physics_args+=(--sync-referee)
+  referee_args=(--game-controller "$game_controller" --gc-dir "$log_dir/gc" --events "$log_dir/events.jsonl")
+  [ -n "$game_length" ] && referee_args+=(--game-length "$game_length")
+fi
 start physics "${placement[@]}" "$bin_dir/ubersim_physics" "${common[@]}" "${physics_args[@]}" "${seed_args[@]}"
 [ "$vision" = 1 ] && start vision "${placement[@]}" "$bin_dir/ubersim_vision" "${common[@]}" --profile "$profile" "${seed_args[@]}"
 [ "$radio" = 1 ] && start radio "${placement[@]}" "$bin_dir/ubersim_radio" "${common[@]}" --profile "$profile" "${seed_args[@]}" "${radio_args[@]}"
+# Sync mode: the radio emulator drops a client that stops answering, and logs
+# each drop and rejoin on one line (docs/sync.md, "A dropped client"): shown
+# here as it happens, by a tail of its log (--pid: it ends with this script)
+# through a filter (ended and waited for before the summary at the end).
+sync_watch="" sync_filter=""
+if [ "$sync" = 1 ] && [ "$radio" = 1 ]; then
+  exec {sync_fd}> >(sed -un 's/^.*\(sync client \(dropped\|rejoined\): .*\)$/launch: radio: \1/p' >&2)
+  sync_filter=$!
+  tail -n +1 -s 0.2 --pid=$$ -F "$log_dir/radio.log" >&"$sync_fd" 2>/dev/null &
+  sync_watch=$!
+fi
 if [ "$referee" = builtin ]; then
   start referee "$bin_dir/ubersim_referee" --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} "${referee_args[@]}"
   # In sync mode the referee must hear the first state: the teams (whose
   # registration lets physics start) come once it listens (at most 20 s).
   for _ in $(seq 200); do
     grep -q "automatic referee:" "$log_dir/referee.log" 2>/dev/null && break
+    kill -0 "${pids[-1]}" 2>/dev/null || break  # it failed: the wait below reports it
+    sleep 0.1
+  done
+fi
+if [ "$gc_ci" = 1 ]; then
+  start referee "$bin_dir/ubersim_gc_link" --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} "${referee_args[@]}"
+  # As the built-in referee: the teams come once the link listens (at most 20 s).
+  for _ in $(seq 200); do
+    grep -q "official game controller on" "$log_dir/referee.log" 2>/dev/null && break
     kill -0 "${pids[-1]}" 2>/dev/null || break  # it failed: the wait below reports it
     sleep 0.1
   done
@@ -360,7 +408,8 @@ physics_pid=${pids[1]:-}
 echo "channels: ${prefix}VISION ${prefix}VISION_GEOMETRY ${prefix}RADIO_YELLOW ${prefix}RADIO_BLUE ${prefix}RADIO_FEEDBACK_YELLOW ${prefix}RADIO_FEEDBACK_BLUE ${prefix}SIM_STATE ${prefix}SIM_CONTROL"
 echo "watch:    tools/lcm-spy.sh -l '$lcm_url'      control: build/bin/ubersim_referee --help"
 [ "$referee" = builtin ] && echo "referee:  automatic, on ${prefix}REFEREE; event log $log_dir/events.jsonl"
-[ "$referee" = official ] && echo "referee:  the official game controller's Referee on 224.5.23.1:10003, forwarded to ${prefix}REFEREE"
+[ "$gc_ci" = 1 ] && echo "referee:  the official game controller in CI mode (sim time), on ${prefix}REFEREE; its log $log_dir/gc/gc.log; event log $log_dir/events.jsonl"
+[ "$referee" = official ] && [ "$gc_ci" = 0 ] && echo "referee:  the official game controller's Referee on 224.5.23.1:10003, forwarded to ${prefix}REFEREE"
 if [ "$ssl_bridge" = 1 ]; then
   tracked_note=", tracked frames 224.5.23.2:10010"
   [ "$tracked" = 1 ] || tracked_note=""
@@ -413,6 +462,39 @@ stop_all() {
       *) echo "launch: ${names[$i]} exited with status $status" >&2; why_failed "${names[$i]}" "$status"; failed=1 ;;
     esac
   done
+  report_sync_clients
+}
+
+# The end of a sync run: the radio emulator's verdict on its clients, the
+# last line of its log that says one (docs/sync.md, "A dropped client").
+report_sync_clients() {
+  [ -n "$sync_watch" ] || return 0
+  kill "$sync_watch" 2>/dev/null
+  wait "$sync_watch" 2>/dev/null
+  exec {sync_fd}>&-
+  wait "$sync_filter" 2>/dev/null
+  sync_watch=""
+  local log="$log_dir/radio.log" summary drops
+  summary=$(grep -o 'sync: degraded run: .*' "$log" | tail -n 1)
+  drops=$(grep -c 'sync client dropped: ' "$log")
+  if [ -n "$summary" ]; then
+    echo "launch: $summary" >&2
+  elif [ "$drops" != 0 ]; then
+    echo "launch: sync: degraded run: $drops sync client drop(s), no summary from the radio emulator (see $log)" >&2
+  else
+    echo "launch: sync: no client was dropped"
+  fi
+}
+
+# A loss is said where the user looks: frames the vision emulator lost
+# (from its exit summary) are named on the terminal.
+report_losses() {
+  local lost
+  lost=$(grep -o 'summary: frames lost [0-9]*' "$log_dir/vision.log" 2>/dev/null | tail -n 1)
+  lost=${lost##* }
+  if [ -n "$lost" ] && [ "$lost" != 0 ]; then
+    echo "launch: vision lost $lost frames: no ground truth reached it for their capture instants (see $log_dir/vision.log)" >&2
+  fi
 }
 
 # on_signal NAME STATUS: the user stopped the set. Exit STATUS (128 + the
@@ -420,6 +502,7 @@ stop_all() {
 on_signal() {
   trap '' INT TERM
   stop_all
+  report_losses
   echo "launch: stopped ($1)"
   [ "$failed" = 0 ] || exit 1
   exit "$2"
@@ -450,5 +533,6 @@ while :; do
   done
   trap '' INT TERM
   stop_all
+  report_losses
   exit $failed
 done

@@ -8,9 +8,10 @@
 
 namespace ubersim {
 
-RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& name) {
-  RobotTypeConfig r;
-  r.name = name;
+namespace {
+
+// DRIVE and DRIVE_MODEL.
+void read_drive(const ConfigFile& config, RobotTypeConfig& r) {
   const std::string drive = config.string("DRIVE");
   if (drive == "omni")
     r.drive = DriveKind::Omni;
@@ -25,7 +26,10 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
     r.model = DriveModel::Planar;
   else
     config.fail("DRIVE_MODEL", "expected 'jointed' or 'planar', got '" + model + "'");
+}
 
+// The chassis: mass, size, and where the kicker sits in its front.
+void read_body(const ConfigFile& config, RobotTypeConfig& r) {
   r.mass = config.real_in("MASS", 0.01, 100.0);
   r.moment_of_inertia = config.real_in("MOMENT_OF_INERTIA", 1e-6, 100.0);
   r.radius = config.real_in("RADIUS", 0.01, 1.0);
@@ -44,7 +48,10 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
                 "a kicker set back from FRONT_DISTANCE needs MOUTH_HEIGHT (m, floor to the top of "
                 "the opening it sits in)");
   }
+}
 
+// Where the wheels are and which way each pushes.
+void read_wheel_layout(const ConfigFile& config, RobotTypeConfig& r) {
   const auto angles = config.reals("WHEEL_ANGLES_DEG");
   const std::size_t expected_wheels = r.drive == DriveKind::Differential ? 2 : 0;
   if (expected_wheels != 0 && angles.size() != expected_wheels) {
@@ -83,6 +90,10 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
     }
     r.wheels.push_back(w);
   }
+}
+
+// Wheels, motors and (differential drive) casters.
+void read_wheels_and_motors(const ConfigFile& config, RobotTypeConfig& r) {
   r.wheel_radius = config.real_in("WHEEL_RADIUS", 0.001, 0.5);
   r.wheel_width = config.real_in("WHEEL_WIDTH", 0.001, 0.5);
   r.wheel_mass = config.real_in("WHEEL_MASS", 0.001, 10.0);
@@ -105,7 +116,10 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
     }
     r.caster_radius = config.real_in("CASTER_RADIUS", 0.001, r.height / 2);
   }
+}
 
+// What the robot's on-board controller allows.
+void read_motion_limits(const ConfigFile& config, RobotTypeConfig& r) {
   r.max_speed = config.real_in("MAX_SPEED", 0.0, 20.0);
   r.max_angular_speed = config.real_in("MAX_ANGULAR_SPEED", 0.0, 200.0);
   r.max_acceleration = config.real_in("MAX_ACCELERATION", 0.0, 100.0);
@@ -118,7 +132,9 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
       config.has("MAX_ANGULAR_BRAKE_ACCELERATION")
           ? config.real_in("MAX_ANGULAR_BRAKE_ACCELERATION", 0.0, 1000.0)
           : r.max_angular_acceleration;
+}
 
+void read_dribbler(const ConfigFile& config, RobotTypeConfig& r) {
   r.dribbler_max_speed = config.real_in("DRIBBLER_MAX_SPEED", 0.0, 10000.0);
   r.dribbler_roller_radius = config.real_in("DRIBBLER_ROLLER_RADIUS", 0.0, 0.1);
   r.dribbler_height = config.real_in("DRIBBLER_HEIGHT", 0.0, r.height);
@@ -130,7 +146,10 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
     if (r.dribbler_max_torque <= 0) config.fail("DRIBBLER_MAX_TORQUE", "a dribbler needs torque");
     if (r.dribbler_width <= 0) config.fail("DRIBBLER_WIDTH", "a dribbler needs a width");
   }
+}
 
+// The kicker, and that kicker and dribbler fit the flat front.
+void read_kicker(const ConfigFile& config, RobotTypeConfig& r) {
   r.kick_max_speed = config.real_in("KICK_MAX_SPEED", 0.0, 20.0);
   r.chip_max_speed = config.real_in("CHIP_MAX_SPEED", 0.0, 20.0);
   r.chip_default_angle = config.real_in("CHIP_DEFAULT_ANGLE_DEG", 0.0, 89.0) * kDegToRad;
@@ -152,7 +171,9 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
                                       std::to_string(2 * front_half_width) +
                                       " m at FRONT_DISTANCE)");
   }
+}
 
+void check_jointed_masses(const ConfigFile& config, RobotTypeConfig& r) {
   if (r.model == DriveModel::Jointed) {
     // The jointed model carries the wheels as bodies of their own: the chassis
     // gets what is left of the robot's mass and inertia.
@@ -170,7 +191,22 @@ RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& n
                                            std::to_string(wheels_inertia) + " kg m^2)");
     }
   }
+}
 
+}  // namespace
+
+RobotTypeConfig load_robot_config(const ConfigFile& config, const std::string& name) {
+  RobotTypeConfig r;
+  r.name = name;
+  // Always in this order: of several bad keys, the first met here is reported.
+  read_drive(config, r);
+  read_body(config, r);
+  read_wheel_layout(config, r);
+  read_wheels_and_motors(config, r);
+  read_motion_limits(config, r);
+  read_dribbler(config, r);
+  read_kicker(config, r);
+  check_jointed_masses(config, r);
   config.require_all_used();
   return r;
 }

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "ubersim/vision_backpressure.hpp"
+
 namespace ubersim::physics {
 namespace {
 
@@ -65,6 +67,42 @@ void PhysicsCore::on_sync_horizon(const sync_horizon_t& h) {
   // Until its clients registered, the radio holds the start.
   radio_ready_ = h.waiting_for != "registration";
   horizon_bound_ = h.waiting_for.empty() ? "?" : h.waiting_for;
+}
+
+void PhysicsCore::on_vision_schedule(const vision_schedule_t& schedule, Clock::time_point wall) {
+  vision_heard_ = true;
+  vision_wall_ = wall;
+  vision_silent_ = false;
+  // Step -1: listening, no state seen yet. The latest counts, not the
+  // greatest: after a reset the vision's time starts again from 0 too.
+  vision_time_ = schedule.step < 0 || !std::isfinite(schedule.t_state)
+                     ? -std::numeric_limits<double>::infinity()
+                     : schedule.t_state;
+}
+
+bool PhysicsCore::waits_for_vision(Clock::time_point wall) {
+  if (sync_ || paused_ || !vision_heard_ || !pacer_.as_fast_as_possible()) return false;
+  if (wall - vision_wall_ > kVisionSilence) {
+    if (!vision_silent_) {
+      vision_silent_ = true;
+      ++vision_silences_;
+      spdlog::warn(
+          "the vision emulator has said nothing for {} s: physics runs on without waiting for it "
+          "(its frames may be lost)",
+          std::chrono::duration_cast<std::chrono::seconds>(kVisionSilence).count());
+    }
+    return false;
+  }
+  return world_.time() + world_.dt() * 1e-6 >= vision_time_ + kVisionLead;
+}
+
+const PhysicsCore::Output& PhysicsCore::state_for_vision(bool again) {
+  clear_output();
+  // The vision acknowledges only states it gets: the one physics waits at
+  // goes out if no demand sent it. An extra state changes no frame (a capture
+  // or release is served by the first state at or after its instant).
+  if (again || !(last_state_time_ == world_.time())) add_state();
+  return out_;
 }
 
 void PhysicsCore::on_referee(const referee_t& r) {
@@ -164,6 +202,7 @@ void PhysicsCore::add_state() {
   state.paused = paused_;
   state.speed_factor = sync_ ? 0.0 : pacer_.speed();
   ++states_published_;
+  last_state_time_ = world_.time();
   demand_.published(world_.time());
 }
 
@@ -182,6 +221,53 @@ void PhysicsCore::acknowledge(const sim_control_t& request, bool ok, const std::
   } else {
     log_.warn("control:" + request.sender, std::string(action_name(request.action)) + " from '" +
                                                request.sender + "' refused: " + message);
+  }
+}
+
+void PhysicsCore::on_step_request(const sim_control_t& request) {
+  const std::int64_t limit = world_.setup().physics.max_steps_per_request;
+  if (request.step_count < 1 || request.step_count > limit) {
+    acknowledge(request, false,
+                "step_count must be 1.." + std::to_string(limit) + ", got " +
+                    std::to_string(request.step_count));
+    return;
+  }
+  for (int i = 0; i < request.step_count; ++i) step_once(true);
+  pacer_.restart(Clock::now(), world_.step_index());
+  acknowledge(request, true, "stepped " + std::to_string(request.step_count));
+}
+
+void PhysicsCore::on_speed_request(const sim_control_t& request, Clock::time_point now) {
+  if (!std::isfinite(request.speed_factor)) {
+    acknowledge(request, false, "speed_factor must be finite");
+    return;
+  }
+  const double speed = request.speed_factor < 0 ? -1.0 : request.speed_factor;
+  pacer_.set_speed(speed, now, world_.step_index());
+  sync_ = false;
+  acknowledge(request, true,
+              speed < 0    ? std::string("lockstep")
+              : speed == 0 ? std::string("as fast as possible")
+                           : fmt::format("{:g} x real time", speed));
+}
+
+void PhysicsCore::on_define_robot_type(const sim_control_t& request) {
+  try {
+    world_.define_robot_type(request.robot_type_name, request.robot_type_config);
+    acknowledge(request, true, "robot type " + request.robot_type_name + " defined");
+  } catch (const std::exception& error) {
+    acknowledge(request, false, error.what());
+  }
+}
+
+void PhysicsCore::on_set_field(const sim_control_t& request) {
+  try {
+    const std::string done = world_.change_field(request.field_config);
+    add_state();
+    out_.geometry = world_.geometry();
+    acknowledge(request, true, done);
+  } catch (const std::exception& error) {
+    acknowledge(request, false, error.what());
   }
 }
 
@@ -216,33 +302,12 @@ const PhysicsCore::Output& PhysicsCore::on_control(const sim_control_t& request,
       add_state();
       acknowledge(request, true, "reset to scenario " + options_.scenario);
       return out_;
-    case sim_control_t::STEP: {
-      const std::int64_t limit = world_.setup().physics.max_steps_per_request;
-      if (request.step_count < 1 || request.step_count > limit) {
-        acknowledge(request, false,
-                    "step_count must be 1.." + std::to_string(limit) + ", got " +
-                        std::to_string(request.step_count));
-        return out_;
-      }
-      for (int i = 0; i < request.step_count; ++i) step_once(true);
-      pacer_.restart(Clock::now(), world_.step_index());
-      acknowledge(request, true, "stepped " + std::to_string(request.step_count));
+    case sim_control_t::STEP:
+      on_step_request(request);
       return out_;
-    }
-    case sim_control_t::SET_SPEED: {
-      if (!std::isfinite(request.speed_factor)) {
-        acknowledge(request, false, "speed_factor must be finite");
-        return out_;
-      }
-      const double speed = request.speed_factor < 0 ? -1.0 : request.speed_factor;
-      pacer_.set_speed(speed, now, world_.step_index());
-      sync_ = false;
-      acknowledge(request, true,
-                  speed < 0    ? std::string("lockstep")
-                  : speed == 0 ? std::string("as fast as possible")
-                               : fmt::format("{:g} x real time", speed));
+    case sim_control_t::SET_SPEED:
+      on_speed_request(request, now);
       return out_;
-    }
     case sim_control_t::SET_SYNC:
       sync_ = true;
       acknowledge(request, true, "sync");
@@ -262,22 +327,10 @@ const PhysicsCore::Output& PhysicsCore::on_control(const sim_control_t& request,
                       "; other warnings (rejected contents, pacing): " + log_.counts());
       return out_;
     case sim_control_t::DEFINE_ROBOT_TYPE:
-      try {
-        world_.define_robot_type(request.robot_type_name, request.robot_type_config);
-        acknowledge(request, true, "robot type " + request.robot_type_name + " defined");
-      } catch (const std::exception& error) {
-        acknowledge(request, false, error.what());
-      }
+      on_define_robot_type(request);
       return out_;
     case sim_control_t::SET_FIELD:
-      try {
-        const std::string done = world_.change_field(request.field_config);
-        add_state();
-        out_.geometry = world_.geometry();
-        acknowledge(request, true, done);
-      } catch (const std::exception& error) {
-        acknowledge(request, false, error.what());
-      }
+      on_set_field(request);
       return out_;
     case sim_control_t::SET_DRIBBLING:
       world_.set_perfect_dribbling(request.perfect_dribbling);

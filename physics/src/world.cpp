@@ -78,8 +78,11 @@ void World::build() {
   contact_handler_.reset();
   contacts_.reset();
   space_.reset();
+  if (!threading_) threading_.reset(dThreadingAllocateSelfThreadedImplementation());
   world_.reset(dWorldCreate());
   dWorldID w = world_.get();
+  dWorldSetStepThreadingImplementation(w, dThreadingImplementationGetFunctions(threading_.get()),
+                                       threading_.get());
   dWorldSetGravity(w, 0, 0, -p.gravity);
   dWorldSetERP(w, p.erp);
   dWorldSetCFM(w, p.cfm);

@@ -36,71 +36,144 @@ void World::move_ball_out_of_robots(std::string& notes) {
   }
 }
 
-PlaceOutcome World::place(const sim_control_t& request, bool remove_all_first) {
-  PlaceOutcome outcome;
-  // Check everything first: a bad request changes nothing.
+namespace {
+
+// What is wrong with the ball's part of a request; empty: nothing.
+std::string check_ball_placement(const sim_control_t& request) {
+  if (!request.has_ball) return "";
+  for (double v : {request.ball.position[0], request.ball.position[1], request.ball.position[2],
+                   request.ball.linear_velocity[0], request.ball.linear_velocity[1],
+                   request.ball.linear_velocity[2]}) {
+    if (!std::isfinite(v)) return "non-finite ball placement";
+  }
+  if (request.ball.mode < ball_placement_t::TELEPORT ||
+      request.ball.mode > ball_placement_t::END_FORCE) {
+    return "unknown ball placement mode";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string World::check_robot_placement(const robot_placement_t& p, bool remove_all_first,
+                                         std::shared_ptr<const RobotTypeConfig>& type) {
+  const Team team = static_cast<Team>(p.team);
+  if (p.mode != ball_placement_t::TELEPORT && robot(team, p.robot_id) == nullptr) {
+    return robot_name(team, p.robot_id) + " is not on the field: it cannot move by force";
+  }
+  if (p.mode < ball_placement_t::TELEPORT || p.mode > ball_placement_t::END_FORCE) {
+    return robot_name(team, p.robot_id) + ": unknown placement mode";
+  }
+  for (double v : {p.x, p.y, p.orientation, p.vx, p.vy, p.omega}) {
+    if (!std::isfinite(v)) return robot_name(team, p.robot_id) + ": non-finite placement";
+  }
+  if (!p.robot_type.empty()) {
+    try {
+      type = setup_.robot_types(p.robot_type);
+    } catch (const std::exception& e) {
+      return robot_name(team, p.robot_id) + ": robot type '" + p.robot_type + "': " + e.what();
+    }
+  } else if (remove_all_first || robot(team, p.robot_id) == nullptr) {
+    return robot_name(team, p.robot_id) + " is new: it needs a robot_type";
+  }
+  return "";
+}
+
+std::string World::check_placement(const sim_control_t& request, bool remove_all_first,
+                                   std::vector<std::shared_ptr<const RobotTypeConfig>>& types) {
   std::set<std::pair<int, int>> seen;
-  std::vector<std::shared_ptr<const RobotTypeConfig>> types(request.robots.size());
   for (std::size_t i = 0; i < request.robots.size(); ++i) {
     const robot_placement_t& p = request.robots[i];
     if (p.team != 0 && p.team != 1) {
-      outcome.message = "robot " + std::to_string(i) + ": unknown team " + std::to_string(p.team);
-      return outcome;
+      return "robot " + std::to_string(i) + ": unknown team " + std::to_string(p.team);
     }
     const Team team = static_cast<Team>(p.team);
     if (p.robot_id < 0 || p.robot_id > kMaxRobotId) {
-      outcome.message =
-          "robot id " + std::to_string(p.robot_id) + " outside 0.." + std::to_string(kMaxRobotId);
-      return outcome;
+      return "robot id " + std::to_string(p.robot_id) + " outside 0.." +
+             std::to_string(kMaxRobotId);
     }
     if (!seen.insert({p.team, p.robot_id}).second) {
-      outcome.message = robot_name(team, p.robot_id) + " placed twice in one request";
-      return outcome;
+      return robot_name(team, p.robot_id) + " placed twice in one request";
     }
     if (!p.present) continue;
-    if (p.mode != ball_placement_t::TELEPORT && robot(team, p.robot_id) == nullptr) {
-      outcome.message =
-          robot_name(team, p.robot_id) + " is not on the field: it cannot move by force";
-      return outcome;
-    }
-    if (p.mode < ball_placement_t::TELEPORT || p.mode > ball_placement_t::END_FORCE) {
-      outcome.message = robot_name(team, p.robot_id) + ": unknown placement mode";
-      return outcome;
-    }
-    for (double v : {p.x, p.y, p.orientation, p.vx, p.vy, p.omega}) {
-      if (!std::isfinite(v)) {
-        outcome.message = robot_name(team, p.robot_id) + ": non-finite placement";
-        return outcome;
-      }
-    }
-    if (!p.robot_type.empty()) {
-      try {
-        types[i] = setup_.robot_types(p.robot_type);
-      } catch (const std::exception& e) {
-        outcome.message =
-            robot_name(team, p.robot_id) + ": robot type '" + p.robot_type + "': " + e.what();
-        return outcome;
-      }
-    } else if (remove_all_first || robot(team, p.robot_id) == nullptr) {
-      outcome.message = robot_name(team, p.robot_id) + " is new: it needs a robot_type";
-      return outcome;
-    }
+    std::string problem = check_robot_placement(p, remove_all_first, types[i]);
+    if (!problem.empty()) return problem;
   }
-  if (request.has_ball) {
-    for (double v : {request.ball.position[0], request.ball.position[1], request.ball.position[2],
-                     request.ball.linear_velocity[0], request.ball.linear_velocity[1],
-                     request.ball.linear_velocity[2]}) {
-      if (!std::isfinite(v)) {
-        outcome.message = "non-finite ball placement";
-        return outcome;
-      }
-    }
-    if (request.ball.mode < ball_placement_t::TELEPORT ||
-        request.ball.mode > ball_placement_t::END_FORCE) {
-      outcome.message = "unknown ball placement mode";
-      return outcome;
-    }
+  return check_ball_placement(request);
+}
+
+bool World::apply_robot_placement(const robot_placement_t& p,
+                                  std::shared_ptr<const RobotTypeConfig> type, std::string& notes) {
+  const Team team = static_cast<Team>(p.team);
+  const std::pair<int, int> key{static_cast<int>(team), p.robot_id};
+  if (p.mode == ball_placement_t::BY_FORCE) {
+    robot_force_[key] = ForceTarget{p.x, p.y, p.orientation};
+    notes += robot_name(team, p.robot_id) + " moves by force; ";
+    return false;
   }
+  robot_force_.erase(key);
+  if (p.mode == ball_placement_t::END_FORCE) return false;
+  Robot* existing = robot(team, p.robot_id);
+  if (!type) type = existing->type_ptr();
+  // Inside the walls, and no faster than the robot can go.
+  const double limit_x = setup_.field.half_length_to_wall() - type->radius;
+  const double limit_y = setup_.field.half_width_to_wall() - type->radius;
+  PlanarState s;
+  s.x = std::clamp(p.x, -limit_x, limit_x);
+  s.y = std::clamp(p.y, -limit_y, limit_y);
+  if (s.x != p.x || s.y != p.y) notes += robot_name(team, p.robot_id) + " kept inside the walls; ";
+  s.heading = p.orientation;
+  const double speed = std::hypot(p.vx, p.vy);
+  const double scale = speed > type->max_speed ? type->max_speed / speed : 1.0;
+  s.vx = p.vx * scale;
+  s.vy = p.vy * scale;
+  s.omega = std::clamp(p.omega, -type->max_angular_speed, type->max_angular_speed);
+  if (scale != 1.0 || s.omega != p.omega) {
+    notes += robot_name(team, p.robot_id) + " velocity clamped to its limits; ";
+  }
+  if (existing != nullptr && existing->type_ptr() == type) {
+    existing->place(s);
+    existing->remember_good_state();
+  } else {
+    add_robot(team, p.robot_id, type->name, s);
+  }
+  return true;
+}
+
+void World::apply_ball_placement(const sim_control_t& request, std::string& notes) {
+  if (request.ball.mode != ball_placement_t::TELEPORT) {
+    if (request.ball.mode == ball_placement_t::BY_FORCE) {
+      ball_force_ = ForceTarget{request.ball.position[0], request.ball.position[1], 0};
+      notes += "ball moves by force; ";
+    } else {
+      ball_force_.reset();
+    }
+    return;
+  }
+  ball_force_.reset();
+  const double r = setup_.ball.radius;
+  const double limit_x = setup_.field.half_length_to_wall() - r;
+  const double limit_y = setup_.field.half_width_to_wall() - r;
+  const double x = std::clamp(request.ball.position[0], -limit_x, limit_x);
+  const double y = std::clamp(request.ball.position[1], -limit_y, limit_y);
+  if (x != request.ball.position[0] || y != request.ball.position[1]) {
+    notes += "ball kept inside the walls; ";
+  }
+  place_ball(x, y, request.ball.position[2], request.ball.linear_velocity[0],
+             request.ball.linear_velocity[1], request.ball.linear_velocity[2]);
+  if (request.ball.rolling) {
+    // Rolling without slipping on the floor: v = w x (r z).
+    dBodySetAngularVel(ball_->body(), -request.ball.linear_velocity[1] / r,
+                       request.ball.linear_velocity[0] / r, 0);
+  }
+}
+
+PlaceOutcome World::place(const sim_control_t& request, bool remove_all_first) {
+  PlaceOutcome outcome;
+  // Check everything first: a bad request changes nothing.
+  std::vector<std::shared_ptr<const RobotTypeConfig>> types(request.robots.size());
+  outcome.message = check_placement(request, remove_all_first, types);
+  if (!outcome.message.empty()) return outcome;
 
   std::string notes;
   int placed = 0;
@@ -111,71 +184,13 @@ PlaceOutcome World::place(const sim_control_t& request, bool remove_all_first) {
   }
   for (std::size_t i = 0; i < request.robots.size(); ++i) {
     const robot_placement_t& p = request.robots[i];
-    const Team team = static_cast<Team>(p.team);
     if (!p.present) {
-      if (remove_robot(team, p.robot_id)) ++removed;
+      if (remove_robot(static_cast<Team>(p.team), p.robot_id)) ++removed;
       continue;
     }
-    const std::pair<int, int> key{static_cast<int>(team), p.robot_id};
-    if (p.mode == ball_placement_t::BY_FORCE) {
-      robot_force_[key] = ForceTarget{p.x, p.y, p.orientation};
-      notes += robot_name(team, p.robot_id) + " moves by force; ";
-      continue;
-    }
-    robot_force_.erase(key);
-    if (p.mode == ball_placement_t::END_FORCE) continue;
-    Robot* existing = robot(team, p.robot_id);
-    const auto type = types[i] ? types[i] : existing->type_ptr();
-    // Inside the walls, and no faster than the robot can go.
-    const double limit_x = setup_.field.half_length_to_wall() - type->radius;
-    const double limit_y = setup_.field.half_width_to_wall() - type->radius;
-    PlanarState s;
-    s.x = std::clamp(p.x, -limit_x, limit_x);
-    s.y = std::clamp(p.y, -limit_y, limit_y);
-    if (s.x != p.x || s.y != p.y)
-      notes += robot_name(team, p.robot_id) + " kept inside the walls; ";
-    s.heading = p.orientation;
-    const double speed = std::hypot(p.vx, p.vy);
-    const double scale = speed > type->max_speed ? type->max_speed / speed : 1.0;
-    s.vx = p.vx * scale;
-    s.vy = p.vy * scale;
-    s.omega = std::clamp(p.omega, -type->max_angular_speed, type->max_angular_speed);
-    if (scale != 1.0 || s.omega != p.omega) {
-      notes += robot_name(team, p.robot_id) + " velocity clamped to its limits; ";
-    }
-    if (existing != nullptr && existing->type_ptr() == type) {
-      existing->place(s);
-      existing->remember_good_state();
-    } else {
-      add_robot(team, p.robot_id, type->name, s);
-    }
-    ++placed;
+    if (apply_robot_placement(p, types[i], notes)) ++placed;
   }
-  if (request.has_ball && request.ball.mode != ball_placement_t::TELEPORT) {
-    if (request.ball.mode == ball_placement_t::BY_FORCE) {
-      ball_force_ = ForceTarget{request.ball.position[0], request.ball.position[1], 0};
-      notes += "ball moves by force; ";
-    } else {
-      ball_force_.reset();
-    }
-  } else if (request.has_ball) {
-    ball_force_.reset();
-    const double r = setup_.ball.radius;
-    const double limit_x = setup_.field.half_length_to_wall() - r;
-    const double limit_y = setup_.field.half_width_to_wall() - r;
-    const double x = std::clamp(request.ball.position[0], -limit_x, limit_x);
-    const double y = std::clamp(request.ball.position[1], -limit_y, limit_y);
-    if (x != request.ball.position[0] || y != request.ball.position[1]) {
-      notes += "ball kept inside the walls; ";
-    }
-    place_ball(x, y, request.ball.position[2], request.ball.linear_velocity[0],
-               request.ball.linear_velocity[1], request.ball.linear_velocity[2]);
-    if (request.ball.rolling) {
-      // Rolling without slipping on the floor: v = w x (r z).
-      dBodySetAngularVel(ball_->body(), -request.ball.linear_velocity[1] / r,
-                         request.ball.linear_velocity[0] / r, 0);
-    }
-  }
+  if (request.has_ball) apply_ball_placement(request, notes);
   // Wherever robots and ball ended up, the ball is never left inside a robot.
   move_ball_out_of_robots(notes);
   std::ostringstream message;

@@ -1,5 +1,7 @@
 #include "ubersim/radio/sync_coordinator.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <ubersim/team_t.hpp>
 
@@ -10,7 +12,29 @@ double seconds(SyncCoordinator::Clock::duration d) {
   return std::chrono::duration<double>(d).count();
 }
 
+// A client's name as the log lines that tools read can carry it: it came off
+// the wire, so no line break, no quote, at most 64 characters.
+std::string printable(const std::string& name) {
+  std::string out = name.substr(0, 64);
+  for (char& c : out) {
+    if (c < 0x20 || c > 0x7e || c == '\'' || c == '\\') c = '?';
+  }
+  return out;
+}
+
 }  // namespace
+
+double TeamControl::without_control_until(double now) const {
+  return without_control + (dropped_at >= 0 ? std::max(0.0, now - dropped_at) : 0.0);
+}
+
+std::string Drop::describe() const {
+  return fmt::format(
+      "sync client dropped: team {}, client '{}', at sim time {:.3f} s: it did not answer the "
+      "frame captured at {:.3f} s within {:g} s of wall time; the {} team is without control "
+      "until a client registers for it again",
+      team_name(team), client, t_sim, t_capture, timeout, team_name(team));
+}
 
 std::string SyncCoordinator::on_client(const sync_client_t& message) {
   if (message.team != team_t::YELLOW && message.team != team_t::BLUE) return "";
@@ -29,11 +53,26 @@ std::string SyncCoordinator::on_client(const sync_client_t& message) {
     return "sync client '" + message.name + "' refused: " + team_name(team) + " already has '" +
            c.stats.name + "' (one client per team)";
   }
+  TeamControl& control = control_[static_cast<int>(team)];
+  std::string rejoined;
+  if (control.dropped_at >= 0) {
+    // Control is back from the next frame on: its answers count from now.
+    const double now = std::max(last_schedule_time_, control.dropped_at);
+    const double lost = now - control.dropped_at;
+    control.without_control += lost;
+    control.dropped_at = -1;
+    rejoined = fmt::format(
+        "sync client rejoined: team {}, client '{}', at sim time {:.3f} s, after {:.3f} s of sim "
+        "time without control",
+        team_name(team), printable(message.name), now, lost);
+  }
+  control.client = printable(message.name);
   c.present = true;
   c.stats.name = message.name;
   c.stats.answers = c.stats.frames_skipped = 0;
   c.stats.answer_wall_seconds = c.stats.slowest_answer = 0;
   c.owed.clear();  // it answers frames published from now on
+  if (!rejoined.empty()) return rejoined;
   return "sync client '" + message.name + "' registered for " + team_name(team);
 }
 
@@ -98,22 +137,60 @@ SyncCoordinator::Answer SyncCoordinator::on_answer(Team team, double t_sent,
   return answer;
 }
 
-std::vector<std::string> SyncCoordinator::expire(Clock::time_point now) {
-  std::vector<std::string> dropped;
+std::vector<Drop> SyncCoordinator::expire(Clock::time_point now) {
+  std::vector<Drop> dropped;
   for (Team team : kTeams) {
     Client& c = client(team);
     if (!c.present || c.owed.empty()) continue;
-    const double waited = seconds(now - c.owed.front().wall_published);
-    if (waited <= timeout_) continue;
+    const Outstanding& oldest = c.owed.front();
+    if (seconds(now - oldest.wall_published) <= timeout_) continue;
     ++stats_.timeouts;
-    dropped.push_back("'" + c.stats.name + "' (" + team_name(team) + ") did not answer the frame " +
-                      "captured at " + std::to_string(c.owed.front().t_capture) + " s within " +
-                      std::to_string(timeout_) + " s of wall time");
+    TeamControl& control = control_[static_cast<int>(team)];
+    ++control.drops;
+    // Its answers stop with this frame: the team is without control from its publication.
+    control.dropped_at = oldest.t_published;
+    dropped.push_back({team, control.client, oldest.t_published, oldest.t_capture, timeout_});
     departed_.push_back(c.stats);
     c.present = false;
     c.owed.clear();
   }
   return dropped;
+}
+
+void SyncCoordinator::forgive(Clock::duration gap) {
+  for (Client& c : clients_) {
+    for (Outstanding& o : c.owed) o.wall_published += gap;
+  }
+}
+
+sync_status_t SyncCoordinator::status() const {
+  sync_status_t status{};
+  status.t = std::max(0.0, last_schedule_time_);
+  for (Team team : kTeams) {
+    const int i = static_cast<int>(team);
+    status.client[i] = control_[i].client;
+    status.drops[i] = static_cast<std::int32_t>(control_[i].drops);
+    status.dropped_at[i] = control_[i].dropped_at;
+    status.without_control[i] = control_[i].without_control;
+  }
+  return status;
+}
+
+std::string SyncCoordinator::summary() const {
+  const double now = std::max(0.0, last_schedule_time_);
+  std::vector<std::string> teams;
+  for (Team team : kTeams) {
+    const TeamControl& control = control_[static_cast<int>(team)];
+    if (control.drops == 0) continue;
+    teams.push_back(fmt::format(
+        "{} without control for {:.3f} s of sim time ({} drop{} of client '{}'{})", team_name(team),
+        control.without_control_until(now), control.drops, control.drops == 1 ? "" : "s",
+        control.client, control.dropped_at >= 0 ? ", not back by the end" : ", back by the end"));
+  }
+  if (teams.empty()) return "sync: no client was dropped";
+  std::string joined;
+  for (const std::string& team : teams) joined += (joined.empty() ? "" : "; ") + team;
+  return fmt::format("sync: degraded run: {} (of {:.3f} s of sim time)", joined, now);
 }
 
 double SyncCoordinator::earliest_arrival(Team team) const {

@@ -1,5 +1,6 @@
 #include "ubersim/radio/sync_driver.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <limits>
@@ -15,14 +16,21 @@ SyncDriver::SyncDriver(MessageBus& bus, const ChannelNames& channels, RadioEmula
       emulator_(emulator),
       options_(options),
       publish_(std::move(publish)),
-      coordinator_(options.client_timeout) {
+      coordinator_(options.client_timeout),
+      status_channel_(channels.extra(kSyncStatusChannel)) {
   emulator_.set_sync(true);
   horizon_.horizon = -1;
   bus_.subscribe<sync_client_t>(channels.extra(kSyncClientChannel),
                                 [this](const sync_client_t& message) {
                                   const std::string change = coordinator_.on_client(message);
                                   if (change.empty()) return;
-                                  spdlog::info("{}", change);
+                                  // A rejoin ends a degraded stretch: as loud as the drop.
+                                  if (change.rfind("sync client rejoined", 0) == 0) {
+                                    spdlog::warn("{}", change);
+                                  } else {
+                                    spdlog::info("{}", change);
+                                  }
+                                  publish_status();
                                   update(true);
                                 });
   bus_.subscribe<vision_schedule_t>(channels.extra(kVisionScheduleChannel),
@@ -55,18 +63,46 @@ void SyncDriver::on_packet(Team team, const radio_packet_t& packet) {
 }
 
 bool SyncDriver::tick() {
-  const auto dropped = coordinator_.expire(Clock::now());
-  for (const std::string& what : dropped) {
+  const auto now = Clock::now();
+  forgive_own_stall(now);
+  const auto dropped = coordinator_.expire(now);
+  for (const Drop& drop : dropped) {
     if (options_.strict) {
-      spdlog::error("sync client {}: failing the run (--sync-strict)", what);
+      spdlog::error("{}: failing the run (--sync-strict)", drop.describe());
       return false;
     }
-    spdlog::warn("sync client {}: the run goes on without it", what);
+    spdlog::warn("{}; the run goes on without it", drop.describe());
   }
+  if (!dropped.empty() || now - last_status_ >= std::chrono::seconds(1)) publish_status();
   // Said again at least 10 times a second: physics waits for a first word
   // from the radio emulator before it starts.
   update(!dropped.empty() || Clock::now() - last_published_ >= std::chrono::milliseconds(100));
   return true;
+}
+
+void SyncDriver::forgive_own_stall(Clock::time_point now) {
+  const auto gap = now - last_tick_;
+  const bool first = last_tick_ == Clock::time_point{};
+  last_tick_ = now;
+  if (first || gap <= kStall) return;
+  coordinator_.forgive(gap);
+  ++stalls_;
+  const double seconds = std::chrono::duration<double>(gap).count();
+  stalled_seconds_ += seconds;
+  log_.warn("stall", fmt::format("sync: the radio emulator did not run for {:.3f} s of wall time "
+                                 "(a loaded or paused machine): that time does not count "
+                                 "against the clients' --sync-timeout",
+                                 seconds));
+}
+
+// Sent before the horizon that lets physics past a drop, on the same socket:
+// a listener hears of the drop before any state after it.
+void SyncDriver::publish_status() {
+  const std::int64_t sequence = status_.sequence + 1;
+  status_ = coordinator_.status();
+  status_.sequence = sequence;
+  bus_.publish(status_channel_, status_);
+  last_status_ = Clock::now();
 }
 
 void SyncDriver::update(bool always_publish) {
@@ -120,8 +156,10 @@ void SyncDriver::log_summary() const {
   const SyncStats& s = coordinator_.stats();
   spdlog::info(
       "sync: {} frames scheduled, {} answers; ignored: {} from unregistered teams, {} duplicated "
-      "or out of order; {} client timeouts, {} registrations refused",
-      s.frames, s.answers, s.unregistered, s.unmatched, s.timeouts, s.refused);
+      "or out of order; {} client timeouts, {} registrations refused; the radio emulator stalled "
+      "{} times ({:.3f} s of wall time not counted against the clients)",
+      s.frames, s.answers, s.unregistered, s.unmatched, s.timeouts, s.refused, stalls_,
+      stalled_seconds_);
   for (const SyncClientStats& c : coordinator_.client_stats()) {
     spdlog::info(
         "sync client '{}': {} answers, {} frames skipped, answer time mean {:.3f} ms, slowest "
@@ -129,6 +167,13 @@ void SyncDriver::log_summary() const {
         c.name, c.answers, c.frames_skipped,
         c.answers ? 1e3 * c.answer_wall_seconds / static_cast<double>(c.answers) : 0.0,
         1e3 * c.slowest_answer);
+  }
+  // The line tools/launch.sh prints at the end of a run (docs/sync.md, "A dropped client").
+  const std::string summary = coordinator_.summary();
+  if (coordinator_.stats().timeouts > 0) {
+    spdlog::warn("{}", summary);
+  } else {
+    spdlog::info("{}", summary);
   }
 }
 

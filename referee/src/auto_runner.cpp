@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iostream>
 #include <ubersim/referee_t.hpp>
+#include <ubersim/sync_status_t.hpp>
 #include <ubersim/truth_demand_t.hpp>
 #include <vector>
 
@@ -63,6 +64,9 @@ class Runner {
         field_, [this](const std::string& type) { return radii_(type); });
     bus_.subscribe<sim_state_t>(
         channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 100000);
+    // In sync mode the radio emulator says which teams lost control: the result says so.
+    bus_.subscribe<sync_status_t>(channels_.extra(kSyncStatusChannel),
+                                  [this](const sync_status_t& s) { on_sync_status(s); });
     // Physics announces its field now and then and at once after a SET_FIELD.
     bus_.subscribe<field_geometry_t>(channels_(Channel::SimGeometry),
                                      [this](const field_geometry_t& g) { on_geometry(g); });
@@ -125,6 +129,20 @@ class Runner {
         field_.boundary_width_goal_line);
   }
 
+  void on_sync_status(const sync_status_t& status) {
+    for (int i = 0; i < 2; ++i) {
+      if (!std::isfinite(status.dropped_at[i]) || !std::isfinite(status.without_control[i]) ||
+          status.without_control[i] < 0 || status.drops[i] < 0) {
+        bad_input_.warn("sync_status",
+                        "ignored a SIM_SYNC_STATUS with a time that is not finite or a count "
+                        "below 0");
+        return;
+      }
+    }
+    if (status.sequence < sync_status_.sequence) return;  // an older one, or another sender's
+    sync_status_ = status;
+  }
+
   void on_state(const sim_state_t& state) {
     if (over_) return;
     const std::uint64_t refused = judge_->refused();
@@ -158,11 +176,14 @@ class Runner {
     const RefereeState empty;
     const auto& s = judge_ ? judge_->state() : empty;
     const double last_time = judge_ ? judge_->last_time() : 0.0;
-    write(result_line(s, last_time, wall));
+    const auto losses = control_losses(sync_status_, last_time);
+    write(result_line(s, last_time, wall, losses));
+    // One line, the one tools/launch.sh shows: a degraded result says so on it.
+    const std::string degraded = degraded_text(losses);
     std::cout << "result: yellow " << s.yellow.goals << " : " << s.blue.goals << " blue ("
               << (s.game_over ? "game over" : "stopped") << " at " << last_time << " s sim time, "
               << wall << " s wall time, " << (judge_ ? judge_->judged() : 0) << " states judged)"
-              << std::endl;
+              << (degraded.empty() ? "" : ", " + degraded) << std::endl;
   }
 
   const AutoOptions& options_;
@@ -171,6 +192,7 @@ class Runner {
   MessageBus bus_;
   std::ofstream log_;
   field_geometry_t field_{};
+  sync_status_t sync_status_{};  // the latest; all zero (nobody dropped) until one arrives
   std::optional<StateJudge> judge_;
   RobotRadii radii_{options_.common.config_root()};  // robot types from SIM_STATE
   std::int64_t next_request_ = 0;

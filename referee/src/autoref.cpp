@@ -5,6 +5,7 @@
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/referee/autoref_rules.hpp"
+#include "ubersim/referee/fouls.hpp"
 
 namespace ubersim::referee {
 namespace {
@@ -18,14 +19,14 @@ Team team_of(const robot_state_t& robot) {
   return robot.team == team_t::BLUE ? Team::Blue : Team::Yellow;
 }
 
-std::string format(double value) {
+}  // namespace
+
+std::string short_number(double value) {
   std::ostringstream out;
   out.precision(3);
   out << value;
   return out.str();
 }
-
-}  // namespace
 
 const char* stage_name(Stage stage) {
   switch (stage) {
@@ -91,6 +92,37 @@ const char* event_name(EventType type) {
       return "TOO_MANY_ROBOTS";
   }
   return "?";
+}
+
+bool is_foul(EventType type) {
+  switch (type) {
+    case EventType::AttackerDoubleTouchedBall:
+    case EventType::BotKickedBallTooFast:
+    case EventType::DefenderInDefenseArea:
+    case EventType::TooManyRobots:
+      return true;
+    case EventType::NoProgressInGame:
+    case EventType::BallLeftFieldTouchLine:
+    case EventType::BallLeftFieldGoalLine:
+    case EventType::Goal:
+      return false;
+  }
+  return false;
+}
+
+GameEvent make_event(EventType type, Culprit who, double x, double y, std::string description,
+                     double value) {
+  GameEvent event;
+  event.type = type;
+  event.team = who.team;
+  event.robot = who.robot;
+  event.has_location = true;
+  event.x = x;
+  event.y = y;
+  event.value = value;
+  event.foul = is_foul(type);
+  event.description = std::move(description);
+  return event;
 }
 
 Command prepare_kickoff(Team team) {
@@ -169,7 +201,7 @@ void AutoReferee::track_touches(const sim_state_t& state) {
     const bool touching = state.ball_present && state.ball.position[2] < kRobotHeight &&
                           std::hypot(r.x - bx, r.y - by) <= reach;
     if (touching && !touching_[i]) {
-      last_touch_ = Touch{team_of(r), r.robot_id, bx, by, ++touch_counter_};
+      last_touch_ = BallTouch{team_of(r), r.robot_id, bx, by, ++touch_counter_};
     }
     touching_[i] = touching;
   }
@@ -197,150 +229,89 @@ bool AutoReferee::check_goal_and_out(const sim_state_t& state, Decision& decisio
                           : (sides_.defends(Team::Yellow) * x > 0 ? Team::Yellow : Team::Blue);
   if (side != 0) {
     const Team scorer = sides_.defends(Team::Yellow) == side ? Team::Blue : Team::Yellow;
-    GameEvent goal;
-    goal.type = EventType::Goal;
-    goal.team = scorer;
-    goal.robot = last_touch_ && last_touch_->team == scorer ? last_touch_->robot : -1;
-    goal.has_location = true;
-    goal.x = x;
-    goal.y = y;
-    goal.description = std::string("goal for ") + team_name(scorer) +
-                       (last_touch_ && last_touch_->team != scorer ? " (own goal)" : "");
+    const int robot = last_touch_ && last_touch_->team == scorer ? last_touch_->robot : -1;
     state_.of(scorer).goals++;
-    raise(goal, decision);
+    raise(make_event(EventType::Goal, {scorer, robot}, x, y,
+                     std::string("goal for ") + team_name(scorer) +
+                         (last_touch_ && last_touch_->team != scorer ? " (own goal)" : "")),
+          decision);
     stop_for(kickoff(other(scorer)), decision);
     return true;
   }
   const BallOut out = ball_out(field_, x, y);
   if (out == BallOut::No) return false;
-  GameEvent event;
-  event.type = out == BallOut::TouchLine ? EventType::BallLeftFieldTouchLine
-                                         : EventType::BallLeftFieldGoalLine;
-  event.team = guilty;
-  event.robot = last_touch_ ? last_touch_->robot : -1;
-  event.has_location = true;
-  event.x = x;
-  event.y = y;
+  const EventType type = out == BallOut::TouchLine ? EventType::BallLeftFieldTouchLine
+                                                   : EventType::BallLeftFieldGoalLine;
   Restart restart;
+  std::string description;
   if (out == BallOut::TouchLine) {
     restart = free_kick(other(guilty), x, y);
-    event.description = std::string("ball over the touch line, last touched by ") +
-                        team_name(guilty) + ": free kick " + team_name(other(guilty));
+    description = std::string("ball over the touch line, last touched by ") + team_name(guilty) +
+                  ": free kick " + team_name(other(guilty));
   } else {
     const int line = x > 0 ? 1 : -1;
     const Team defending = sides_.defends(Team::Yellow) == line ? Team::Yellow : Team::Blue;
     const double corner_y = (y > 0 ? 1 : -1) * field_.field_width / 2;
     if (guilty == defending) {  // corner kick for the attackers
       restart = free_kick(other(defending), line * field_.field_length / 2, corner_y);
-      event.description = std::string("ball over the goal line by the defending ") +
-                          team_name(defending) + ": corner kick " + team_name(other(defending));
+      description = std::string("ball over the goal line by the defending ") +
+                    team_name(defending) + ": corner kick " + team_name(other(defending));
     } else {  // goal kick, 1 m from the goal line and the touch line
       restart = free_kick(defending, line * (field_.field_length / 2 - 1.0),
                           corner_y - (y > 0 ? 1 : -1) * 1.0);
-      event.description = std::string("ball over the goal line by ") + team_name(guilty) +
-                          ": goal kick " + team_name(defending);
+      description = std::string("ball over the goal line by ") + team_name(guilty) +
+                    ": goal kick " + team_name(defending);
     }
   }
-  raise(event, decision);
+  raise(make_event(type, {guilty, last_touch_ ? last_touch_->robot : -1}, x, y,
+                   std::move(description)),
+        decision);
   stop_for(restart, decision);
   return true;
 }
 
 void AutoReferee::check_fouls(const sim_state_t& state, Decision& decision) {
   const double bx = state.ball.position[0], by = state.ball.position[1];
-  const auto& v = state.ball.linear_velocity;
 
-  // Double touch: the robot that took a kick-off or free kick touches the
-  // ball again before any other robot did: free kick for the other team.
+  // Double touch: the kicker is bound until any robot touches the ball again.
   if (kicker_ && last_touch_ && last_touch_->id != kicker_->id) {
-    const Touch kicker = *kicker_;
+    const BallTouch kicker = *kicker_;
     kicker_.reset();
-    if (last_touch_->team == kicker.team && last_touch_->robot == kicker.robot) {
-      GameEvent e;
-      e.type = EventType::AttackerDoubleTouchedBall;
-      e.team = kicker.team;
-      e.robot = kicker.robot;
-      e.has_location = true;  // where it took the restart, as the SSL event has it
-      e.x = kicker.x;
-      e.y = kicker.y;
-      e.foul = true;
-      e.description = robot_name(kicker.team, kicker.robot) +
-                      " touched the ball twice after its restart: free kick " +
-                      team_name(other(kicker.team));
-      raise(e, decision);
+    if (auto foul = double_touch(kicker, *last_touch_)) {
+      raise(std::move(*foul), decision);
       stop_for(free_kick(other(kicker.team), bx, by), decision);
       return;
     }
   }
 
-  // Ball speed: a non-stopping foul of the robot that touched it last, once per touch.
-  const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (speed > config_.max_ball_speed && last_touch_ && last_touch_->id != judged_speed_touch_) {
-    judged_speed_touch_ = last_touch_->id;
-    GameEvent e;
-    e.type = EventType::BotKickedBallTooFast;
-    e.team = last_touch_->team;
-    e.robot = last_touch_->robot;
-    e.has_location = true;
-    e.x = bx;
-    e.y = by;
-    e.value = speed;
-    e.foul = true;
-    e.description = robot_name(last_touch_->team, last_touch_->robot) + " kicked the ball at " +
-                    format(speed) + " m/s (limit " + format(config_.max_ball_speed) + ")";
-    raise(e, decision);
+  // Ball speed: a non-stopping foul, judged once per touch.
+  if (last_touch_ && last_touch_->id != judged_speed_touch_) {
+    if (auto foul = ball_too_fast(state, *last_touch_, config_.max_ball_speed)) {
+      judged_speed_touch_ = last_touch_->id;
+      raise(std::move(*foul), decision);
+    }
   }
 
-  // A defender other than the keeper touches the ball from inside its own
-  // defence area: penalty kick for the other team.
-  const double reach = config_.robot_radius + field_.ball_radius + config_.touch_margin;
-  for (const auto& r : state.robots) {
-    const Team team = team_of(r);
-    if (r.robot_id == config_.keeper(team)) continue;
-    if (!fully_in_defense_area(field_, sides_.defends(team), r.x, r.y, config_.robot_radius))
-      continue;
-    if (std::hypot(r.x - bx, r.y - by) > reach || state.ball.position[2] >= kRobotHeight) continue;
-    GameEvent e;
-    e.type = EventType::DefenderInDefenseArea;
-    e.team = team;
-    e.robot = r.robot_id;
-    e.has_location = true;
-    e.x = r.x;
-    e.y = r.y;
-    e.foul = true;
-    e.description = robot_name(team, r.robot_id) +
-                    " touched the ball inside its own defence area: penalty " +
-                    team_name(other(team));
-    raise(e, decision);
+  if (auto foul = defender_in_defense_area(state, field_, sides_, config_)) {
+    const Team kicking = other(*foul->team);
+    raise(std::move(*foul), decision);
     Restart penalty;
-    penalty.command = prepare_penalty(other(team));
-    penalty.placement = SituationRequest{Situation::Penalty, other(team), 0, 0};
+    penalty.command = prepare_penalty(kicking);
+    penalty.placement = SituationRequest{Situation::Penalty, kicking, 0, 0};
     stop_for(penalty, decision);
     return;
   }
 
-  // Too many robots: a foul, free kick for the other team where the ball is;
-  // repeated at most every no_progress_time while it lasts.
+  // Too many robots: repeated at most every no_progress_time while it lasts.
   for (Team team : kTeams) {
-    int count = 0;
-    for (const auto& r : state.robots) count += team_of(r) == team ? 1 : 0;
     auto& reported = too_many_reported_[static_cast<int>(team)];
-    if (count <= config_.max_robots || now_ - reported < config_.no_progress_time) continue;
-    reported = now_;
-    GameEvent e;
-    e.type = EventType::TooManyRobots;
-    e.team = team;
-    e.has_location = true;
-    e.x = bx;
-    e.y = by;
-    e.value = count;
-    e.foul = true;
-    e.description = std::string(team_name(team)) + " has " + std::to_string(count) +
-                    " robots on the field (" + std::to_string(config_.max_robots) +
-                    " allowed): free kick " + team_name(other(team));
-    raise(e, decision);
-    stop_for(free_kick(other(team), bx, by), decision);
-    return;
+    if (now_ - reported < config_.no_progress_time) continue;
+    if (auto foul = too_many_robots(state, team, config_.max_robots)) {
+      reported = now_;
+      raise(std::move(*foul), decision);
+      stop_for(free_kick(other(team), bx, by), decision);
+      return;
+    }
   }
 }
 
@@ -365,14 +336,10 @@ void AutoReferee::check_no_progress(const sim_state_t& state, Decision& decision
     return;
   }
   if (now_ - progress_time_ < config_.no_progress_time) return;
-  GameEvent e;
-  e.type = EventType::NoProgressInGame;
-  e.has_location = true;
-  e.x = bx;
-  e.y = by;
-  e.value = now_ - progress_time_;
-  e.description = "no progress for " + format(e.value) + " s: force start";
-  raise(e, decision);
+  const double waited = now_ - progress_time_;
+  raise(make_event(EventType::NoProgressInGame, {}, bx, by,
+                   "no progress for " + short_number(waited) + " s: force start", waited),
+        decision);
   double x = bx, y = by;
   free_kick_spot(field_, x, y);
   Restart restart;
@@ -408,96 +375,99 @@ void AutoReferee::end_half(Decision& decision) {
   phase_start_ = now_;
 }
 
-void AutoReferee::run_phase(const sim_state_t& state, Decision& decision) {
+void AutoReferee::start_play(double x, double y) {
+  phase_ = Phase::Running;
+  state_.ball_in_play = true;
+  state_.action_time_left = 0;
+  state_.events.clear();
+  progress_x_ = x;
+  progress_y_ = y;
+  progress_time_ = now_;
+}
+
+// STOP is over: place the restart and issue its command.
+void AutoReferee::issue_restart(const sim_state_t& state, Decision& decision) {
+  decision.placement = pending_.placement;
+  placement_pending_ = pending_.placement.has_value();
+  placement_time_ = now_;
+  set_command(pending_.command, decision);
+  phase_start_ = now_;
+  if (state_.designated_position) {
+    kick_anchor_x_ = state_.designated_position->first;
+    kick_anchor_y_ = state_.designated_position->second;
+  } else {
+    kick_anchor_x_ = state.ball.position[0];
+    kick_anchor_y_ = state.ball.position[1];
+  }
+  if (pending_.command == Command::ForceStart) {
+    state_.next_command.reset();
+    start_play(kick_anchor_x_, kick_anchor_y_);
+  } else if (pending_.command == Command::DirectFreeYellow ||
+             pending_.command == Command::DirectFreeBlue) {
+    phase_ = Phase::AwaitKick;
+    state_.next_command.reset();
+    state_.action_time_left = config_.restart_timeout;
+  } else {
+    phase_ = Phase::Prepared;
+    state_.next_command = Command::NormalStart;
+  }
+}
+
+// The preparation of a kick-off or penalty is over: NORMAL_START (and the
+// half's clock starts with its kick-off).
+void AutoReferee::normal_start(Decision& decision) {
+  if (state_.stage == Stage::FirstHalfPre || state_.stage == Stage::SecondHalfPre) {
+    state_.stage = state_.stage == Stage::FirstHalfPre ? Stage::FirstHalf : Stage::SecondHalf;
+    state_.stage_time_left = config_.half_length();
+    stage_end_ = now_ + config_.half_length();
+  }
+  set_command(Command::NormalStart, decision);
+  state_.next_command.reset();
+  phase_ = Phase::AwaitKick;
+  phase_start_ = now_;
+  state_.action_time_left = config_.restart_timeout;
+}
+
+// A restart is waiting to be taken: the ball in play once it left its spot,
+// FORCE_START when nobody took it in time.
+void AutoReferee::await_kick(const sim_state_t& state, Decision& decision) {
+  if (placement_pending_) return;
   const double bx = state.ball.position[0], by = state.ball.position[1];
+  const double waited = now_ - phase_start_;
+  if (std::hypot(bx - kick_anchor_x_, by - kick_anchor_y_) > kKickedDistance) {
+    // The robot that touched the ball last took the restart (none: nobody
+    // is bound by the double-touch rule).
+    kicker_ = last_touch_;
+    start_play(bx, by);
+  } else if (waited >= config_.restart_timeout) {
+    raise(make_event(EventType::NoProgressInGame, {}, bx, by,
+                     std::string(command_name(state_.command)) + " not taken within " +
+                         short_number(config_.restart_timeout) + " s: force start",
+                     waited),
+          decision);
+    set_command(Command::ForceStart, decision);
+    start_play(bx, by);
+  }
+}
+
+void AutoReferee::run_phase(const sim_state_t& state, Decision& decision) {
   const double in_phase = now_ - phase_start_;
   switch (phase_) {
     case Phase::Stopped:
       if (in_phase < config_.stop_duration) return;
-      decision.placement = pending_.placement;
-      placement_pending_ = pending_.placement.has_value();
-      placement_time_ = now_;
-      set_command(pending_.command, decision);
-      phase_start_ = now_;
-      if (state_.designated_position) {
-        kick_anchor_x_ = state_.designated_position->first;
-        kick_anchor_y_ = state_.designated_position->second;
-      } else {
-        kick_anchor_x_ = bx;
-        kick_anchor_y_ = by;
-      }
-      if (pending_.command == Command::ForceStart) {
-        phase_ = Phase::Running;
-        state_.next_command.reset();
-        state_.ball_in_play = true;
-        state_.events.clear();
-        progress_x_ = kick_anchor_x_;
-        progress_y_ = kick_anchor_y_;
-        progress_time_ = now_;
-      } else if (pending_.command == Command::DirectFreeYellow ||
-                 pending_.command == Command::DirectFreeBlue) {
-        phase_ = Phase::AwaitKick;
-        state_.next_command.reset();
-        state_.action_time_left = config_.restart_timeout;
-      } else {
-        phase_ = Phase::Prepared;
-        state_.next_command = Command::NormalStart;
-      }
+      issue_restart(state, decision);
       return;
-
     case Phase::Prepared:
       if (in_phase < config_.prepare_duration) return;
-      if (state_.stage == Stage::FirstHalfPre || state_.stage == Stage::SecondHalfPre) {
-        state_.stage = state_.stage == Stage::FirstHalfPre ? Stage::FirstHalf : Stage::SecondHalf;
-        state_.stage_time_left = config_.half_length();
-        stage_end_ = now_ + config_.half_length();
-      }
-      set_command(Command::NormalStart, decision);
-      state_.next_command.reset();
-      phase_ = Phase::AwaitKick;
-      phase_start_ = now_;
-      state_.action_time_left = config_.restart_timeout;
+      normal_start(decision);
       return;
-
     case Phase::AwaitKick:
-      if (placement_pending_) return;
-      if (std::hypot(bx - kick_anchor_x_, by - kick_anchor_y_) > kKickedDistance) {
-        // The robot that touched the ball last took the restart (none: nobody
-        // is bound by the double-touch rule).
-        kicker_ = last_touch_;
-        phase_ = Phase::Running;
-        state_.ball_in_play = true;
-        state_.action_time_left = 0;
-        state_.events.clear();
-        progress_x_ = bx;
-        progress_y_ = by;
-        progress_time_ = now_;
-      } else if (in_phase >= config_.restart_timeout) {
-        GameEvent e;
-        e.type = EventType::NoProgressInGame;
-        e.has_location = true;
-        e.x = bx;
-        e.y = by;
-        e.value = in_phase;
-        e.description = std::string(command_name(state_.command)) + " not taken within " +
-                        format(config_.restart_timeout) + " s: force start";
-        raise(e, decision);
-        set_command(Command::ForceStart, decision);
-        phase_ = Phase::Running;
-        state_.ball_in_play = true;
-        state_.action_time_left = 0;
-        state_.events.clear();
-        progress_x_ = bx;
-        progress_y_ = by;
-        progress_time_ = now_;
-      }
+      await_kick(state, decision);
       return;
-
     case Phase::HalfTime:
       if (state_.stage_time_left > 0) return;
       start_half(Stage::SecondHalfPre, other(config_.first_kickoff), decision);
       return;
-
     case Phase::Start:
     case Phase::Running:
     case Phase::Over:

@@ -311,12 +311,25 @@ class Referee {
   RobotRadii radii_{options_.common.config_root()};
 };
 
-}  // namespace
+using Action = std::function<int(Referee&)>;
+using Actions = std::map<std::string, Action>;  // by subcommand name
 
-int main(int argc, char** argv) {
-  Options o;
-  CLI::App app{"ubersim referee: set up the field and control the simulation"};
-  app.require_subcommand(1);
+CLI::App* add_command(CLI::App& app, Actions& actions, const std::string& name,
+                      const std::string& help, Action action) {
+  actions[name] = std::move(action);
+  return app.add_subcommand(name, help);
+}
+
+void add_team_arg(CLI::App* command, Options& o) {
+  command->add_option("team", o.team_text, "yellow | blue")->required();
+}
+
+void add_xy_args(CLI::App* command, Options& o) {
+  command->add_option("x", o.x, "m")->required();
+  command->add_option("y", o.y, "m")->required();
+}
+
+void add_global_options(CLI::App& app, Options& o) {
   add_common_options(app, o.common);
   app.add_option("--timeout", o.timeout_s, "seconds to wait for the physics server")
       ->capture_default_str()
@@ -324,100 +337,105 @@ int main(int argc, char** argv) {
   app.add_option("--yellow-defends", o.yellow_defends, "which goal yellow defends")
       ->check(CLI::IsMember({"negative", "positive"}))
       ->capture_default_str();
+}
 
-  auto team_arg = [&](CLI::App* c) {
-    c->add_option("team", o.team_text, "yellow | blue")->required();
-  };
-  auto xy_args = [&](CLI::App* c) {
-    c->add_option("x", o.x, "m")->required();
-    c->add_option("y", o.y, "m")->required();
-  };
-
-  std::map<std::string, std::function<int(Referee&)>> actions;
-  auto command = [&](const std::string& name, const std::string& help,
-                     std::function<int(Referee&)> action) {
-    actions[name] = std::move(action);
-    return app.add_subcommand(name, help);
-  };
-
-  command("ping", "check that the physics server answers",
-          [](Referee& r) { return r.simple(sim_control_t::PING); });
-  command("pause", "pause the simulation",
-          [](Referee& r) { return r.simple(sim_control_t::PAUSE); });
-  command("resume", "resume the simulation",
-          [](Referee& r) { return r.simple(sim_control_t::RESUME); });
-  command("reset", "reset to the scenario physics started with",
-          [](Referee& r) { return r.simple(sim_control_t::RESET); });
-  command("step", "advance N physics steps (paused or lockstep)",
-          [](Referee& r) { return r.step(); })
+// Subcommands that control the simulation or ask it something.
+void add_control_commands(CLI::App& app, Options& o, Actions& actions) {
+  add_command(app, actions, "ping", "check that the physics server answers",
+              [](Referee& r) { return r.simple(sim_control_t::PING); });
+  add_command(app, actions, "pause", "pause the simulation",
+              [](Referee& r) { return r.simple(sim_control_t::PAUSE); });
+  add_command(app, actions, "resume", "resume the simulation",
+              [](Referee& r) { return r.simple(sim_control_t::RESUME); });
+  add_command(app, actions, "reset", "reset to the scenario physics started with",
+              [](Referee& r) { return r.simple(sim_control_t::RESET); });
+  add_command(app, actions, "step", "advance N physics steps (paused or lockstep)",
+              [](Referee& r) { return r.step(); })
       ->add_option("n", o.steps, "steps")
       ->required()
       ->check(ubersim::greater_than(0));
-  command("speed",
-          "set the speed: 1 real time, 0.5, 4 ..., 0 as fast as possible, -1 lockstep, sync "
-          "(docs/sync.md)",
-          [](Referee& r) { return r.speed(); })
+  add_command(app, actions, "speed",
+              "set the speed: 1 real time, 0.5, 4 ..., 0 as fast as possible, -1 lockstep, sync "
+              "(docs/sync.md)",
+              [](Referee& r) { return r.speed(); })
       ->add_option("factor", o.speed)
       ->required();
-  command("seed", "set the random seed", [](Referee& r) { return r.seed(); })
+  add_command(app, actions, "seed", "set the random seed", [](Referee& r) { return r.seed(); })
       ->add_option("seed", o.seed)
       ->required();
-  command("dribbling",
-          "perfect: a dribbler that is on holds the ball it touches rigidly (ER-Force's "
-          "simulate_dribbling = false); simulated: the roller's contact only (the default)",
-          [](Referee& r) { return r.dribbling(); })
+  add_command(app, actions, "dribbling",
+              "perfect: a dribbler that is on holds the ball it touches rigidly (ER-Force's "
+              "simulate_dribbling = false); simulated: the roller's contact only (the default)",
+              [](Referee& r) { return r.dribbling(); })
       ->add_option("mode", o.dribbling)
       ->required()
       ->check(CLI::IsMember({"perfect", "simulated"}));
-  command("geometry", "print the field geometry", [](Referee& r) { return r.geometry(); });
-  command("state", "print where everything is", [](Referee& r) { return r.state(); });
+  add_command(app, actions, "geometry", "print the field geometry",
+              [](Referee& r) { return r.geometry(); });
+  add_command(app, actions, "state", "print where everything is",
+              [](Referee& r) { return r.state(); });
+}
 
-  auto* add =
-      command("add", "put a robot on the field", [](Referee& r) { return r.place_robot(true); });
-  team_arg(add);
+// Subcommands that put robots and the ball somewhere.
+void add_placement_commands(CLI::App& app, Options& o, Actions& actions) {
+  auto* add = add_command(app, actions, "add", "put a robot on the field",
+                          [](Referee& r) { return r.place_robot(true); });
+  add_team_arg(add, o);
   add->add_option("id", o.robot_id)->required();
   add->add_option("type", o.robot_type, "robot config name")->required();
-  xy_args(add);
+  add_xy_args(add, o);
   add->add_option("heading", o.heading_deg, "deg");
 
-  auto* remove =
-      command("remove", "take a robot off the field", [](Referee& r) { return r.remove_robot(); });
-  team_arg(remove);
+  auto* remove = add_command(app, actions, "remove", "take a robot off the field",
+                             [](Referee& r) { return r.remove_robot(); });
+  add_team_arg(remove, o);
   remove->add_option("id", o.robot_id)->required();
 
-  auto* place = command("place-robot", "move a robot (robots in the way move aside and stop)",
-                        [](Referee& r) { return r.place_robot(false); });
-  team_arg(place);
+  auto* place = add_command(app, actions, "place-robot",
+                            "move a robot (robots in the way move aside and stop)",
+                            [](Referee& r) { return r.place_robot(false); });
+  add_team_arg(place, o);
   place->add_option("id", o.robot_id)->required();
-  xy_args(place);
+  add_xy_args(place, o);
   place->add_option("heading", o.heading_deg, "deg");
   place->add_option("--velocity", o.velocity, "vx vy omega (m/s, m/s, rad/s, field frame)")
       ->expected(3);
 
-  auto* ball = command("place-ball", "move the ball (robots in the way move aside and stop)",
-                       [](Referee& r) { return r.place_ball(); });
-  xy_args(ball);
+  auto* ball = add_command(app, actions, "place-ball",
+                           "move the ball (robots in the way move aside and stop)",
+                           [](Referee& r) { return r.place_ball(); });
+  add_xy_args(ball, o);
   ball->add_option("--z", o.z, "height (m)");
   ball->add_option("--velocity", o.velocity, "vx vy [vz] (m/s)")->expected(2, 3);
 
-  command("setup", "put robots and ball where a scenario file says",
-          [](Referee& r) { return r.setup(); })
+  add_command(app, actions, "setup", "put robots and ball where a scenario file says",
+              [](Referee& r) { return r.setup(); })
       ->add_option("scenario", o.scenario, "scenario name or path")
       ->required();
+}
 
-  team_arg(command("kickoff", "kick-off for a team",
-                   [](Referee& r) { return r.situation(Situation::KickOff); }));
-  auto* free_kick = command("free-kick", "free kick for a team at x y",
-                            [](Referee& r) { return r.situation(Situation::FreeKick); });
-  team_arg(free_kick);
-  xy_args(free_kick);
-  team_arg(command("penalty", "penalty kick for a team",
-                   [](Referee& r) { return r.situation(Situation::Penalty); }));
-  xy_args(command("ball-placement", "place the ball at x y, robots keep 0.5 m away",
-                  [](Referee& r) { return r.situation(Situation::BallPlacement); }));
-  command("stop", "stop: every robot 0.5 m from the ball and still",
-          [](Referee& r) { return r.situation(Situation::Stop); });
+// Subcommands that set up a game situation by the SSL rules.
+void add_situation_commands(CLI::App& app, Options& o, Actions& actions) {
+  add_team_arg(add_command(app, actions, "kickoff", "kick-off for a team",
+                           [](Referee& r) { return r.situation(Situation::KickOff); }),
+               o);
+  auto* free_kick = add_command(app, actions, "free-kick", "free kick for a team at x y",
+                                [](Referee& r) { return r.situation(Situation::FreeKick); });
+  add_team_arg(free_kick, o);
+  add_xy_args(free_kick, o);
+  add_team_arg(add_command(app, actions, "penalty", "penalty kick for a team",
+                           [](Referee& r) { return r.situation(Situation::Penalty); }),
+               o);
+  add_xy_args(
+      add_command(app, actions, "ball-placement", "place the ball at x y, robots keep 0.5 m away",
+                  [](Referee& r) { return r.situation(Situation::BallPlacement); }),
+      o);
+  add_command(app, actions, "stop", "stop: every robot 0.5 m from the ball and still",
+              [](Referee& r) { return r.situation(Situation::Stop); });
+}
 
+// `auto`: runs on its own (run_auto), not through a Referee.
+void add_auto_command(CLI::App& app, Options& o) {
   auto* automatic = app.add_subcommand(
       "auto",
       "automatic referee: run the game (kick-offs, goals, outs, fouls, halves) until it ends");
@@ -435,8 +453,10 @@ int main(int argc, char** argv) {
   automatic->add_flag("--judge-every-step", o.judge_every_step,
                       "judge every state (default: only the states where a rule could decide, "
                       "docs/autoref.md; the same decisions at a fraction of the cost)");
+}
 
-  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
+// Runs the subcommand the command line named; its exit status.
+int run_subcommand(const CLI::App& app, const Options& o, const Actions& actions) {
   const bool is_auto = app.got_subcommand("auto");
   // Quiet by default as a command-line tool; the automatic referee logs its game.
   setup_logging("referee", o.common.verbosity() - (is_auto ? 0 : 1));
@@ -454,4 +474,20 @@ int main(int argc, char** argv) {
     std::cerr << "referee: " << error.what() << "\n";
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  Actions actions;
+  CLI::App app{"ubersim referee: set up the field and control the simulation"};
+  app.require_subcommand(1);
+  add_global_options(app, o);
+  add_control_commands(app, o, actions);
+  add_placement_commands(app, o, actions);
+  add_situation_commands(app, o, actions);
+  add_auto_command(app, o);
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
+  return run_subcommand(app, o, actions);
 }

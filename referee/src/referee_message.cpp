@@ -94,12 +94,46 @@ std::string command_line(const RefereeState& s, double sim_time) {
   return out.str();
 }
 
-std::string result_line(const RefereeState& s, double sim_time, double wall_time) {
+std::vector<ControlLoss> control_losses(const sync_status_t& status, double end) {
+  std::vector<ControlLoss> losses;
+  for (int i = 0; i < 2; ++i) {
+    // A drop that began after the game's end took nothing from it.
+    const bool dropped_now = status.dropped_at[i] >= 0 && status.dropped_at[i] < end;
+    if (status.drops[i] <= 0 || (!dropped_now && status.without_control[i] <= 0)) continue;
+    const double current = dropped_now ? end - status.dropped_at[i] : 0.0;
+    losses.push_back({i == team_t::YELLOW ? "yellow" : "blue", status.client[i], status.drops[i],
+                      status.without_control[i] + current});
+  }
+  return losses;
+}
+
+std::string degraded_text(const std::vector<ControlLoss>& losses) {
+  std::ostringstream out;
+  for (const ControlLoss& loss : losses) {
+    out << (out.tellp() == 0 ? "DEGRADED: " : "; ") << loss.team << " without control for "
+        << number(loss.without_control) << " s of sim time (sync client '" << loss.client
+        << "' dropped " << loss.drops << (loss.drops == 1 ? " time" : " times") << ")";
+  }
+  return out.str();
+}
+
+std::string result_line(const RefereeState& s, double sim_time, double wall_time,
+                        const std::vector<ControlLoss>& losses) {
   std::ostringstream out;
   out << "{\"t\": " << number(sim_time) << ", \"result\": " << json_string(stage_name(s.stage))
       << ", \"game_over\": " << (s.game_over ? "true" : "false")
-      << ", \"yellow\": " << team_figures(s.yellow) << ", \"blue\": " << team_figures(s.blue)
-      << ", \"wall_time\": " << number(wall_time) << "}";
+      << ", \"yellow\": " << team_figures(s.yellow) << ", \"blue\": " << team_figures(s.blue);
+  if (!losses.empty()) {
+    out << ", \"degraded\": [";
+    for (std::size_t i = 0; i < losses.size(); ++i) {
+      const ControlLoss& loss = losses[i];
+      out << (i ? ", " : "") << "{\"team\": " << json_string(loss.team)
+          << ", \"client\": " << json_string(loss.client) << ", \"drops\": " << loss.drops
+          << ", \"without_control\": " << number(loss.without_control) << "}";
+    }
+    out << "]";
+  }
+  out << ", \"wall_time\": " << number(wall_time) << "}";
   return out.str();
 }
 

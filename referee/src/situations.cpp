@@ -45,6 +45,74 @@ void keep_everyone_out(PlacementScene& scene, double distance_from_hull) {
     r.ball_keep_out = std::max(r.ball_keep_out, distance_from_hull + r.radius);
 }
 
+// The `kicking` robot nearest to the ball goes behind it, facing the goal it
+// attacks; `restart` names the situation when there is none.
+void place_nearest_kicker(PlacementScene& scene, Team kicking, double attacked_goal_x,
+                          const char* restart) {
+  const int kicker = nearest_robot(scene, kicking, scene.ball_x, scene.ball_y);
+  if (kicker < 0)
+    throw std::runtime_error(std::string(restart) + ": no " + team_name(kicking) +
+                             " robot on the field");
+  place_kicker(scene.robots[static_cast<std::size_t>(kicker)], scene, attacked_goal_x, 0);
+}
+
+void plan_kickoff(PlacementScene& scene, Team kicking, const field_geometry_t& field,
+                  FieldSides sides, double attacked_goal_x) {
+  scene.ball_x = 0;
+  scene.ball_y = 0;
+  for (auto& r : scene.robots) {
+    // Everyone in their own half, defenders outside the centre circle.
+    const int own = sides.defends(r.team);
+    if (own < 0)
+      r.max_x = -r.radius;
+    else
+      r.min_x = r.radius;
+    r.ball_keep_out =
+        r.team == kicking ? kStopDistance + r.radius : field.center_circle_radius + r.radius;
+    if (r.x * own < r.radius) r.x = own * std::max(std::abs(r.x), r.radius + kRobotGap);
+  }
+  place_nearest_kicker(scene, kicking, attacked_goal_x, "kick-off");
+}
+
+void plan_free_kick(PlacementScene& scene, const SituationRequest& request,
+                    const field_geometry_t& field, double attacked_goal_x) {
+  const double limit_x = field.field_length / 2 - kFreeKickBoundaryDistance;
+  const double limit_y = field.field_width / 2 - kFreeKickBoundaryDistance;
+  scene.ball_x = std::clamp(request.x, -limit_x, limit_x);
+  scene.ball_y = std::clamp(request.y, -limit_y, limit_y);
+  for (auto& r : scene.robots) {
+    if (r.team != request.team) r.ball_keep_out = kStopDistance + r.radius;
+  }
+  place_nearest_kicker(scene, request.team, attacked_goal_x, "free kick");
+}
+
+void plan_penalty(PlacementScene& scene, Team kicking, const field_geometry_t& field,
+                  FieldSides sides, double attacked_goal_x) {
+  const Team other = kicking == Team::Yellow ? Team::Blue : Team::Yellow;
+  const double attack = attacked_goal_x > 0 ? 1.0 : -1.0;
+  scene.ball_x = penalty_mark_x(field, sides, kicking);
+  scene.ball_y = 0;
+  const int keeper = nearest_robot(scene, other, attacked_goal_x, 0);
+  if (keeper >= 0) {
+    auto& k = scene.robots[static_cast<std::size_t>(keeper)];
+    k.x = attacked_goal_x - attack * k.radius;
+    k.y = 0;
+    k.orientation = attack > 0 ? M_PI : 0.0;
+    k.fixed = true;
+  }
+  place_nearest_kicker(scene, kicking, attacked_goal_x, "penalty");
+  for (auto& r : scene.robots) {
+    if (r.fixed) continue;
+    // Everyone else at least 1 m behind the ball, seen from the goal attacked.
+    const double limit = scene.ball_x - attack * (kPenaltyBehindDistance + r.radius);
+    if (attack > 0)
+      r.max_x = limit;
+    else
+      r.min_x = limit;
+    r.x = attack > 0 ? std::min(r.x, limit) : std::max(r.x, limit);
+  }
+}
+
 }  // namespace
 
 PlacementBounds bounds_of(const field_geometry_t& field) {
@@ -80,80 +148,20 @@ PlacementScene plan_situation(const SituationRequest& request, PlacementScene sc
     case Situation::Stop:
       keep_everyone_out(scene, kStopDistance);
       break;
-
     case Situation::BallPlacement:
       scene.ball_x = std::clamp(request.x, -half_length, half_length);
       scene.ball_y = std::clamp(request.y, -half_width, half_width);
       keep_everyone_out(scene, kStopDistance);
       break;
-
-    case Situation::KickOff: {
-      scene.ball_x = 0;
-      scene.ball_y = 0;
-      for (auto& r : scene.robots) {
-        // Everyone in their own half, defenders outside the centre circle.
-        const int own = sides.defends(r.team);
-        if (own < 0)
-          r.max_x = -r.radius;
-        else
-          r.min_x = r.radius;
-        r.ball_keep_out =
-            r.team == kicking ? kStopDistance + r.radius : field.center_circle_radius + r.radius;
-        if (r.x * own < r.radius) r.x = own * std::max(std::abs(r.x), r.radius + kRobotGap);
-      }
-      const int kicker = nearest_robot(scene, kicking, 0, 0);
-      if (kicker < 0)
-        throw std::runtime_error(std::string("kick-off: no ") + team_name(kicking) +
-                                 " robot on the field");
-      place_kicker(scene.robots[static_cast<std::size_t>(kicker)], scene, attacked_goal_x, 0);
+    case Situation::KickOff:
+      plan_kickoff(scene, kicking, field, sides, attacked_goal_x);
       break;
-    }
-
-    case Situation::FreeKick: {
-      const double limit_x = half_length - kFreeKickBoundaryDistance;
-      const double limit_y = half_width - kFreeKickBoundaryDistance;
-      scene.ball_x = std::clamp(request.x, -limit_x, limit_x);
-      scene.ball_y = std::clamp(request.y, -limit_y, limit_y);
-      for (auto& r : scene.robots) {
-        if (r.team == other) r.ball_keep_out = kStopDistance + r.radius;
-      }
-      const int kicker = nearest_robot(scene, kicking, scene.ball_x, scene.ball_y);
-      if (kicker < 0)
-        throw std::runtime_error(std::string("free kick: no ") + team_name(kicking) +
-                                 " robot on the field");
-      place_kicker(scene.robots[static_cast<std::size_t>(kicker)], scene, attacked_goal_x, 0);
+    case Situation::FreeKick:
+      plan_free_kick(scene, request, field, attacked_goal_x);
       break;
-    }
-
-    case Situation::Penalty: {
-      const double attack = attacked_goal_x > 0 ? 1.0 : -1.0;
-      scene.ball_x = penalty_mark_x(field, sides, kicking);
-      scene.ball_y = 0;
-      const int keeper = nearest_robot(scene, other, attacked_goal_x, 0);
-      if (keeper >= 0) {
-        auto& k = scene.robots[static_cast<std::size_t>(keeper)];
-        k.x = attacked_goal_x - attack * k.radius;
-        k.y = 0;
-        k.orientation = attack > 0 ? M_PI : 0.0;
-        k.fixed = true;
-      }
-      const int kicker = nearest_robot(scene, kicking, scene.ball_x, scene.ball_y);
-      if (kicker < 0)
-        throw std::runtime_error(std::string("penalty: no ") + team_name(kicking) +
-                                 " robot on the field");
-      place_kicker(scene.robots[static_cast<std::size_t>(kicker)], scene, attacked_goal_x, 0);
-      for (auto& r : scene.robots) {
-        if (r.fixed) continue;
-        // Everyone else at least 1 m behind the ball, seen from the goal attacked.
-        const double limit = scene.ball_x - attack * (kPenaltyBehindDistance + r.radius);
-        if (attack > 0)
-          r.max_x = limit;
-        else
-          r.min_x = limit;
-        r.x = attack > 0 ? std::min(r.x, limit) : std::max(r.x, limit);
-      }
+    case Situation::Penalty:
+      plan_penalty(scene, kicking, field, sides, attacked_goal_x);
       break;
-    }
   }
 
   if (!separate(scene, bounds_of(field))) {

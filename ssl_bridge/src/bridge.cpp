@@ -425,10 +425,12 @@ void SslBridge::sync_tick(std::chrono::steady_clock::time_point now) {
   }
 }
 
+// No `leaving` on SYNC_CLIENT: the radio emulator owes the same frames and
+// drops the client by its own timeout, which makes the run degraded where the
+// user looks (docs/sync.md, "A dropped client"); a goodbye would not.
 void SslBridge::drop_sync_client(Team team, const std::string& why) {
   spdlog::warn("sync: the {} team {}: dropped (its next RobotControl registers it again)",
                team_name(team), why);
-  say_sync_client(team, true);
 }
 
 void SslBridge::sync_leave() {

@@ -92,6 +92,7 @@ class BatchTest(unittest.TestCase):
             self.assertAlmostEqual(
                 float(g["yellow_possession"]) + float(g["blue_possession"]), 1.0, places=3)
             self.assertGreater(float(g["speed"]), 0.0)
+            self.assertEqual(g["vision_frames_lost"], "0")
             # What each process of the game cost: the benchmark's per-process figures.
             cpu = results_module.cpu_by_process(g)
             self.assertEqual(sorted(cpu), ["blue", "physics", "radio", "referee", "vision",
@@ -142,6 +143,76 @@ class BatchTest(unittest.TestCase):
                 self.assertIn("yellow crashes", f.read())
         self.assertIn("failed", run.stderr)
         self.assertEqual(ubersim_processes_under(self.folder), [])
+
+    def test_a_team_stopped_mid_game_in_sync_mode_makes_the_game_degraded_exit_4(self):
+        # One sync game; its yellow demo team gets SIGSTOP once the game runs, so
+        # the radio emulator drops it after 1 s of wall time; SIGCONT once the
+        # drop is in radio.log, and it registers again (rejoins). 120 s of game:
+        # a sync game runs at ~25x, so a shorter one could end before this test,
+        # descheduled on a busy machine, stopped yellow.
+        text = SHORT.replace("MODE = fast", "MODE = sync").replace(
+            "GAMES_PER_POINT = 2", "GAMES_PER_POINT = 1").replace(
+            "GAME_LENGTH = 4", "GAME_LENGTH = 120")
+        out = os.path.join(self.folder, "out")
+        batch = subprocess.Popen([BATCH, "run", experiment(self.folder, text), "--out", out,
+                                  "--build-dir", BUILD, "-q"],
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        game = os.path.join(out, "games", "0000")
+        try:
+            yellow = self.wait_for(lambda: self.running_game_team(game, "yellow"), "yellow's start")
+            self.wait_for(lambda: self.log_has(game, "events.jsonl", '"NORMAL_START"'),
+                          "the kick-off")
+            os.kill(yellow, signal.SIGSTOP)
+            try:
+                self.wait_for(lambda: self.log_has(game, "radio.log", "sync client dropped"),
+                              "the drop")
+            finally:
+                os.kill(yellow, signal.SIGCONT)
+            stdout, stderr = batch.communicate(timeout=120)
+        finally:
+            if batch.poll() is None:
+                batch.kill()
+        self.assertEqual(batch.returncode, 4, stdout + stderr)
+        (g,) = rows(out)
+        self.assertEqual(g["status"], "degraded", g)
+        self.assertIn("yellow's sync client 'demo_yellow' was dropped 1 time", g["reason"])
+        lost = float(g["yellow_without_control"])
+        self.assertGreater(lost, 0.0, g)
+        self.assertLess(lost, float(g["sim_time"]), g)
+        self.assertEqual(float(g["blue_without_control"]), 0.0, g)
+        self.assertIn("1 of 1 games degraded", stderr)
+        self.assertIn("1 degraded", stdout)  # the summary line of the point
+        with open(os.path.join(out, "summary.csv")) as f:
+            (point,) = list(csv.DictReader(f))
+        self.assertEqual((point["degraded"], point["failed"]), ("1", "0"))
+        # The referee's result line says so too, with the same time without control.
+        with open(os.path.join(game, "events.jsonl")) as f:
+            result = [line for line in f if '"result"' in line][-1]
+        self.assertIn('"degraded": [{"team": "yellow", "client": "demo_yellow"', result)
+        self.assertEqual(ubersim_processes_under(self.folder), [])
+
+    def running_game_team(self, game, team):
+        for pid, command in processes_mentioning(game).items():
+            if "ubersim_demo_team" in command and f"--team {team}" in command:
+                return pid
+        return None
+
+    @staticmethod
+    def log_has(game, name, text):
+        try:
+            with open(os.path.join(game, name), errors="replace") as f:
+                return text in f.read()
+        except OSError:
+            return False
+
+    def wait_for(self, condition, what, seconds=60):
+        deadline = time.monotonic() + seconds
+        while time.monotonic() < deadline:
+            value = condition()
+            if value:
+                return value
+            time.sleep(0.05)
+        self.fail(f"no {what} within {seconds} s")
 
     def start_long_games(self):
         """The short experiment with 600 s games, running in the background: (process, out)."""

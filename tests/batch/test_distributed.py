@@ -111,12 +111,17 @@ GAME_TIMEOUT = 120
             "\n".join(f"{pid}: {c}" for pid, c in left.items())
         output, _ = batch.communicate(timeout=240)
         print(output)
-        assert batch.returncode == 0, f"the batch after the lost worker: status {batch.returncode}"
+        # 4: the game finished degraded (a sync client dropped on a loaded
+        # machine): still a finished second attempt, which is what this checks.
+        assert batch.returncode in (0, 4), \
+            f"the batch after the lost worker: status {batch.returncode}"
     finally:
         if batch.poll() is None:
             batch.kill()
     (row,) = read(out)
-    assert row["status"] == "ok", row
+    assert row["status"] in ("ok", "degraded"), row
+    if row["status"] == "degraded":
+        print(f"test_distributed: note: the second attempt finished degraded: {row['reason']}")
     assert row["log_dir"] != first.rstrip("/"), \
         f"the rescheduled game wrote into the killed attempt's folder {row['log_dir']}"
     assert os.path.exists(os.path.join(row["log_dir"], "result.json")), row["log_dir"]
@@ -177,8 +182,15 @@ def main():
             run = subprocess.run([BATCH, "run", experiment, "--out", out, "--build-dir", BUILD,
                                   "-q", *extra], capture_output=True, text=True, timeout=600)
             print(run.stdout + run.stderr)
+            runs[name] = read(out) if os.path.exists(os.path.join(out, "results.csv")) else []
+            # A game whose sync client was dropped (it did not answer within
+            # --sync-timeout of wall time) is another game: say so, not only
+            # that some column differs.
+            degraded = [r for r in runs[name] if r["status"] == "degraded"]
+            assert not degraded, f"{name} run: a sync client was dropped, so these games " \
+                f"cannot equal the other run's: " + \
+                "; ".join(f"game {r['game']}: {r['reason']}" for r in degraded)
             assert run.returncode == 0, f"{name} run failed"
-            runs[name] = read(out)
 
         dask_rows, local_rows = runs["dask"], runs["local"]
         assert len(dask_rows) == len(local_rows) == 4, (len(dask_rows), len(local_rows))

@@ -98,10 +98,51 @@ TEST(SyncCoordinator, ClientPastTheTimeoutIsDropped) {
   EXPECT_TRUE(sync.expire(start + std::chrono::milliseconds(400)).empty());
   const auto dropped = sync.expire(start + std::chrono::milliseconds(600));
   ASSERT_EQ(dropped.size(), 1u);
-  EXPECT_NE(dropped[0].find("slow"), std::string::npos);
+  EXPECT_EQ(dropped[0].client, "slow");
+  EXPECT_DOUBLE_EQ(dropped[0].t_sim, 0.1) << "its unanswered frame's publication";
+  EXPECT_NE(dropped[0].describe().find("sync client dropped: team yellow, client 'slow', at sim "
+                                       "time 0.100 s"),
+            std::string::npos)
+      << dropped[0].describe();
   EXPECT_EQ(sync.clients(), 0);
   EXPECT_EQ(sync.stats().timeouts, 1u);
   EXPECT_EQ(sync.earliest_arrival(Team::Yellow), SyncCoordinator::kInfinity);
+}
+
+TEST(SyncCoordinator, DroppedTeamIsWithoutControlUntilItsClientRejoins) {
+  SyncCoordinator sync(0.5);
+  const auto start = Clock::now();
+  sync.on_client(client(1, "blue\nfake line"));
+  sync.on_schedule(schedule(2.0, 480, {1.97}, 2.03), start);
+  EXPECT_EQ(sync.summary(), "sync: no client was dropped");
+  ASSERT_EQ(sync.expire(start + std::chrono::seconds(1)).size(), 1u);
+  EXPECT_EQ(sync.control(Team::Blue).client, "blue?fake line") << "one line in the log";
+  EXPECT_DOUBLE_EQ(sync.control(Team::Blue).dropped_at, 2.0);
+  EXPECT_EQ(sync.status().drops[1], 1);
+  // Physics runs on without it; then it registers again.
+  sync.on_schedule(schedule(5.5, 1320, {5.47}, 5.53), start + std::chrono::seconds(2));
+  EXPECT_NE(sync.summary().find("blue without control for 3.500 s of sim time (1 drop of client "
+                                "'blue?fake line', not back by the end)"),
+            std::string::npos)
+      << sync.summary();
+  const std::string rejoined = sync.on_client(client(1, "blue"));
+  EXPECT_EQ(rejoined,
+            "sync client rejoined: team blue, client 'blue', at sim time 5.500 s, after 3.500 s of "
+            "sim time without control");
+  EXPECT_DOUBLE_EQ(sync.control(Team::Blue).without_control_until(9.0), 3.5);
+  EXPECT_LT(sync.status().dropped_at[1], 0);
+  EXPECT_DOUBLE_EQ(sync.status().without_control[1], 3.5);
+  EXPECT_EQ(sync.status().drops[0], 0) << "yellow had no client to lose";
+}
+
+TEST(SyncCoordinator, OwnStallDoesNotCountAgainstTheClients) {
+  SyncCoordinator sync(0.5);
+  const auto start = Clock::now();
+  sync.on_client(client(0, "a"));
+  sync.on_schedule(schedule(0.1, 24, {0.0}, 0.13), start);
+  sync.forgive(std::chrono::milliseconds(800));  // the radio emulator itself did not run
+  EXPECT_TRUE(sync.expire(start + std::chrono::milliseconds(1200)).empty());
+  EXPECT_EQ(sync.expire(start + std::chrono::milliseconds(1400)).size(), 1u);
 }
 
 TEST(CommandLinkHorizon, EarliestApplyIsExactlyTheNextPacketsTApply) {

@@ -612,3 +612,32 @@ TEST(AutoRefereeMessage, StateGoesOnTheWireWithSslNumberingAndIntoTheLog) {
   EXPECT_NE(event_line(quoted).find(R"(a \"quoted\"\u000aline)"), std::string::npos)
       << event_line(quoted);
 }
+
+// A sync run in which the radio emulator dropped a client (SIM_SYNC_STATUS):
+// the result says which team was without control, and for how long of the game.
+TEST(ResultLine, SaysWhichTeamPlayedWithoutControl) {
+  ubersim::sync_status_t status{};
+  status.client[0] = "demo_yellow";
+  status.drops[0] = 2;
+  status.without_control[0] = 1.5;  // a first drop that ended
+  status.dropped_at[0] = 8.0;       // a second, still going
+  status.dropped_at[1] = -1;
+  const auto losses = ubersim::referee::control_losses(status, 10.0);
+  ASSERT_EQ(losses.size(), 1u);
+  EXPECT_EQ(losses[0].team, "yellow");
+  EXPECT_DOUBLE_EQ(losses[0].without_control, 3.5);
+  EXPECT_EQ(ubersim::referee::degraded_text(losses),
+            "DEGRADED: yellow without control for 3.5000 s of sim time (sync client "
+            "'demo_yellow' dropped 2 times)");
+  const ubersim::referee::RefereeState state;
+  const std::string line = ubersim::referee::result_line(state, 10.0, 1.0, losses);
+  EXPECT_NE(line.find(R"("degraded": [{"team": "yellow", "client": "demo_yellow", "drops": 2, )"
+                      R"("without_control": 3.5000}], "wall_time")"),
+            std::string::npos)
+      << line;
+  EXPECT_EQ(ubersim::referee::result_line(state, 10.0, 1.0).find("degraded"), std::string::npos);
+  // A drop after the game's end took nothing from it.
+  EXPECT_TRUE(ubersim::referee::control_losses(status, 7.0).size() == 1u);
+  status.without_control[0] = 0;
+  EXPECT_TRUE(ubersim::referee::control_losses(status, 7.0).empty());
+}

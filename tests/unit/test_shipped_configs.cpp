@@ -34,10 +34,10 @@ TEST(ShippedConfigs, EveryFileParses) {
 
 TEST(ShippedConfigs, FieldsLoad) {
   const auto names = names_of("fields");
-  EXPECT_EQ(names, (std::vector<std::string>{"division_a", "division_b", "erforce_2014",
-                                             "erforce_2017", "erforce_2018", "erforce_2019",
-                                             "erforce_2020", "erforce_2020b", "erforce_2023",
-                                             "erforce_2023b", "field2002"}));
+  EXPECT_EQ(names, (std::vector<std::string>{
+                       "division_a", "division_b", "erforce_2014", "erforce_2017", "erforce_2018",
+                       "erforce_2019", "erforce_2020", "erforce_2020b", "erforce_2023",
+                       "erforce_2023b", "field2002", "rsim_hardware_challenge"}));
   for (const auto& name : names) {
     EXPECT_NO_THROW(ubersim::load_field_config(kConfigDir, name)) << name;
   }

@@ -10,6 +10,7 @@ the referee to end the game, stops everything and reads the event log.
 import ctypes
 import json
 import os
+import re
 import shlex
 import shutil
 import signal
@@ -266,6 +267,67 @@ def read_events(path):
     return by_type, result
 
 
+# The radio emulator's lines for a dropped and a rejoined sync client
+# (radio_emulator/src/sync_coordinator.cpp; docs/sync.md, "A dropped client").
+SYNC_DROPPED = re.compile(r"sync client dropped: team (yellow|blue), client '([^']*)', "
+                          r"at sim time ([0-9.]+) s")
+SYNC_REJOINED = re.compile(r"sync client rejoined: team (yellow|blue), client '[^']*', "
+                           r"at sim time ([0-9.]+) s")
+
+
+def control_losses(radio_log, end):
+    """{team: {"drops", "without_control", "client", "first_drop"}} for each team
+    whose sync client the radio emulator dropped before `end` (s of sim time):
+    without control from each drop until it rejoined, or until `end`."""
+    losses = {}
+    dropped_at = {}
+    if not os.path.exists(radio_log):
+        return losses
+    with open(radio_log, errors="replace") as f:
+        for line in f:
+            drop = SYNC_DROPPED.search(line)
+            if drop and float(drop.group(3)) < end:
+                team, t = drop.group(1), float(drop.group(3))
+                loss = losses.setdefault(team, {"drops": 0, "without_control": 0.0,
+                                                "client": drop.group(2), "first_drop": t})
+                loss["drops"] += 1
+                dropped_at[team] = t
+                continue
+            rejoin = SYNC_REJOINED.search(line)
+            if rejoin and rejoin.group(1) in dropped_at:
+                team = rejoin.group(1)
+                since = dropped_at.pop(team)
+                losses[team]["without_control"] += min(float(rejoin.group(2)), end) - since
+    for team, since in dropped_at.items():
+        losses[team]["without_control"] += end - since
+    for loss in losses.values():
+        loss["without_control"] = round(loss["without_control"], 3)
+    return losses
+
+
+def degraded_reason(losses, end):
+    """The reason column of a game whose teams lost control."""
+    parts = []
+    for team in sorted(losses):
+        loss = losses[team]
+        times = "time" if loss["drops"] == 1 else "times"
+        parts.append(f"{team}'s sync client '{loss['client']}' was dropped {loss['drops']} {times} "
+                     f"(first at {loss['first_drop']:.3f} s): {team} without control for "
+                     f"{loss['without_control']:.3f} s of {end:.3f} s of sim time")
+    return "; ".join(parts) + " (see radio.log)"
+
+
+def vision_frames_lost(log_path):
+    """The vision emulator's "frames lost" from its exit summary. It runs with
+    -q, and logs that summary (at warning level) only when it lost a frame:
+    no summary in its log is 0."""
+    if not os.path.exists(log_path):
+        return ""
+    with open(log_path) as f:
+        found = re.findall(r"summary: frames lost (\d+)", f.read())
+    return int(found[-1]) if found else 0
+
+
 def run_driver(spec):
     """Runs the game in this process's network (namespace); writes result.json."""
     game_dir = spec["game_dir"]
@@ -349,9 +411,13 @@ def run_driver(spec):
         y, b = result_line["yellow"], result_line["blue"]
         played = y["possession"] + b["possession"]
         sim_time = result_line["t"]
+        # A team whose client was dropped played part of the game without
+        # control: the score is not that of a fair game.
+        losses = control_losses(os.path.join(game_dir, "radio.log"), sim_time)
         result = {
             "index": spec["index"], "point": spec["point"], "seed": spec["seed"],
-            "parameters": spec["parameters"], "status": "ok", "reason": "",
+            "parameters": spec["parameters"], "status": "degraded" if losses else "ok",
+            "reason": degraded_reason(losses, sim_time) if losses else "",
             "yellow_goals": y["goals"], "blue_goals": b["goals"],
             "score_difference": y["goals"] - b["goals"],
             "yellow_shots": y["shots"], "blue_shots": b["shots"],
@@ -363,6 +429,11 @@ def run_driver(spec):
             "sim_time": sim_time,
             "wall_time": round(wall, 3),
             "speed": round(sim_time / wall, 3) if wall > 0 else 0.0,
+            "yellow_without_control": losses.get("yellow", {}).get("without_control", 0.0),
+            "blue_without_control": losses.get("blue", {}).get("without_control", 0.0),
+            # As fast as possible physics waits for the vision, so this is 0
+            # unless something went wrong; never lost silently (docs/vision.md).
+            "vision_frames_lost": vision_frames_lost(os.path.join(game_dir, "vision.log")),
             "cpu": processes.cpu,
             "log_dir": game_dir,
         }

@@ -10,7 +10,8 @@ import subprocess
 GAME_COLUMNS = [
     "status", "yellow_goals", "blue_goals", "score_difference", "yellow_shots", "blue_shots",
     "yellow_possession", "blue_possession", "yellow_fouls", "blue_fouls", "events",
-    "sim_time", "wall_time", "speed", "reason", "log_dir",
+    "sim_time", "wall_time", "speed", "yellow_without_control", "blue_without_control",
+    "vision_frames_lost", "reason", "log_dir",
 ]
 # Columns that depend only on what happened in the game (not on the machine):
 # two runs of the same experiment in sync mode give the same values.
@@ -119,8 +120,12 @@ def summarize(results, sweep_names):
     summary = []
     for point in sorted(points):
         games = points[point]
+        # A degraded game (a team played part of it without control) is left
+        # out of the statistics, like a failed one, and counted on its own.
         ok = [g for g in games if g["status"] == "ok"]
-        entry = {"point": point, "games": len(games), "failed": len(games) - len(ok)}
+        degraded = sum(g["status"] == "degraded" for g in games)
+        entry = {"point": point, "games": len(games), "failed": len(games) - len(ok) - degraded,
+                 "degraded": degraded}
         for name in sweep_names:
             entry[name] = games[0]["parameters"].get(name, "")
         for key in ("score_difference", "yellow_goals", "blue_goals", "yellow_shots",
@@ -142,7 +147,8 @@ def _format(value):
 
 
 def write_summary(out_dir, summary, sweep_names):
-    columns = ["point", *sweep_names, "games", "failed", "yellow_wins", "draws", "blue_wins"]
+    columns = ["point", *sweep_names, "games", "failed", "degraded", "yellow_wins", "draws",
+               "blue_wins"]
     for key in ("score_difference", "yellow_goals", "blue_goals", "yellow_shots", "blue_shots",
                 "yellow_possession", "yellow_fouls", "blue_fouls", "speed"):
         columns += [key, key + "_ci95"]
@@ -155,9 +161,11 @@ def write_summary(out_dir, summary, sweep_names):
     for entry in summary:
         where = ", ".join(f"{n} = {entry[n]}" for n in sweep_names) or "all games"
         d, ci = entry["score_difference"], entry["score_difference_ci95"]
+        degraded = (f" ({entry['degraded']} degraded: a team without control for part of the "
+                    f"game; not in the figures)" if entry["degraded"] else "")
         lines.append(
             f"point {entry['point']} ({where}): {entry['games'] - entry['failed']} of "
-            f"{entry['games']} games finished; yellow - blue = {_format(d)} +- {_format(ci)} "
+            f"{entry['games']} games finished{degraded}; yellow - blue = {_format(d)} +- {_format(ci)} "
             f"(95 % CI); wins yellow/draws/blue {entry['yellow_wins']}/{entry['draws']}/"
             f"{entry['blue_wins']}; goals {_format(entry['yellow_goals'])} : "
             f"{_format(entry['blue_goals'])}; shots {_format(entry['yellow_shots'])} : "

@@ -46,15 +46,17 @@ inline constexpr const char* kVisionCamerasChannel = "VISION_CAMERAS";
 inline constexpr const char* kSyncClientChannel = "SYNC_CLIENT";              // sync_client_t
 inline constexpr const char* kSyncHorizonChannel = "SIM_SYNC_HORIZON";        // sync_horizon_t
 inline constexpr const char* kVisionScheduleChannel = "SIM_VISION_SCHEDULE";  // vision_schedule_t
+// Dropped and rejoined sync clients (radio emulator -> referee, tools).
+inline constexpr const char* kSyncStatusChannel = "SIM_SYNC_STATUS";  // sync_status_t
 // The automatic referee's game state (referee_t, docs/autoref.md).
 inline constexpr const char* kRefereeChannel = "REFEREE";
 // Which ground-truth states each consumer needs (physics --truth-on-demand).
 inline constexpr const char* kTruthDemandChannel = "SIM_TRUTH_DEMAND";  // truth_demand_t
 // Channels outside the Channel list (which the DDS bridge maps one for one
 // onto topics): these have no DDS topic.
-inline constexpr std::array<const char*, 7> kExtraChannels{
-    kEmulatorRealismChannel, kSyncClientChannel,  kSyncHorizonChannel,  kVisionScheduleChannel,
-    kRefereeChannel,         kTruthDemandChannel, kVisionCamerasChannel};
+inline constexpr std::array<const char*, 8> kExtraChannels{
+    kEmulatorRealismChannel, kSyncClientChannel,  kSyncHorizonChannel,   kVisionScheduleChannel,
+    kRefereeChannel,         kTruthDemandChannel, kVisionCamerasChannel, kSyncStatusChannel};
 
 // The name a channel has with no prefix and no override, e.g. "RADIO_YELLOW".
 const char* base_channel_name(Channel channel);

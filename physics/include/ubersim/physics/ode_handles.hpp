@@ -12,6 +12,12 @@ namespace ubersim::physics {
 // Initialises ODE once per process (and the calling thread's collision data).
 void ensure_ode_initialised();
 
+struct ThreadingDeleter {
+  void operator()(dThreadingImplementationID t) const {
+    dThreadingImplementationShutdownProcessing(t);
+    dThreadingFreeImplementation(t);
+  }
+};
 struct WorldDeleter {
   void operator()(dWorldID w) const { dWorldDestroy(w); }
 };
@@ -31,6 +37,7 @@ struct JointGroupDeleter {
   void operator()(dJointGroupID g) const { dJointGroupDestroy(g); }
 };
 
+using ThreadingHandle = std::unique_ptr<dxThreadingImplementation, ThreadingDeleter>;
 using WorldHandle = std::unique_ptr<dxWorld, WorldDeleter>;
 using SpaceHandle = std::unique_ptr<dxSpace, SpaceDeleter>;
 using GeomHandle = std::unique_ptr<dxGeom, GeomDeleter>;

@@ -148,6 +148,16 @@ class World {
   bool body_sane(dBodyID body) const;
   bool inside_walls(double x, double y, double margin) const;
   void move_ball_out_of_robots(std::string& notes);
+  // PLACE in parts. The checks return what is wrong (empty: nothing) and pick
+  // each named robot type; applying changes the world.
+  std::string check_placement(const sim_control_t& request, bool remove_all_first,
+                              std::vector<std::shared_ptr<const RobotTypeConfig>>& types);
+  std::string check_robot_placement(const robot_placement_t& p, bool remove_all_first,
+                                    std::shared_ptr<const RobotTypeConfig>& type);
+  // One present robot (`type` null: it keeps its own); true when it was placed.
+  bool apply_robot_placement(const robot_placement_t& p,
+                             std::shared_ptr<const RobotTypeConfig> type, std::string& notes);
+  void apply_ball_placement(const sim_control_t& request, std::string& notes);
   // Moves by force (placement mode BY_FORCE), applied every step until ended.
   void apply_force_moves();
 
@@ -156,6 +166,11 @@ class World {
   std::shared_ptr<std::map<std::string, std::shared_ptr<const RobotTypeConfig>>> defined_types_;
   double dt_;
   BallSurface ball_surface_;
+  // The world's own threading implementation (self-threaded: each step's
+  // jobs run on the calling thread). Without one ODE uses a process-wide
+  // default, which worlds stepped at the same time on several threads (the
+  // Python VectorSim) corrupt. Declared first: it outlives the world.
+  ThreadingHandle threading_;
   // ODE objects in creation order: destroyed in reverse, the world last.
   WorldHandle world_;
   SpaceHandle space_;

@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <ubersim/sync_client_t.hpp>
+#include <ubersim/sync_status_t.hpp>
 #include <ubersim/vision_schedule_t.hpp>
 #include <vector>
 
@@ -42,6 +43,32 @@ struct SyncStats {
   std::uint64_t schedules_out_of_order = 0;
 };
 
+// What happened to one team's control (docs/sync.md, "A dropped client"): a
+// team is without control from the sim time its client was dropped until a
+// client registers for it again.
+struct TeamControl {
+  std::string client;          // its latest client's name (printable: it came off the wire)
+  std::uint32_t drops = 0;     // times its client was dropped for answering too late
+  double dropped_at = -1;      // s of sim time the current drop began; < 0: not dropped now
+  double without_control = 0;  // s of sim time without control in drops that ended
+
+  // s of sim time without control up to `now`, the current drop included.
+  double without_control_until(double now) const;
+};
+
+// A client dropped by SyncCoordinator::expire.
+struct Drop {
+  Team team;
+  std::string client;  // printable
+  double t_sim;        // s of sim time: its first unanswered frame's publication
+  double t_capture;    // that frame's capture time
+  double timeout;      // s of wall time it had
+
+  // "sync client dropped: team yellow, client 'demo_yellow', at sim time ..." (one line,
+  // the form tools/launch.sh and the batch runner read: docs/sync.md).
+  std::string describe() const;
+};
+
 class SyncCoordinator {
  public:
   using Clock = std::chrono::steady_clock;
@@ -50,6 +77,8 @@ class SyncCoordinator {
   explicit SyncCoordinator(double client_timeout_s) : timeout_(client_timeout_s) {}
 
   // Registration or goodbye; returns a line for the log when something changed.
+  // A registration for a team whose client was dropped ends its time without
+  // control ("sync client rejoined: ...").
   std::string on_client(const sync_client_t& message);
   void on_schedule(const vision_schedule_t& schedule, Clock::time_point now);
 
@@ -61,8 +90,12 @@ class SyncCoordinator {
   Answer on_answer(Team team, double t_sent, Clock::time_point now);
 
   // Drops every client whose oldest unanswered frame waits longer than the
-  // timeout (the run goes on without it); returns their descriptions.
-  std::vector<std::string> expire(Clock::time_point now);
+  // timeout (the run goes on without it); returns them.
+  std::vector<Drop> expire(Clock::time_point now);
+  // The radio emulator itself did not run for `gap` (a stalled process or a
+  // paused machine): the clients could not answer in that time either, so it
+  // does not count against their timeout.
+  void forgive(Clock::duration gap);
 
   // The earliest sim time a further answer of `team` can arrive (kInfinity
   // when the team has no client, or vision has not been heard yet).
@@ -75,6 +108,13 @@ class SyncCoordinator {
   std::optional<std::string> client_name(Team team) const;
   std::vector<SyncClientStats> client_stats() const;
   const SyncStats& stats() const { return stats_; }
+  const TeamControl& control(Team team) const { return control_[static_cast<int>(team)]; }
+  // s of sim time of the latest state the vision emulator announced (-inf before any).
+  double sim_time() const { return last_schedule_time_; }
+  // The teams' control as SIM_SYNC_STATUS says it (sequence not set).
+  sync_status_t status() const;
+  // "sync: no client was dropped" or "sync: degraded run: ..." (until the latest sim time).
+  std::string summary() const;
 
  private:
   struct Outstanding {
@@ -97,6 +137,7 @@ class SyncCoordinator {
   double last_schedule_time_ = -kInfinity;
   std::int64_t last_schedule_step_ = -1;
   SyncStats stats_;
+  TeamControl control_[2];
   std::vector<SyncClientStats> departed_;
 };
 

@@ -3,12 +3,15 @@
 // SyncCoordinator and the emulator's links to the bus. It listens to
 // SYNC_CLIENT and SIM_VISION_SCHEDULE, takes the teams' radio packets as
 // answers, and publishes on SIM_SYNC_HORIZON how far physics may step:
-// the earliest t_apply any command not yet forwarded can still get.
+// the earliest t_apply any command not yet forwarded can still get. Each
+// client it drops, and each that rejoins, is one log line and goes out on
+// SIM_SYNC_STATUS (docs/sync.md, "A dropped client").
 #include <chrono>
 #include <functional>
 #include <string>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/sync_horizon_t.hpp>
+#include <ubersim/sync_status_t.hpp>
 
 #include "ubersim/channels.hpp"
 #include "ubersim/logging.hpp"
@@ -34,12 +37,20 @@ class SyncDriver {
 
   // A packet on RADIO_<team>: an answer, if the team has a client.
   void on_packet(Team team, const radio_packet_t& packet);
-  // Every wakeup: drops clients past the timeout. False when that fails the run (strict).
+  // Every wakeup (at least every 50 ms): drops clients past the timeout.
+  // False when that fails the run (strict).
   bool tick();
   void log_summary() const;
 
+  // A wakeup later than this after the previous one means this process did
+  // not run (the machine was loaded or paused): the gap does not count
+  // against the clients, who could not run either.
+  static constexpr auto kStall = std::chrono::milliseconds(250);
+
  private:
   void update(bool always_publish);
+  void forgive_own_stall(std::chrono::steady_clock::time_point now);
+  void publish_status();
 
   MessageBus& bus_;
   std::string horizon_channel_;
@@ -52,6 +63,12 @@ class SyncDriver {
   ThrottledLog log_;
   std::chrono::steady_clock::time_point next_hold_log_{};
   std::chrono::steady_clock::time_point last_published_{};
+  std::string status_channel_;
+  sync_status_t status_{};
+  std::chrono::steady_clock::time_point last_status_{};
+  std::chrono::steady_clock::time_point last_tick_{};
+  std::uint64_t stalls_ = 0;
+  double stalled_seconds_ = 0;
 };
 
 }  // namespace ubersim::radio

@@ -79,6 +79,34 @@ struct GameEvent {
   std::string description;  // one line for people and the event log
 };
 
+// Whom an event names: the scoring team of a goal, the guilty team (and
+// robot) of a foul or an out; nobody for no progress.
+struct Culprit {
+  std::optional<Team> team;
+  int robot = -1;  // robot id, -1 = none
+};
+
+// The fouls among the event types (they count against the culprit's team).
+bool is_foul(EventType type);
+
+// The one place a GameEvent is made: every event this referee raises happened
+// at a place on the field (x, y in m). `value` as in GameEvent. The sim time
+// is added when the event is raised.
+GameEvent make_event(EventType type, Culprit who, double x, double y, std::string description,
+                     double value = 0);
+
+// A number for an event's description: 3 significant digits ("6.52", "10").
+std::string short_number(double value);
+
+// A robot touching the ball: who, and where the ball was (m). `id` counts
+// touches, so that each touch is judged once.
+struct BallTouch {
+  Team team = Team::Yellow;
+  int robot = -1;
+  double x = 0, y = 0;
+  int id = 0;
+};
+
 struct TeamStats {
   int goals = 0;
   int shots = 0;  // kicks whose straight path enters the opponent goal mouth
@@ -143,13 +171,6 @@ class AutoReferee {
         Command::ForceStart;  // PrepareKickoff*, PreparePenalty*, DirectFree*, ForceStart
     std::optional<SituationRequest> placement;
   };
-  struct Touch {
-    Team team = Team::Yellow;
-    int robot = -1;
-    double x = 0, y = 0;  // ball position at the touch (m)
-    int id = 0;           // counts touches, so each kick is judged once
-  };
-
   void set_command(Command command, Decision& decision);
   void stop_for(const Restart& restart, Decision& decision);
   void raise(GameEvent event, Decision& decision);
@@ -161,6 +182,11 @@ class AutoReferee {
   void check_shot(const sim_state_t& state);
   void check_no_progress(const sim_state_t& state, Decision& decision);
   void run_phase(const sim_state_t& state, Decision& decision);
+  void issue_restart(const sim_state_t& state, Decision& decision);
+  void normal_start(Decision& decision);
+  void await_kick(const sim_state_t& state, Decision& decision);
+  // The ball is in play from (x, y), where no-progress is measured from.
+  void start_play(double x, double y);
   void start_half(Stage pre_stage, Team kicking, Decision& decision);
   void end_half(Decision& decision);
 
@@ -177,9 +203,10 @@ class AutoReferee {
   double phase_start_ = 0;
   bool have_time_ = false;
   Restart pending_;
-  std::optional<Touch> last_touch_;
-  std::optional<Touch> kicker_;  // took the last kick-off / free kick; no other robot touched since
-  std::vector<bool> touching_;   // per robot index of the last state
+  std::optional<BallTouch> last_touch_;
+  std::optional<BallTouch>
+      kicker_;                  // took the last kick-off / free kick; no other robot touched since
+  std::vector<bool> touching_;  // per robot index of the last state
   int touch_counter_ = 0;
   bool placement_pending_ = false;  // placed, and physics has not shown it yet
   double placement_time_ = 0;       // s

@@ -4,6 +4,8 @@
 #include <ostream>
 #include <string>
 #include <ubersim/referee_t.hpp>
+#include <ubersim/sync_status_t.hpp>
+#include <vector>
 
 #include "ubersim/referee/autoref.hpp"
 
@@ -17,6 +19,21 @@ referee_event_t to_message(const GameEvent& event);
 // command, and the final result with every team's figures.
 std::string event_line(const GameEvent& event);
 std::string command_line(const RefereeState& state, double sim_time);
-std::string result_line(const RefereeState& state, double sim_time, double wall_time);
+// A team that played part of a sync run without control: the radio emulator
+// dropped its client (SIM_SYNC_STATUS, docs/sync.md "A dropped client").
+struct ControlLoss {
+  std::string team;
+  std::string client;
+  int drops = 0;
+  double without_control = 0;  // s of sim time, up to the end of the game
+};
+// The teams that lost control before `end` (s of sim time), from the latest status.
+std::vector<ControlLoss> control_losses(const sync_status_t& status, double end);
+// "DEGRADED: yellow without control for 12.3 s of sim time (...)"; "" when none.
+std::string degraded_text(const std::vector<ControlLoss>& losses);
+
+// The result line; with losses, a "degraded" list before the wall time.
+std::string result_line(const RefereeState& state, double sim_time, double wall_time,
+                        const std::vector<ControlLoss>& losses = {});
 
 }  // namespace ubersim::referee
