@@ -58,7 +58,7 @@ int run(const Options& options) {
   };
 
   bus.subscribe<sim_state_t>(channels(Channel::SimState), [&](const sim_state_t& state) {
-    publish(emulator.on_sim_state(state));
+    publish(emulator.on_sim_state(state, std::chrono::steady_clock::now()));
   });
   std::optional<radio::SyncDriver> sync;
   if (options.sync) sync.emplace(bus, channels, emulator, options.sync_options, publish);
@@ -67,7 +67,7 @@ int run(const Options& options) {
       if (sync) {
         sync->on_packet(team, p);
       } else {
-        publish(emulator.on_radio_packet(team, p));
+        publish(emulator.on_radio_packet(team, p, std::chrono::steady_clock::now()));
       }
     });
   }

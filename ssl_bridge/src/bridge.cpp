@@ -41,7 +41,8 @@ int8_t team_code(Team team) {
 
 }  // namespace
 
-SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOptions options)
+SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
+                     TruthDemandAnnouncer& truth_demand, BridgeOptions options)
     : bus_(bus),
       channels_(channels),
       options_(std::move(options)),
@@ -55,7 +56,7 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
       referee_source_("ubersim-" + random_uuid()),
       referee_translator_(referee_source_),
       sync_{{SyncAnswers(options_.sync_timeout), SyncAnswers(options_.sync_timeout)}},
-      truth_demand_(bus, channels, "ssl_bridge") {
+      truth_demand_(truth_demand) {
   // protobuf logs every datagram that misses a required field to stderr, one
   // line each, at any rate; decoded() counts and logs them throttled instead.
   google::protobuf::SetLogHandler(nullptr);
@@ -252,8 +253,7 @@ void SslBridge::answer(PendingResponse& pending) {
   ++counters_["control responses"];
 }
 
-void SslBridge::expire_pending() {
-  const auto now = std::chrono::steady_clock::now();
+void SslBridge::expire_pending(std::chrono::steady_clock::time_point now) {
   for (auto it = pending_by_request_.begin(); it != pending_by_request_.end();) {
     const std::shared_ptr<PendingResponse> pending = it->second;
     if (now < pending->deadline) {
@@ -412,8 +412,7 @@ std::optional<double> SslBridge::sync_datagram(Team team) {
   return datagram.t_capture;
 }
 
-void SslBridge::sync_tick() {
-  const auto now = std::chrono::steady_clock::now();
+void SslBridge::sync_tick(std::chrono::steady_clock::time_point now) {
   for (Team team : kTeams) {
     if (sync_[static_cast<int>(team)].expire(now)) {
       drop_sync_client(team, "did not answer a detection frame within " +
@@ -445,7 +444,7 @@ void SslBridge::sync_leave() {
   }
 }
 
-void SslBridge::run(const ShutdownSignal& shutdown) {
+void SslBridge::start() {
   spdlog::info(
       "vision to {}:{} (ttl {}, via {}); simulation control {}:{}; robot control blue "
       "{}:{}, yellow {}:{}",
@@ -456,42 +455,41 @@ void SslBridge::run(const ShutdownSignal& shutdown) {
     spdlog::info("tracked frames to {}:{} (ttl {}, {} Hz)", options_.tracked_address,
                  options_.tracked_port, options_.tracked_ttl, options_.tracked_rate);
   }
-  if (!watching_sockets_) {
-    watching_sockets_ = true;
-    bus_.watch(control_socket_.fd(), [this] {
-      drain(control_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
-        handle_control_datagram(bytes, from);
-      });
+  bus_.watch(control_socket_.fd(), [this] {
+    drain(control_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
+      handle_control_datagram(bytes, from);
     });
-    bus_.watch(blue_socket_.fd(), [this] {
-      drain(blue_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
-        handle_robot_datagram(Team::Blue, bytes, from);
-      });
+  });
+  bus_.watch(blue_socket_.fd(), [this] {
+    drain(blue_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
+      handle_robot_datagram(Team::Blue, bytes, from);
     });
-    if (referee_listener_) {
-      bus_.watch(referee_listener_->fd(), [this] {
-        drain(*referee_listener_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in&) {
-          on_referee_datagram(bytes);
-        });
-      });
-    }
-    bus_.watch(yellow_socket_.fd(), [this] {
-      drain(yellow_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
-        handle_robot_datagram(Team::Yellow, bytes, from);
+  });
+  if (referee_listener_) {
+    bus_.watch(referee_listener_->fd(), [this] {
+      drain(*referee_listener_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in&) {
+        on_referee_datagram(bytes);
       });
     });
   }
+  bus_.watch(yellow_socket_.fd(), [this] {
+    drain(yellow_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
+      handle_robot_datagram(Team::Yellow, bytes, from);
+    });
+  });
   if (options_.sync) {
     spdlog::info(
         "sync mode: a team's first RobotControl registers it; then each RobotControl answers "
         "the oldest detection packet it has not answered (docs/sync.md)");
   }
-  while (!shutdown.requested()) {
-    bus_.wait_and_handle(50, &shutdown);
-    expire_pending();
-    if (options_.sync) sync_tick();
-    truth_demand_.tick();
-  }
+}
+
+void SslBridge::tick(std::chrono::steady_clock::time_point now) {
+  expire_pending(now);
+  if (options_.sync) sync_tick(now);
+}
+
+void SslBridge::stop() {
   if (options_.sync) sync_leave();
 }
 
