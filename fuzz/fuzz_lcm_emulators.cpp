@@ -125,7 +125,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   vision.on_field_geometry(f.field);
   const auto feed = [&](const ubersim::sim_state_t& state) {
     for (const auto& frame : vision.on_sim_state(state).frames) check(frame);
-    check(radio.on_sim_state(state));
+    check(radio.on_sim_state(state, {}));
   };
   feed(f.states.front());
 
@@ -136,7 +136,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (decode(bytes, length, packet)) {
         const auto team =
             channel == EmulatorChannel::RadioYellow ? ubersim::Team::Yellow : ubersim::Team::Blue;
-        check(radio.on_radio_packet(team, packet));
+        check(radio.on_radio_packet(team, packet, {}));
       }
       break;
     }

@@ -21,7 +21,8 @@ usage: tools/launch.sh [options]
                        with --scenario: that scenario's line-up on this field
   --profile NAME       vision and radio emulator profile (default cmdragons02); ER-Force's realism
                        presets as none | friendly | rc2021 | realistic (= erforce_NAME)
-  --speed F            1 real time (default), 0.5, 4 ..., 0 as fast as possible
+  --speed F            1 real time (default), 0.5, 4 ..., 0 as fast as possible (never ahead
+                       of what the vision emulator can take: no frame lost; docs/vision.md)
   --lockstep           physics advances only when told (referee step N)
   --sync               sync mode: as fast as the demo teams' answers allow, latency exact and
                        runs reproducible (docs/sync.md); the demo teams answer every frame
@@ -313,6 +314,11 @@ physics_args=(--scenario "$scenario" --speed "$speed")
 [ -n "$field_override" ] && physics_args+=(--field "$field_override")
 [ "$lockstep" = 1 ] && physics_args+=(--lockstep)
 [ "$truth_every_step" = 1 ] && physics_args+=(--truth-every-step)
+# As fast as possible physics waits for the vision emulator to keep up; from
+# the first state on, so that no frame of the run's start is lost (docs/vision.md).
+if [ "$vision" = 1 ] && [ "$sync" = 0 ] && [ "$lockstep" = 0 ] && awk -v s="$speed" 'BEGIN { exit !(s == 0) }'; then
+  physics_args+=(--wait-for-vision)
+fi
 radio_args=() demo_args=() bridge_args=()
 if [ "$sync" = 1 ]; then
   # Physics holds at sim time 0 until every demo team has registered, so
@@ -480,11 +486,23 @@ report_sync_clients() {
   fi
 }
 
+# A loss is said where the user looks: frames the vision emulator lost
+# (from its exit summary) are named on the terminal.
+report_losses() {
+  local lost
+  lost=$(grep -o 'summary: frames lost [0-9]*' "$log_dir/vision.log" 2>/dev/null | tail -n 1)
+  lost=${lost##* }
+  if [ -n "$lost" ] && [ "$lost" != 0 ]; then
+    echo "launch: vision lost $lost frames: no ground truth reached it for their capture instants (see $log_dir/vision.log)" >&2
+  fi
+}
+
 # on_signal NAME STATUS: the user stopped the set. Exit STATUS (128 + the
 # signal, as a shell does) unless a process had failed on its own.
 on_signal() {
   trap '' INT TERM
   stop_all
+  report_losses
   echo "launch: stopped ($1)"
   [ "$failed" = 0 ] || exit 1
   exit "$2"
@@ -515,5 +533,6 @@ while :; do
   done
   trap '' INT TERM
   stop_all
+  report_losses
   exit $failed
 done

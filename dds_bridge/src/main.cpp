@@ -13,11 +13,9 @@
 #include "ubersim/dds_bridge/bridge_config.hpp"
 #include "ubersim/dds_bridge/dds_entity.hpp"
 #include "ubersim/logging.hpp"
-#include "ubersim/message_bus.hpp"
+#include "ubersim/process_host.hpp"
 #include "ubersim/process_main.hpp"
 #include "ubersim/radio/radio_profile.hpp"
-#include "ubersim/shutdown.hpp"
-#include "ubersim/truth_demand_announcer.hpp"
 
 namespace {
 
@@ -29,59 +27,56 @@ struct Options {
   double truth_rate = 0;  // Hz of sim time; 0: every step
 };
 
+void log_start(const Options& options, const ubersim::dds::BridgeConfig& config,
+               const ubersim::dds::Bridge& bridge) {
+  spdlog::info(
+      "config {}, DDS domain {} ({}), LCM {}; radio samples checked against the limits of radio "
+      "profile {}",
+      config.name, options.domain,
+      ubersim::dds::cyclone_configured_by_environment() ? "Cyclone configured by CYCLONEDDS_URI"
+      : options.network                                 ? "Cyclone's default network interface"
+                                                        : "this host only, loopback",
+      options.common.lcm_url, config.radio_limits);
+  for (const std::string& line : bridge.describe_routes()) spdlog::info("{}", line);
+  if (config.routes.empty()) spdlog::warn("config {} bridges no channel", config.name);
+}
+
 int run(const Options& options) {
   using namespace ubersim;
   const std::string config_dir = options.common.config_root();
   const dds::BridgeConfig config = dds::load_bridge_config(config_dir, options.config);
   const radio::CommandLimits limits =
       radio::load_radio_profile(config_dir, config.radio_limits).limits;
-  const ChannelNames channels = options.common.channels();
 
-  ShutdownSignal shutdown;
+  ProcessHost host(options.common, "dds_bridge");
   const dds::CycloneLogToSpdlog cyclone_log;
-  MessageBus bus(with_receive_buffer(options.common.lcm_url));
   const dds::DdsParticipant participant =
       dds::join_domain(static_cast<dds_domainid_t>(options.domain),
                        options.network ? dds::DdsNetwork::Network : dds::DdsNetwork::Loopback);
-  dds::Bridge bridge(config, channels, limits, participant.get(), bus);
-
-  spdlog::info(
-      "config {}, DDS domain {} ({}), LCM {}; radio samples checked against the limits of radio "
-      "profile {}",
-      config.name, options.domain,
-      dds::cyclone_configured_by_environment() ? "Cyclone configured by CYCLONEDDS_URI"
-      : options.network                        ? "Cyclone's default network interface"
-                                               : "this host only, loopback",
-      options.common.lcm_url, config.radio_limits);
-  for (const std::string& line : bridge.describe_routes()) spdlog::info("{}", line);
-  if (config.routes.empty()) spdlog::warn("config {} bridges no channel", config.name);
+  dds::Bridge bridge(config, host.channels(), limits, participant.get(), host.bus());
+  log_start(options, config, bridge);
 
   const dds::Route* geometry = config.find(Channel::SimGeometry);
   if (geometry != nullptr && dds::carries_lcm_to_dds(geometry->direction))
     bridge.request_sim_geometry();
-
   // DDS's samples wait in Cyclone's reader cache; its listener signals wake_fd.
-  bus.watch(bridge.wake_fd(), [&bridge] { bridge.take_dds(); });
+  host.bus().watch(bridge.wake_fd(), [&bridge] { bridge.take_dds(); });
   // A relay cannot know what its DDS readers need: with SIM_STATE bridged it
   // asks physics for every step, as DDS stacks got before states came on
   // demand, or for --truth-rate (docs/dds_bridge.md, docs/sync.md).
-  TruthDemandAnnouncer truth_demand(bus, channels, "dds_bridge");
   const dds::Route* state_route = config.find(Channel::SimState);
   if (state_route != nullptr && dds::carries_lcm_to_dds(state_route->direction)) {
     if (options.truth_rate > 0) {
-      truth_demand.periodic(options.truth_rate);
+      host.truth_demand().periodic(options.truth_rate);
     } else {
-      truth_demand.every_step();
+      host.truth_demand().every_step();
     }
   }
-  while (!shutdown.requested()) {
-    bus.wait_and_handle(500, &shutdown);
-    truth_demand.tick();
-  }
-
-  for (const std::string& line : bridge.summary()) spdlog::info("{}", line);
-  spdlog::info("malformed LCM messages dropped: {}", bus.malformed_count());
-  return 0;
+  host.at_stop([&] {
+    for (const std::string& line : bridge.summary()) spdlog::info("{}", line);
+    spdlog::info("malformed LCM messages dropped: {}", host.bus().malformed_count());
+  });
+  return host.run(std::chrono::milliseconds(500));
 }
 
 int parse_and_run(int argc, char** argv) {

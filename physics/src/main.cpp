@@ -55,6 +55,10 @@ int run(int argc, char** argv) {
   app.add_flag("--truth-on-demand", truth_on_demand, "the default; kept for older scripts")
       ->excludes("--truth-every-step");
   app.add_flag("--paused", paused, "start paused (RESUME or STEP to advance)");
+  bool wait_for_vision = false;
+  app.add_flag("--wait-for-vision", wait_for_vision,
+               "hold at sim time 0 until a vision emulator listens (SIM_VISION_SCHEDULE), so it "
+               "sees the run from its start (sync mode always does; docs/vision.md)");
   app.add_option("--seed", seed, "seed of the solver's randomness")
       ->check(ubersim::whole_number())
       ->capture_default_str();
@@ -78,6 +82,7 @@ int run(int argc, char** argv) {
   options.sync = sync || sync_referee;
   options.sync_referee = sync_referee;
   options.truth_on_demand = !truth_every_step;
+  options.wait_for_vision = wait_for_vision;
   ubersim::MessageBus bus(ubersim::with_receive_buffer(common.lcm_url));
   ubersim::ShutdownSignal shutdown;
   ubersim::physics::PhysicsServer server(std::move(setup), bus, common.channels(), options);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "ubersim/vision_backpressure.hpp"
+
 namespace ubersim::physics {
 namespace {
 
@@ -65,6 +67,42 @@ void PhysicsCore::on_sync_horizon(const sync_horizon_t& h) {
   // Until its clients registered, the radio holds the start.
   radio_ready_ = h.waiting_for != "registration";
   horizon_bound_ = h.waiting_for.empty() ? "?" : h.waiting_for;
+}
+
+void PhysicsCore::on_vision_schedule(const vision_schedule_t& schedule, Clock::time_point wall) {
+  vision_heard_ = true;
+  vision_wall_ = wall;
+  vision_silent_ = false;
+  // Step -1: listening, no state seen yet. The latest counts, not the
+  // greatest: after a reset the vision's time starts again from 0 too.
+  vision_time_ = schedule.step < 0 || !std::isfinite(schedule.t_state)
+                     ? -std::numeric_limits<double>::infinity()
+                     : schedule.t_state;
+}
+
+bool PhysicsCore::waits_for_vision(Clock::time_point wall) {
+  if (sync_ || paused_ || !vision_heard_ || !pacer_.as_fast_as_possible()) return false;
+  if (wall - vision_wall_ > kVisionSilence) {
+    if (!vision_silent_) {
+      vision_silent_ = true;
+      ++vision_silences_;
+      spdlog::warn(
+          "the vision emulator has said nothing for {} s: physics runs on without waiting for it "
+          "(its frames may be lost)",
+          std::chrono::duration_cast<std::chrono::seconds>(kVisionSilence).count());
+    }
+    return false;
+  }
+  return world_.time() + world_.dt() * 1e-6 >= vision_time_ + kVisionLead;
+}
+
+const PhysicsCore::Output& PhysicsCore::state_for_vision(bool again) {
+  clear_output();
+  // The vision acknowledges only states it gets: the one physics waits at
+  // goes out if no demand sent it. An extra state changes no frame (a capture
+  // or release is served by the first state at or after its instant).
+  if (again || !(last_state_time_ == world_.time())) add_state();
+  return out_;
 }
 
 void PhysicsCore::on_referee(const referee_t& r) {
@@ -165,6 +203,7 @@ void PhysicsCore::add_state() {
   state.paused = paused_;
   state.speed_factor = sync_ ? 0.0 : pacer_.speed();
   ++states_published_;
+  last_state_time_ = world_.time();
   demand_.published(world_.time());
 }
 

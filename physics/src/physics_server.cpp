@@ -24,7 +24,8 @@ PhysicsServer::PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNam
       state_channel_(channels(Channel::SimState)),
       geometry_channel_(channels(Channel::SimGeometry)),
       ack_channel_(channels(Channel::SimControlAck)),
-      options_(std::move(options)) {
+      options_(std::move(options)),
+      schedule_wakes_(options_.sync || options_.wait_for_vision || options_.speed == 0) {
   if (options_.sync_referee) {
     bus_.subscribe<referee_t>(channels.referee(),
                               [this](const referee_t& r) { core_.on_referee(r); });
@@ -36,12 +37,16 @@ PhysicsServer::PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNam
         channels.extra(kTruthDemandChannel),
         [this](const truth_demand_t& d) { core_.on_truth_demand(d, Clock::now()); });
   }
-  // Physics only needs to know that a vision emulator is listening, before
-  // its first state in sync mode. Started in real time it need not wake for
-  // each of the vision's 30-60 schedules a second: it reads them when it
-  // wakes anyway (for its next state), long before a switch to sync.
-  const auto on_schedule = [this](const vision_schedule_t&) { core_.on_vision_schedule(); };
-  if (options_.sync) {
+  // Physics needs to know that a vision emulator is listening, before its
+  // first state in sync mode, and as fast as possible how far it has got (it
+  // waits for it there). Started in real time it need not wake for the
+  // vision's schedules: it reads them when it wakes anyway (for its next
+  // state), long before a switch to sync; switched to as fast as possible at
+  // run time, it looks for them every millisecond while it waits.
+  const auto on_schedule = [this](const vision_schedule_t& schedule) {
+    core_.on_vision_schedule(schedule, Clock::now());
+  };
+  if (schedule_wakes_) {
     bus_.subscribe<vision_schedule_t>(channels.extra(kVisionScheduleChannel), on_schedule);
   } else {
     bus_.subscribe_unhurried<vision_schedule_t>(channels.extra(kVisionScheduleChannel),
@@ -65,6 +70,7 @@ ServerStats PhysicsServer::stats() const {
   s.demand_late = core_.demand_late();
   s.controls_handled = core_.controls_handled();
   s.packets_received = core_.packets_received();
+  s.vision_silences = core_.vision_silences();
   return s;
 }
 
@@ -75,7 +81,8 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
   const auto geometry_period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(world.setup().physics.geometry_publish_period));
   publish_geometry();
-  if (!core_.sync()) {
+  // Sync mode, and --wait-for-vision: the first state once the others listen.
+  if (!core_.sync() && !options_.wait_for_vision) {
     publish(core_.state());
     first_state_sent_ = true;
   }
@@ -106,7 +113,7 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
       wait_until(next_geometry, shutdown);
       continue;
     }
-    if (core_.sync() && !first_state_sent_) {
+    if (!first_state_sent_) {
       if (core_.ready_to_start()) {
         publish(core_.state());
         first_state_sent_ = true;
@@ -139,6 +146,11 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
         bus_.handle_pending();
         next_poll = now + poll_period;
       }
+      if (core_.waits_for_vision(now)) {
+        wait_for_vision(shutdown);
+        continue;
+      }
+      vision_wait_began_.reset();
       if (!core_.idle() && !core_.duration_reached()) publish(core_.step());
       continue;
     }
@@ -172,12 +184,21 @@ int PhysicsServer::run(const ShutdownSignal* shutdown) {
   }
   stats_.drift =
       pacer.paced() && !core_.paused() && !core_.sync() ? pacer.drift(end, world.step_index()) : 0;
-  if (options_.sync && first_state_sent_) {
+  if ((options_.sync || options_.wait_for_vision) && first_state_sent_) {
+    // The start, waiting for the others to listen, left out.
     stats_.sync_run_seconds = seconds_between(first_state_wall_, end);
-    spdlog::info("sync: {:.3f} s of sim time in {:.3f} s of wall time from the first state",
-                 world.time(), stats_.sync_run_seconds);
+    spdlog::info("{}: {:.3f} s of sim time in {:.3f} s of wall time from the first state",
+                 options_.sync ? "sync" : "as fast as possible", world.time(),
+                 stats_.sync_run_seconds);
   }
   if (core_.sync() || !stats_.sync_waits.empty()) log_sync_waits();
+  if (stats_.vision_waits > 0 || stats_.vision_silences > 0) {
+    spdlog::info(
+        "as fast as possible: waited {:.3f} s of wall time for the vision emulator ({} waits, "
+        "{} states sent for it); it fell silent {} times",
+        stats_.vision_wait_seconds, stats_.vision_waits, stats_.states_for_vision,
+        core_.vision_silences());
+  }
   if (stepping_clock_.seconds() > 0) {
     spdlog::info("stepping took {:.3f} s of CPU ({:.2f} % of one core over the run)",
                  stepping_clock_.seconds(), 100 * stepping_clock_.seconds() / stats_.wall_seconds);
@@ -198,6 +219,27 @@ void PhysicsServer::wait_at_horizon(const ShutdownSignal* shutdown) {
   wait_until(start + std::chrono::milliseconds(100), shutdown);
   stats_.sync_wait_seconds[bound] += seconds_between(start, Clock::now());
   ++stats_.sync_waits[bound];
+}
+
+void PhysicsServer::wait_for_vision(const ShutdownSignal* shutdown) {
+  // The step physics waits at: its state goes out (if no demand sent it) for
+  // the vision to acknowledge, and again every 100 ms (a vision that started
+  // listening after it went out never saw it).
+  const auto start = Clock::now();
+  constexpr auto kRepeat = std::chrono::milliseconds(100);
+  const bool again = vision_wait_began_ && start - *vision_wait_began_ >= kRepeat;
+  if (!vision_wait_began_ || again) {
+    vision_wait_began_ = start;
+    const PhysicsCore::Output& out = core_.state_for_vision(again);
+    stats_.states_for_vision += static_cast<std::int64_t>(out.states.size());
+    publish(out);
+  }
+  // What is already waiting may be the acknowledgement: no sleep then.
+  if (bus_.handle_pending() > 0) return;
+  const auto wait = schedule_wakes_ ? kRepeat : std::chrono::milliseconds(1);
+  wait_until(std::min(*vision_wait_began_ + kRepeat, start + wait), shutdown);
+  stats_.vision_wait_seconds += seconds_between(start, Clock::now());
+  ++stats_.vision_waits;
 }
 
 Clock::time_point PhysicsServer::wake_for(Clock::time_point due) const {

@@ -179,7 +179,9 @@ void InProcessSim::feed_emulators() {
     for (auto& frame : frames) out_.frames.push_back(std::move(frame));
   }
   if (radio_) {
-    radio::RadioEmulator::Output radio_out = radio_->on_sim_state(state_);
+    // Speed 0 and sync mode: no wall time enters the radio (any instant will do).
+    radio::RadioEmulator::Output radio_out =
+        radio_->on_sim_state(state_, radio::RadioEmulator::Clock::time_point{});
     for (auto& feedback : radio_out.feedback) out_.feedback.push_back(std::move(feedback));
   }
 }

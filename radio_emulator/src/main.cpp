@@ -58,16 +58,42 @@ int run(const Options& options) {
   };
 
   bus.subscribe<sim_state_t>(channels(Channel::SimState), [&](const sim_state_t& state) {
-    publish(emulator.on_sim_state(state));
+    publish(emulator.on_sim_state(state, std::chrono::steady_clock::now()));
   });
+  // What ground truth this emulator needs, for physics --truth-on-demand:
+  // said whenever it changes and once a second, and first before any horizon
+  // (physics in sync mode sends its first state after both).
+  const std::string demand_channel = channels.extra(kTruthDemandChannel);
+  // Compared as encoded bytes, in buffers kept across wakeups (no allocation
+  // per message handled).
+  std::vector<std::uint8_t> last_demand, demand_bytes;
+  auto last_demand_wall = std::chrono::steady_clock::time_point{};
+  const auto announce_demand = [&] {
+    const truth_demand_t demand = emulator.truth_demand();
+    const auto size = static_cast<std::size_t>(demand.getEncodedSize());
+    demand_bytes.resize(size);
+    demand.encode(demand_bytes.data(), 0, static_cast<int>(size));
+    const auto now = std::chrono::steady_clock::now();
+    if (demand_bytes == last_demand && now - last_demand_wall < std::chrono::seconds(1)) return;
+    bus.publish_encoded(demand_channel, demand_bytes.data(), size);
+    last_demand.swap(demand_bytes);
+    last_demand_wall = now;
+  };
+
   std::optional<radio::SyncDriver> sync;
   if (options.sync) sync.emplace(bus, channels, emulator, options.sync_options, publish);
+  if (sync) {
+    sync->before_release([&] {
+      last_demand.clear();  // said again even if unchanged
+      announce_demand();
+    });
+  }
   for (Team team : kTeams) {
     bus.subscribe<radio_packet_t>(channels.radio(team), [&, team](const radio_packet_t& p) {
       if (sync) {
         sync->on_packet(team, p);
       } else {
-        publish(emulator.on_radio_packet(team, p));
+        publish(emulator.on_radio_packet(team, p, std::chrono::steady_clock::now()));
       }
     });
   }
@@ -96,26 +122,6 @@ int run(const Options& options) {
         p.command_timeout, p.feedback_rate, channels.radio_feedback(team));
   }
   spdlog::info("sim time from {}; LCM {}", channels(Channel::SimState), options.common.lcm_url);
-
-  // What ground truth this emulator needs, for physics --truth-on-demand:
-  // said whenever it changes and once a second, and first before any horizon
-  // (physics in sync mode sends its first state after both).
-  const std::string demand_channel = channels.extra(kTruthDemandChannel);
-  // Compared as encoded bytes, in buffers kept across wakeups (no allocation
-  // per message handled).
-  std::vector<std::uint8_t> last_demand, demand_bytes;
-  auto last_demand_wall = std::chrono::steady_clock::time_point{};
-  const auto announce_demand = [&] {
-    const truth_demand_t demand = emulator.truth_demand();
-    const auto size = static_cast<std::size_t>(demand.getEncodedSize());
-    demand_bytes.resize(size);
-    demand.encode(demand_bytes.data(), 0, static_cast<int>(size));
-    const auto now = std::chrono::steady_clock::now();
-    if (demand_bytes == last_demand && now - last_demand_wall < std::chrono::seconds(1)) return;
-    bus.publish_encoded(demand_channel, demand_bytes.data(), size);
-    last_demand.swap(demand_bytes);
-    last_demand_wall = now;
-  };
 
   int status = 0;
   announce_demand();

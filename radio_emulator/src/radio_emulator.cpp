@@ -20,7 +20,8 @@ RadioEmulator::RadioEmulator(const std::array<RadioProfile, 2>& profiles,
     : links_{TeamLink(profiles[0], Team::Yellow, seed_of(profiles[0], seed_override)),
              TeamLink(profiles[1], Team::Blue, seed_of(profiles[1], seed_override))} {}
 
-RadioEmulator::Output RadioEmulator::on_sim_state(const sim_state_t& state) {
+RadioEmulator::Output RadioEmulator::on_sim_state(const sim_state_t& state,
+                                                  Clock::time_point wall) {
   Output out;
   switch (clock_.update(state.sim_time, state.step)) {
     case SimClock::Update::Rejected:
@@ -42,7 +43,7 @@ RadioEmulator::Output RadioEmulator::on_sim_state(const sim_state_t& state) {
       break;
   }
 
-  last_state_wall_ = std::chrono::steady_clock::now();
+  last_state_wall_ = wall;
   speed_factor_ = state.paused || !(state.dt > 0) ? 0.0 : state.speed_factor;
   step_ = state.dt;
   for (auto& team_link : links_) team_link.robots.clear();
@@ -62,30 +63,30 @@ RadioEmulator::Output RadioEmulator::on_sim_state(const sim_state_t& state) {
 }
 
 RadioEmulator::Output RadioEmulator::on_radio_packet(Team channel_team,
-                                                     const radio_packet_t& packet) {
+                                                     const radio_packet_t& packet,
+                                                     Clock::time_point wall) {
   Output out;
   TeamLink& team_link = link(channel_team);
   ++team_link.packets_received;
   if (!clock_.started()) {
-    record(channel_team, {Problem::NoSimTime, -1, "no SIM_STATE yet: is physics running?"});
+    record(channel_team, {Problem::NoSimTime, -1, "no SIM_STATE yet: the sim time is unknown"});
     return out;
   }
   Validated validated =
       validate_packet(packet, channel_team, team_link.profile.limits, team_link.robots);
   for (const auto& finding : validated.findings) record(channel_team, finding);
   if (!validated.packet_ok || validated.packet.commands.empty()) return out;
-  add(out, team_link.commands.offer(std::move(validated.packet), arrival_time()));
+  add(out, team_link.commands.offer(std::move(validated.packet), arrival_time(wall)));
   return out;
 }
 
-double RadioEmulator::arrival_time() const {
+double RadioEmulator::arrival_time(Clock::time_point wall) const {
   if (speed_factor_ <= 0) return clock_.now();
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - last_state_wall_).count();
+  const double since_state = std::chrono::duration<double>(wall - last_state_wall_).count();
   // In whole physics steps, as with a state every step (so the same packets
   // get the same stamps whichever states physics sends); at most 0.1 s: beyond
   // that physics has stopped or fell behind.
-  const double steps = std::floor(wall * speed_factor_ / step_);
+  const double steps = std::floor(since_state * speed_factor_ / step_);
   return clock_.now() + std::min(0.1, steps * step_);
 }
 

@@ -143,6 +143,10 @@ void SyncDriver::update(bool always_publish) {
       answered_until == horizon_.answered_until) {
     return;
   }
+  if (!released_ && bound != "registration") {
+    released_ = true;
+    if (before_release_) before_release_();
+  }
   ++horizon_.sequence;
   horizon_.horizon = horizon;
   horizon_.answered_until = answered_until;

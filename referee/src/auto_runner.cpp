@@ -17,6 +17,7 @@
 #include "ubersim/referee/sim_link.hpp"
 #include "ubersim/referee/state_judge.hpp"
 #include "ubersim/shutdown.hpp"
+#include "ubersim/topics.hpp"
 
 namespace ubersim::referee {
 namespace {
@@ -62,14 +63,14 @@ class Runner {
     judge_.emplace(
         JudgeOptions{options_.game, options_.sides, options_.sync, options_.judge_every_step},
         field_, [this](const std::string& type) { return radii_(type); });
-    bus_.subscribe<sim_state_t>(
-        channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 100000);
+    ubersim::subscribe(
+        bus_, channels_, topics::kSimState, [this](const sim_state_t& s) { on_state(s); }, 100000);
     // In sync mode the radio emulator says which teams lost control: the result says so.
-    bus_.subscribe<sync_status_t>(channels_.extra(kSyncStatusChannel),
-                                  [this](const sync_status_t& s) { on_sync_status(s); });
+    ubersim::subscribe(bus_, channels_, topics::kSyncStatus,
+                       [this](const sync_status_t& s) { on_sync_status(s); });
     // Physics announces its field now and then and at once after a SET_FIELD.
-    bus_.subscribe<field_geometry_t>(channels_(Channel::SimGeometry),
-                                     [this](const field_geometry_t& g) { on_geometry(g); });
+    ubersim::subscribe(bus_, channels_, topics::kSimGeometry,
+                       [this](const field_geometry_t& g) { on_geometry(g); });
     if (options_.start_physics) {
       // Physics waited paused for us: the game starts at the first state we see.
       sim_control_t resume{};
@@ -77,11 +78,10 @@ class Runner {
       const auto ack = link.request(resume, timeout);
       if (!ack.ok) throw std::runtime_error("physics refused to resume: " + ack.message);
     }
-    bus_.subscribe<sim_control_ack_t>(
-        channels_(Channel::SimControlAck), [](const sim_control_ack_t& ack) {
-          if (ack.request_id >= kRequestBase && !ack.ok)
-            spdlog::warn("physics refused a placement: {}", ack.message);
-        });
+    ubersim::subscribe(bus_, channels_, topics::kSimControlAck, [](const sim_control_ack_t& ack) {
+      if (ack.request_id >= kRequestBase && !ack.ok)
+        spdlog::warn("physics refused a placement: {}", ack.message);
+    });
     spdlog::info("automatic referee: field {}, game {} s in {} half(s), publishing on {}{}",
                  field_.name, options_.game.game_length, options_.game.halves, channels_.referee(),
                  options_.sync ? " after every state (sync)" : "");
@@ -111,7 +111,7 @@ class Runner {
     truth_demand_t demand{};
     demand.consumer = "ubersim_referee auto";
     demand.every_step = true;
-    bus_.publish(channels_.extra(kTruthDemandChannel), demand);
+    ubersim::publish(bus_, channels_, topics::kTruthDemand, demand);
   }
 
   void on_geometry(const field_geometry_t& geometry) {
@@ -161,9 +161,9 @@ class Runner {
     if (out.placement) {
       out.placement->request_id = kRequestBase + next_request_++;
       out.placement->sender = "ubersim_referee auto";
-      bus_.publish(channels_(Channel::SimControl), *out.placement);
+      ubersim::publish(bus_, channels_, topics::kSimControl, *out.placement);
     }
-    if (out.referee) bus_.publish(channels_.referee(), *out.referee);
+    if (out.referee) ubersim::publish(bus_, channels_, topics::kReferee, *out.referee);
     if (out.game_over) finish();
   }
 

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "ubersim/topics.hpp"
+
 namespace ubersim::referee {
 
 SimLink::SimLink(MessageBus& bus, ChannelNames channels, std::string sender)
@@ -13,14 +15,13 @@ SimLink::SimLink(MessageBus& bus, ChannelNames channels, std::string sender)
       // Unique enough across concurrent referee invocations: pid and clock.
       next_request_id_((static_cast<std::int64_t>(::getpid()) << 32) ^
                        std::chrono::steady_clock::now().time_since_epoch().count()) {
-  bus_.subscribe<sim_control_ack_t>(channels_(Channel::SimControlAck),
-                                    [this](const sim_control_ack_t& ack) {
-                                      if (ack.request_id == awaited_id_) ack_ = ack;
-                                    });
-  bus_.subscribe<sim_state_t>(
-      channels_(Channel::SimState), [this](const sim_state_t& state) { state_ = state; }, 4);
-  bus_.subscribe<field_geometry_t>(channels_(Channel::SimGeometry),
-                                   [this](const field_geometry_t& g) { geometry_ = g; });
+  ubersim::subscribe(bus_, channels_, topics::kSimControlAck, [this](const sim_control_ack_t& ack) {
+    if (ack.request_id == awaited_id_) ack_ = ack;
+  });
+  ubersim::subscribe(
+      bus_, channels_, topics::kSimState, [this](const sim_state_t& state) { state_ = state; }, 4);
+  ubersim::subscribe(bus_, channels_, topics::kSimGeometry,
+                     [this](const field_geometry_t& g) { geometry_ = g; });
 }
 
 template <class Predicate>
@@ -44,7 +45,7 @@ sim_control_ack_t SimLink::request(sim_control_t control, std::chrono::milliseco
   control.sender = sender_;
   awaited_id_ = control.request_id;
   ack_.reset();
-  bus_.publish(channels_(Channel::SimControl), control);
+  ubersim::publish(bus_, channels_, topics::kSimControl, control);
   wait_until([this] { return ack_.has_value(); }, timeout,
              "waiting on " + channels_(Channel::SimControlAck));
   return *ack_;
@@ -67,7 +68,7 @@ field_geometry_t SimLink::geometry(std::chrono::milliseconds timeout) {
     ask.action = sim_control_t::REQUEST_GEOMETRY;
     ask.request_id = next_request_id_++;
     ask.sender = sender_;
-    bus_.publish(channels_(Channel::SimControl), ask);
+    ubersim::publish(bus_, channels_, topics::kSimControl, ask);
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     try {

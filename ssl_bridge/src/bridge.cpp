@@ -9,6 +9,7 @@
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/ssl_bridge/datagram_decoding.hpp"
+#include "ubersim/topics.hpp"
 
 namespace ubersim::ssl {
 namespace {
@@ -40,7 +41,8 @@ int8_t team_code(Team team) {
 
 }  // namespace
 
-SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOptions options)
+SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
+                     TruthDemandAnnouncer& truth_demand, BridgeOptions options)
     : bus_(bus),
       channels_(channels),
       options_(std::move(options)),
@@ -54,7 +56,7 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
       referee_source_("ubersim-" + random_uuid()),
       referee_translator_(referee_source_),
       sync_{{SyncAnswers(options_.sync_timeout), SyncAnswers(options_.sync_timeout)}},
-      truth_demand_(bus, channels, "ssl_bridge") {
+      truth_demand_(truth_demand) {
   // protobuf logs every datagram that misses a required field to stderr, one
   // line each, at any rate; decoded() counts and logs them throttled instead.
   google::protobuf::SetLogHandler(nullptr);
@@ -62,10 +64,10 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
     options_.sim_control.base_robot_type = &*options_.base_robot_type;
     type_radius_[options_.base_robot_type->config.name] = options_.base_robot_type->config.radius;
   }
-  bus_.subscribe<vision_frame_t>(channels_(Channel::Vision),
-                                 [this](const vision_frame_t& f) { on_vision(f); });
-  bus_.subscribe<vision_geometry_t>(channels_(Channel::VisionGeometry),
-                                    [this](const vision_geometry_t& g) { on_geometry(g); });
+  ubersim::subscribe(bus_, channels_, topics::kVision,
+                     [this](const vision_frame_t& f) { on_vision(f); });
+  ubersim::subscribe(bus_, channels_, topics::kVisionGeometry,
+                     [this](const vision_geometry_t& g) { on_geometry(g); });
   if (options_.tracked) {
     TrackedSettings settings;
     settings.rate = options_.tracked_rate;
@@ -77,10 +79,10 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
     tracked_destination_ = make_address(options_.tracked_address, options_.tracked_port);
     truth_demand_.periodic(options_.tracked_rate);
   }
-  bus_.subscribe<sim_state_t>(
-      channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 10);
-  bus_.subscribe<sim_control_ack_t>(channels_(Channel::SimControlAck),
-                                    [this](const sim_control_ack_t& a) { on_ack(a); });
+  ubersim::subscribe(
+      bus_, channels_, topics::kSimState, [this](const sim_state_t& s) { on_state(s); }, 10);
+  ubersim::subscribe(bus_, channels_, topics::kSimControlAck,
+                     [this](const sim_control_ack_t& a) { on_ack(a); });
   try {
     referee_listener_.emplace(UdpSocket::multicast_receiver(
         options_.referee_address, options_.referee_port, options_.vision_interface));
@@ -93,14 +95,14 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOption
     spdlog::info("official referee: Referee messages on {}:{} go to {}; ubersim sends none",
                  options_.referee_address, options_.referee_port, channels_.referee());
   } else {
-    bus_.subscribe<referee_t>(channels_.referee(), [this](const referee_t& r) { on_referee(r); });
+    ubersim::subscribe(bus_, channels_, topics::kReferee,
+                       [this](const referee_t& r) { on_referee(r); });
     spdlog::info("referee messages from {} to {}:{} (ttl {})", channels_.referee(),
                  options_.referee_address, options_.referee_port, options_.referee_ttl);
   }
   for (Team team : kTeams) {
-    bus_.subscribe<radio_feedback_t>(
-        channels_.radio_feedback(team),
-        [this, team](const radio_feedback_t& f) { feedback_[team] = f; });
+    ubersim::subscribe(bus_, channels_, topics::kRadioFeedback.of(team),
+                       [this, team](const radio_feedback_t& f) { feedback_[team] = f; });
   }
 }
 
@@ -199,7 +201,8 @@ void SslBridge::on_referee_datagram(const std::vector<uint8_t>& bytes) {
     ++counters_["foreign referee packets heard"];
     return;
   }
-  bus_.publish(channels_.referee(), official_referee_.translate(referee, state_.get()));
+  ubersim::publish(bus_, channels_, topics::kReferee,
+                   official_referee_.translate(referee, state_.get()));
   ++counters_["official referee packets forwarded"];
 }
 
@@ -250,8 +253,7 @@ void SslBridge::answer(PendingResponse& pending) {
   ++counters_["control responses"];
 }
 
-void SslBridge::expire_pending() {
-  const auto now = std::chrono::steady_clock::now();
+void SslBridge::expire_pending(std::chrono::steady_clock::time_point now) {
   for (auto it = pending_by_request_.begin(); it != pending_by_request_.end();) {
     const std::shared_ptr<PendingResponse> pending = it->second;
     if (now < pending->deadline) {
@@ -313,13 +315,13 @@ void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
     if (translation.realism) {
       translation.realism->request_id = next_request_id_++;
       translation.realism->sender = kSender;
-      bus_.publish(channels_.emulator_realism(), *translation.realism);
+      ubersim::publish(bus_, channels_, topics::kEmulatorRealism, *translation.realism);
       ++counters_["realism changes"];
     }
     if (translation.cameras) {
       translation.cameras->request_id = next_request_id_++;
       translation.cameras->sender = kSender;
-      bus_.publish(channels_.vision_cameras(), *translation.cameras);
+      ubersim::publish(bus_, channels_, topics::kVisionCameras, *translation.cameras);
       ++counters_["camera sets"];
       spdlog::info("cameras from the geometry's calibrations: {} camera(s)",
                    translation.cameras->num_cameras);
@@ -333,7 +335,7 @@ void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
       request.sender = kSender;
       pending->awaiting[request.request_id] = true;
       pending_by_request_[request.request_id] = pending;
-      bus_.publish(channels_(Channel::SimControl), request);
+      ubersim::publish(bus_, channels_, topics::kSimControl, request);
     }
   }
   for (const SimulatorError& error : errors) *pending->response.add_errors() = error;
@@ -366,7 +368,7 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
   if (publish) {
     packet.sequence = ++radio_sequence_[static_cast<int>(team)];
     packet.t_sent = answers ? *answers : state_.sim_time();
-    bus_.publish(channels_.radio(team), packet);
+    ubersim::publish(bus_, channels_, topics::kRadio.of(team), packet);
   }
   for (const SimulatorError& error : errors) *response.add_errors() = error;
   const auto feedback = feedback_.find(team);
@@ -381,7 +383,7 @@ void SslBridge::say_sync_client(Team team, bool leaving) {
   message.team = team_code(team);
   message.name = std::string("ssl_bridge_") + team_name(team);
   message.leaving = leaving;
-  bus_.publish(channels_.extra(kSyncClientChannel), message);
+  ubersim::publish(bus_, channels_, topics::kSyncClient, message);
 }
 
 std::optional<double> SslBridge::sync_datagram(Team team) {
@@ -410,8 +412,7 @@ std::optional<double> SslBridge::sync_datagram(Team team) {
   return datagram.t_capture;
 }
 
-void SslBridge::sync_tick() {
-  const auto now = std::chrono::steady_clock::now();
+void SslBridge::sync_tick(std::chrono::steady_clock::time_point now) {
   for (Team team : kTeams) {
     if (sync_[static_cast<int>(team)].expire(now)) {
       drop_sync_client(team, "did not answer a detection frame within " +
@@ -443,7 +444,7 @@ void SslBridge::sync_leave() {
   }
 }
 
-void SslBridge::run(const ShutdownSignal& shutdown) {
+void SslBridge::start() {
   spdlog::info(
       "vision to {}:{} (ttl {}, via {}); simulation control {}:{}; robot control blue "
       "{}:{}, yellow {}:{}",
@@ -454,42 +455,41 @@ void SslBridge::run(const ShutdownSignal& shutdown) {
     spdlog::info("tracked frames to {}:{} (ttl {}, {} Hz)", options_.tracked_address,
                  options_.tracked_port, options_.tracked_ttl, options_.tracked_rate);
   }
-  if (!watching_sockets_) {
-    watching_sockets_ = true;
-    bus_.watch(control_socket_.fd(), [this] {
-      drain(control_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
-        handle_control_datagram(bytes, from);
-      });
+  bus_.watch(control_socket_.fd(), [this] {
+    drain(control_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
+      handle_control_datagram(bytes, from);
     });
-    bus_.watch(blue_socket_.fd(), [this] {
-      drain(blue_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
-        handle_robot_datagram(Team::Blue, bytes, from);
-      });
+  });
+  bus_.watch(blue_socket_.fd(), [this] {
+    drain(blue_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
+      handle_robot_datagram(Team::Blue, bytes, from);
     });
-    if (referee_listener_) {
-      bus_.watch(referee_listener_->fd(), [this] {
-        drain(*referee_listener_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in&) {
-          on_referee_datagram(bytes);
-        });
-      });
-    }
-    bus_.watch(yellow_socket_.fd(), [this] {
-      drain(yellow_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
-        handle_robot_datagram(Team::Yellow, bytes, from);
+  });
+  if (referee_listener_) {
+    bus_.watch(referee_listener_->fd(), [this] {
+      drain(*referee_listener_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in&) {
+        on_referee_datagram(bytes);
       });
     });
   }
+  bus_.watch(yellow_socket_.fd(), [this] {
+    drain(yellow_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
+      handle_robot_datagram(Team::Yellow, bytes, from);
+    });
+  });
   if (options_.sync) {
     spdlog::info(
         "sync mode: a team's first RobotControl registers it; then each RobotControl answers "
         "the oldest detection packet it has not answered (docs/sync.md)");
   }
-  while (!shutdown.requested()) {
-    bus_.wait_and_handle(50, &shutdown);
-    expire_pending();
-    if (options_.sync) sync_tick();
-    truth_demand_.tick();
-  }
+}
+
+void SslBridge::tick(std::chrono::steady_clock::time_point now) {
+  expire_pending(now);
+  if (options_.sync) sync_tick(now);
+}
+
+void SslBridge::stop() {
   if (options_.sync) sync_leave();
 }
 

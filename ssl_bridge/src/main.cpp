@@ -9,6 +9,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/config_paths.hpp"
+#include "ubersim/process_host.hpp"
 #include "ubersim/process_main.hpp"
 #include "ubersim/robot_config.hpp"
 #include "ubersim/ssl_bridge/bridge.hpp"
@@ -42,13 +43,15 @@ int run(Options& options) {
         options.robot_type);
   }
 
-  const ChannelNames channels = options.common.channels();
-  ShutdownSignal shutdown;
-  MessageBus bus(with_receive_buffer(options.common.lcm_url));
-  ssl::SslBridge bridge(bus, channels, options.bridge);
-  bridge.run(shutdown);
-  bridge.log_summary();
-  return 0;
+  ProcessHost host(options.common, "ssl_bridge");
+  ssl::SslBridge bridge(host.bus(), host.channels(), host.truth_demand(), options.bridge);
+  bridge.start();
+  host.after_wake([&](ProcessHost::Clock::time_point now) { bridge.tick(now); });
+  host.at_stop([&] {
+    bridge.stop();
+    bridge.log_summary();
+  });
+  return host.run(std::chrono::milliseconds(50));
 }
 
 int parse_and_run(int argc, char** argv) {

@@ -127,6 +127,7 @@ class BatchTest(unittest.TestCase):
             self.assertAlmostEqual(
                 float(g["yellow_possession"]) + float(g["blue_possession"]), 1.0, places=3)
             self.assertGreater(float(g["speed"]), 0.0)
+            self.assertEqual(g["vision_frames_lost"], "0")
             # What each process of the game cost: the benchmark's per-process figures.
             cpu = results_module.cpu_by_process(g)
             self.assertEqual(sorted(cpu), ["blue", "physics", "radio", "referee", "vision",

@@ -1,9 +1,12 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <type_traits>
+#include <utility>
 
 #include "ubersim/channels.hpp"
 #include "ubersim/cli.hpp"
+#include "ubersim/topics.hpp"
 
 using ubersim::Channel;
 using ubersim::ChannelNames;
@@ -61,4 +64,46 @@ TEST(Channels, ReceiveBufferIsAddedOnlyToMulticastUrls) {
   EXPECT_EQ(ubersim::with_receive_buffer("memq://"), "memq://");
   EXPECT_EQ(ubersim::with_receive_buffer("udpm://1.2.3.4:5?recv_buf_size=9"),
             "udpm://1.2.3.4:5?recv_buf_size=9");
+}
+
+namespace typed_topics {
+using ubersim::ChannelNames;
+using ubersim::MessageBus;
+using ubersim::Topic;
+
+// Whether publish(bus, channels, Topic<T>, M) compiles.
+template <class T, class M, class = void>
+struct can_publish : std::false_type {};
+template <class T, class M>
+struct can_publish<T, M,
+                   std::void_t<decltype(ubersim::publish(
+                       std::declval<MessageBus&>(), std::declval<const ChannelNames&>(),
+                       std::declval<const Topic<T>&>(), std::declval<const M&>()))>>
+    : std::true_type {};
+
+// A topic's own message publishes; any other type does not compile.
+static_assert(can_publish<ubersim::sim_state_t, ubersim::sim_state_t>::value);
+static_assert(!can_publish<ubersim::sim_state_t, ubersim::referee_t>::value);
+static_assert(!can_publish<ubersim::radio_packet_t, ubersim::radio_feedback_t>::value);
+}  // namespace typed_topics
+
+// Every channel has its topic, under the name the channel list gives it: the
+// README's table (printed from the topics) then lists every channel.
+TEST(Channels, EveryChannelHasATypedTopicOfTheSameName) {
+  std::set<std::string> in_table;
+  for (const auto& row : ubersim::topic_table()) in_table.insert(row.channels);
+  std::string all;
+  for (const auto& name : in_table) all += name + " ";
+  for (ubersim::Channel channel : ubersim::kAllChannels) {
+    const std::string quoted = std::string("`") + ubersim::base_channel_name(channel) + "`";
+    EXPECT_NE(all.find(quoted), std::string::npos) << quoted << " has no topic";
+  }
+  for (const char* extra : ubersim::kExtraChannels) {
+    EXPECT_NE(all.find(std::string("`") + extra + "`"), std::string::npos) << extra;
+  }
+  const ChannelNames channels("P_", {{"SIM_STATE", "TRUTH"}});
+  EXPECT_EQ(ubersim::channel_name(channels, ubersim::topics::kSimState), "TRUTH");
+  EXPECT_EQ(ubersim::channel_name(channels, ubersim::topics::kReferee), "P_REFEREE");
+  EXPECT_EQ(ubersim::channel_name(channels, ubersim::topics::kRadio.of(ubersim::Team::Blue)),
+            "P_RADIO_BLUE");
 }

@@ -21,6 +21,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/robot_config.hpp"
+#include "ubersim/vision_backpressure.hpp"
 #include "vision_test_support.hpp"
 
 using namespace vision_test;
@@ -940,6 +941,50 @@ TEST_F(VisionProcess, SameSeedGivesIdenticalFrames) {
 // few frames (it announces 8 frames' release times at once) and its schedule
 // only as the 10 Hz repetition, listing no frame; in sync mode (speed 0) a
 // schedule lists every frame before it goes out.
+// As fast as possible physics runs at most kVisionLead ahead of the last
+// state the vision acknowledged (docs/vision.md, "As fast as possible"): with
+// a camera too slow to say anything for a while, the vision still
+// acknowledges a state every kVisionAckInterval of sim time.
+TEST_F(VisionProcess, AsFastAsPossibleAStateIsAcknowledgedEveryAckIntervalOfSimTime) {
+  auto keys = base_keys();
+  keys["FRAME_RATE"] = "2";
+  keys["CAMERA_COUNT"] = "1";  // no marker camera: it would speak at every step
+  std::string text;
+  for (const auto& [key, value] : keys) text.append(key).append(" = ").append(value).append("\n");
+  start(dir.write("slow_camera.cfg", text));
+  ubersim::MessageBus spy(ubersim::with_receive_buffer(ubersim::default_lcm_url()));
+  const ubersim::ChannelNames channels;
+  std::vector<double> acknowledged;
+  spy.subscribe<ubersim::vision_schedule_t>(
+      channels.extra(ubersim::kVisionScheduleChannel), [&](const ubersim::vision_schedule_t& s) {
+        if (s.step >= 0 && (acknowledged.empty() || s.t_state != acknowledged.back())) {
+          acknowledged.push_back(s.t_state);
+        }
+      });
+  constexpr std::int64_t kStride = 5;  // a state every 20.8 ms of sim time
+  constexpr std::int64_t kLast = 480;  // 2 s
+  for (std::int64_t step = 0; step <= kLast; step += kStride) {
+    driver->publish_state(make_state(step, moving_robots(static_cast<double>(step) * kDt, true)));
+    spy.handle_pending();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  driver->listen(0.3);
+  spy.handle_pending();
+  stop();
+  ASSERT_GE(acknowledged.size(), 2u);
+  // The last state itself when it came kVisionAckInterval after the last acknowledged one.
+  EXPECT_GT(acknowledged.back(),
+            static_cast<double>(kLast / kStride * kStride) * kDt - ubersim::kVisionAckInterval);
+  double widest = 0;
+  for (std::size_t i = 1; i < acknowledged.size(); ++i) {
+    widest = std::max(widest, acknowledged[i] - acknowledged[i - 1]);
+  }
+  // The first state at least kVisionAckInterval after the last acknowledged one.
+  EXPECT_LE(widest, ubersim::kVisionAckInterval + static_cast<double>(kStride) * kDt + 1e-9);
+  // 2 frames a second would say something only 4 times a second.
+  EXPECT_GE(acknowledged.size(), 2.0 / (ubersim::kVisionAckInterval + kStride * kDt));
+}
+
 TEST_F(VisionProcess, InRealTimeDemandsComeEveryFewFramesAndSchedulesOnlyAsRepetitions) {
   start("cmdragons02");
   ubersim::MessageBus spy(ubersim::with_receive_buffer(ubersim::default_lcm_url()));

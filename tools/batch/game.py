@@ -361,6 +361,17 @@ def outcome(result_line):
     return figures
 
 
+def vision_frames_lost(log_path):
+    """The vision emulator's "frames lost" from its exit summary. It runs with
+    -q, and logs that summary (at warning level) only when it lost a frame:
+    no summary in its log is 0."""
+    if not os.path.exists(log_path):
+        return ""
+    with open(log_path) as f:
+        found = re.findall(r"summary: frames lost (\d+)", f.read())
+    return int(found[-1]) if found else 0
+
+
 def run_driver(spec):
     """Runs the game in this process's network (namespace); writes result.json."""
     game_dir = spec["game_dir"]
@@ -451,6 +462,9 @@ def run_driver(spec):
             "speed": round(sim_time / wall, 3) if wall > 0 else 0.0,
             "yellow_without_control": losses.get("yellow", {}).get("without_control", 0.0),
             "blue_without_control": losses.get("blue", {}).get("without_control", 0.0),
+            # As fast as possible physics waits for the vision, so this is 0
+            # unless something went wrong; never lost silently (docs/vision.md).
+            "vision_frames_lost": vision_frames_lost(os.path.join(game_dir, "vision.log")),
             "cpu": processes.cpu,
             "log_dir": game_dir,
         }

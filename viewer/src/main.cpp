@@ -13,15 +13,13 @@
 #include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
-#include <ubersim/truth_demand_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
 #include <ubersim/vision_geometry_t.hpp>
 
 #include "ubersim/cli.hpp"
 #include "ubersim/logging.hpp"
-#include "ubersim/message_bus.hpp"
+#include "ubersim/process_host.hpp"
 #include "ubersim/process_main.hpp"
-#include "ubersim/shutdown.hpp"
 #include "ubersim/viewer/json_encoding.hpp"
 #include "ubersim/viewer/viewer_model.hpp"
 #include "ubersim/viewer/web_server.hpp"
@@ -65,10 +63,12 @@ class ControlInbox {
 
 using Clock = ubersim::viewer::ViewerModel::Clock;
 
-// Everything the page shows comes in here, into the model.
-void subscribe_model(ubersim::MessageBus& bus, const ubersim::ChannelNames& channels,
-                     ubersim::viewer::ViewerModel& model) {
+// Everything the page shows comes in here, into the model, stamped with the
+// host's wall clock.
+void subscribe_model(ubersim::ProcessHost& host, ubersim::viewer::ViewerModel& model) {
   using namespace ubersim;
+  const ChannelNames& channels = host.channels();
+  MessageBus& bus = host.bus();
   model.set_channel_names({{"SIM_STATE", channels(Channel::SimState)},
                            {"VISION", channels(Channel::Vision)},
                            {"VISION_GEOMETRY", channels(Channel::VisionGeometry)},
@@ -77,18 +77,18 @@ void subscribe_model(ubersim::MessageBus& bus, const ubersim::ChannelNames& chan
                            {"RADIO_BLUE", channels.radio(Team::Blue)}});
 
   bus.subscribe<sim_state_t>(channels(Channel::SimState),
-                             [&](const sim_state_t& m) { model.on_sim_state(m, Clock::now()); });
+                             [&](const sim_state_t& m) { model.on_sim_state(m, host.now()); });
   bus.subscribe<vision_frame_t>(channels(Channel::Vision),
-                                [&](const vision_frame_t& m) { model.on_vision(m, Clock::now()); });
+                                [&](const vision_frame_t& m) { model.on_vision(m, host.now()); });
   bus.subscribe<vision_geometry_t>(
       channels(Channel::VisionGeometry),
-      [&](const vision_geometry_t& m) { model.on_vision_geometry(m, Clock::now()); });
+      [&](const vision_geometry_t& m) { model.on_vision_geometry(m, host.now()); });
   bus.subscribe<field_geometry_t>(channels(Channel::SimGeometry), [&](const field_geometry_t& m) {
-    model.on_sim_geometry(m, Clock::now());
+    model.on_sim_geometry(m, host.now());
   });
   for (Team team : kTeams) {
-    bus.subscribe<radio_packet_t>(channels.radio(team), [&model, team](const radio_packet_t& m) {
-      model.on_radio(static_cast<int>(team), m, Clock::now());
+    bus.subscribe<radio_packet_t>(channels.radio(team), [&, team](const radio_packet_t& m) {
+      model.on_radio(static_cast<int>(team), m, host.now());
     });
   }
   bus.subscribe<sim_control_ack_t>(channels(Channel::SimControlAck),
@@ -123,14 +123,24 @@ void forward_page_requests(ControlInbox& inbox, ubersim::MessageBus& bus,
   }
 }
 
+// One display frame to every open page (none is made while no page is open).
+void send_frame(ubersim::viewer::WebServer& server, ubersim::viewer::ViewerModel& model,
+                double display_rate, std::uint64_t malformed, Clock::time_point now) {
+  const auto stats = server.stats();
+  if (stats.clients == 0) return;
+  const nlohmann::json server_info = {{"clients", stats.clients},
+                                      {"pages_refused", stats.pages_refused},
+                                      {"display_rate", display_rate},
+                                      {"frames_skipped", stats.frames_skipped},
+                                      {"malformed", malformed}};
+  server.publish(std::make_shared<const std::string>(model.snapshot(now, server_info)));
+}
+
 int run(const Options& options) {
   using namespace ubersim;
-  const ChannelNames channels = options.common.channels();
-
-  ShutdownSignal shutdown;
-  MessageBus bus(with_receive_buffer(options.common.lcm_url));
+  ProcessHost host(options.common, "viewer");
   viewer::ViewerModel model;
-  subscribe_model(bus, channels, model);
+  subscribe_model(host, model);
 
   ControlInbox inbox;
   ThrottledLog inbox_full;
@@ -143,57 +153,40 @@ int run(const Options& options) {
                server.port(), options.display_rate, options.common.lcm_url);
 
   // Ask physics for the field at once rather than wait for its next periodic one.
+  const std::string control_channel = host.channels()(Channel::SimControl);
   std::int64_t next_request_id = 1;
   sim_control_t geometry_request{};
   geometry_request.request_id = next_request_id++;
   geometry_request.sender = "viewer";
   geometry_request.action = sim_control_t::REQUEST_GEOMETRY;
-  bus.publish(channels(Channel::SimControl), geometry_request);
+  host.bus().publish(control_channel, geometry_request);
 
   ThrottledLog bad_request;
+  host.after_wake([&](Clock::time_point) {
+    forward_page_requests(inbox, host.bus(), control_channel, next_request_id, bad_request);
+  });
+  // Ground truth at the display rate is all a page can show (physics
+  // publishes no more for the viewer's sake).
+  host.truth_demand().periodic(options.display_rate);
   const auto frame_period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(1.0 / options.display_rate));
-  auto next_frame = Clock::now();
-  truth_demand_t demand{};
-  demand.consumer = "viewer";
-  demand.num_periodic = 1;
-  demand.period = {1.0 / options.display_rate};
-  demand.phase = {0.0};
-  const std::string demand_channel = channels.extra(kTruthDemandChannel);
-  auto next_demand = Clock::now();
-  while (!shutdown.requested()) {
-    const auto wait =
-        std::chrono::duration_cast<std::chrono::milliseconds>(next_frame - Clock::now());
-    bus.wait_and_handle(static_cast<int>(std::max<long long>(0, wait.count())), &shutdown);
-    forward_page_requests(inbox, bus, channels(Channel::SimControl), next_request_id, bad_request);
-    const auto now = Clock::now();
-    if (now >= next_demand) {
-      // Ground truth at the display rate is all a page can show (physics
-      // --truth-on-demand publishes no more for the viewer's sake).
-      bus.publish(demand_channel, demand);
-      next_demand = now + std::chrono::seconds(1);
-    }
-    if (now < next_frame) continue;
-    next_frame += frame_period;
-    if (next_frame < now) next_frame = now + frame_period;  // fell behind: do not catch up
+  host.every(
+          frame_period,
+          [&](Clock::time_point now) {
+            send_frame(server, model, options.display_rate, host.bus().malformed_count(), now);
+          },
+          ProcessHost::Timer::Rate::FixedRate)
+      .due_at(host.now());
+  host.at_stop([&] {
     const auto stats = server.stats();
-    const nlohmann::json server_info = {{"clients", stats.clients},
-                                        {"pages_refused", stats.pages_refused},
-                                        {"display_rate", options.display_rate},
-                                        {"frames_skipped", stats.frames_skipped},
-                                        {"malformed", bus.malformed_count()}};
-    if (stats.clients > 0) {
-      server.publish(std::make_shared<const std::string>(model.snapshot(now, server_info)));
-    }
-  }
-  const auto stats = server.stats();
-  spdlog::info(
-      "frames sent {} (mean {} bytes), skipped for slow pages {}, replaced before sending {}; "
-      "pages refused {}; page requests ignored {}; malformed LCM messages dropped {}",
-      stats.frames_sent, stats.frames_sent > 0 ? stats.bytes_sent / stats.frames_sent : 0,
-      stats.frames_skipped, stats.frames_replaced, stats.pages_refused,
-      bad_request.total() + inbox_full.total(), bus.malformed_count());
-  return 0;
+    spdlog::info(
+        "frames sent {} (mean {} bytes), skipped for slow pages {}, replaced before sending {}; "
+        "pages refused {}; page requests ignored {}; malformed LCM messages dropped {}",
+        stats.frames_sent, stats.frames_sent > 0 ? stats.bytes_sent / stats.frames_sent : 0,
+        stats.frames_skipped, stats.frames_replaced, stats.pages_refused,
+        bad_request.total() + inbox_full.total(), host.bus().malformed_count());
+  });
+  return host.run(std::chrono::seconds(1));
 }
 
 int parse_and_run(int argc, char** argv) {

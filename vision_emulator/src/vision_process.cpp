@@ -15,6 +15,7 @@
 #include "ubersim/robot_type_definition.hpp"
 #include "ubersim/shutdown.hpp"
 #include "ubersim/vision/vision_emulator.hpp"
+#include "ubersim/vision_backpressure.hpp"
 
 namespace ubersim::vision {
 namespace {
@@ -36,16 +37,26 @@ void log_start(const VisionProfile& profile, const VisionProcessOptions& options
 }
 
 void log_summary(const VisionStats& s, std::uint64_t undecodable) {
-  spdlog::info(
-      "summary: frames published {}, captured {}, dropped at reset {}; sim states used {}, "
-      "invalid {}, out of order {}, repeated {}, undecodable {}; resets {}; capture instants "
-      "missed {}; invalid geometry {}; camera sets applied {}, camera sets invalid {}, frames "
-      "dropped "
-      "with a camera {}",
-      s.frames_published, s.frames_captured, s.frames_dropped_at_reset, s.states_used,
-      s.states_invalid, s.states_out_of_order, s.states_repeated, undecodable, s.resets,
-      s.capture_instants_missed, s.geometry_invalid, s.camera_sets_applied, s.camera_sets_invalid,
-      s.frames_dropped_with_camera);
+  // Frames lost first: a loss must not hide in the middle of the line.
+  spdlog::log(s.capture_instants_missed > 0 ? spdlog::level::warn : spdlog::level::info,
+              "summary: frames lost {}; frames published {}, captured {}, dropped at reset {}; sim "
+              "states used {}, invalid {}, out of order {}, repeated {}, undecodable {}; resets "
+              "{}; invalid geometry {}; camera sets applied {}, camera sets invalid {}, frames "
+              "dropped with a camera {}",
+              s.capture_instants_missed, s.frames_published, s.frames_captured,
+              s.frames_dropped_at_reset, s.states_used, s.states_invalid, s.states_out_of_order,
+              s.states_repeated, undecodable, s.resets, s.geometry_invalid, s.camera_sets_applied,
+              s.camera_sets_invalid, s.frames_dropped_with_camera);
+}
+
+// On SIGTERM, what already waits in the socket (physics may have sent its
+// last states just before it exited) is still handled, so that a run's last
+// frames are published rather than lost. Bounded: as fast as possible physics
+// is at most kVisionLead ahead; a flood must not hold the exit.
+void handle_what_waits(MessageBus& bus) {
+  const auto deadline = Clock::now() + std::chrono::seconds(1);
+  while (Clock::now() < deadline && bus.handle_pending() > 0) {
+  }
 }
 
 }  // namespace
@@ -65,6 +76,7 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
 
   MessageBus bus(with_receive_buffer(options.lcm_url));
   ThrottledLog bad_content;
+  ThrottledLog lost_frames;
   const std::string vision_channel = options.channels(Channel::Vision);
   const std::string geometry_channel = options.channels(Channel::VisionGeometry);
   Clock::time_point next_geometry = Clock::now();
@@ -108,7 +120,14 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
     // schedule, and must know the demand by then).
     announce_demand(always, state.sim_time);
     const double next = emulator.next_publication();
-    if (!always && frames.empty() && next == announced_next) return;
+    // As fast as possible (and in sync mode) physics waits for this process
+    // to acknowledge a state at most kVisionLead behind it: every
+    // kVisionAckInterval of sim time at least, the schedule goes out even
+    // when it has nothing new (docs/vision.md, "As fast as possible").
+    const bool acknowledge =
+        state.speed_factor == 0 &&
+        state.sim_time >= schedule.t_state + kVisionAckInterval - CaptureSchedule::kTolerance;
+    if (!always && frames.empty() && next == announced_next && !acknowledge) return;
     announced_next = next;
     schedule.t_state = state.sim_time;
     schedule.step = state.step;
@@ -150,7 +169,16 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
   bus.subscribe<sim_state_t>(
       options.channels(Channel::SimState),
       std::function<void(const sim_state_t&)>([&](const sim_state_t& state) {
+        const std::uint64_t lost_before = emulator.stats().capture_instants_missed;
         auto outcome = emulator.on_sim_state(state);
+        if (const std::uint64_t lost = emulator.stats().capture_instants_missed;
+            lost > lost_before) {
+          lost_frames.warn("lost", fmt::format("lost {} frame(s) before sim time {} s ({} so far): "
+                                               "no SIM_STATE reached this process for their "
+                                               "capture instants (it fell behind physics, or "
+                                               "the datagrams were dropped)",
+                                               lost - lost_before, state.sim_time, lost));
+        }
         using Verdict = VisionEmulator::Verdict;
         switch (outcome.verdict) {
           case Verdict::Invalid:
@@ -270,6 +298,7 @@ int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal
       if (!emulator.field()) next_geometry = Clock::now() + geometry_period;
     }
   }
+  handle_what_waits(bus);
   log_summary(emulator.stats(), bus.malformed_count());
   return 0;
 }

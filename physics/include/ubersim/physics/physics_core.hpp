@@ -7,6 +7,7 @@
 // shape for the cores").
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <ubersim/field_geometry_t.hpp>
@@ -17,6 +18,7 @@
 #include <ubersim/sim_state_t.hpp>
 #include <ubersim/sync_horizon_t.hpp>
 #include <ubersim/truth_demand_t.hpp>
+#include <ubersim/vision_schedule_t.hpp>
 #include <vector>
 
 #include "ubersim/logging.hpp"
@@ -42,6 +44,10 @@ struct ServerOptions {
   // (every step while nobody has asked): docs/sync.md, "Ground truth on demand".
   // The default; --truth-every-step turns it off.
   bool truth_on_demand = true;
+  // Outside sync mode: publish no state and take no step until a vision
+  // emulator listens (its SIM_VISION_SCHEDULE), as sync mode does, so that it
+  // sees the run from sim time 0 (tools/launch.sh --speed 0 passes it).
+  bool wait_for_vision = false;
 };
 
 class PhysicsCore {
@@ -67,7 +73,18 @@ class PhysicsCore {
   // and judges the one at its next_judge_time next.
   void on_referee(const referee_t& referee);
   void on_truth_demand(const truth_demand_t& demand, Clock::time_point wall);
-  void on_vision_schedule() { vision_heard_ = true; }
+  // The vision emulator listens; as fast as possible, its t_state says how
+  // far it has got (docs/vision.md, "As fast as possible").
+  void on_vision_schedule(const vision_schedule_t& schedule, Clock::time_point wall);
+  // As fast as possible outside sync mode: whether the next step must wait
+  // because physics is kVisionLead ahead of the last state the vision
+  // acknowledged. False while no vision is heard, or one fell silent for
+  // kVisionSilence (logged once per silence).
+  bool waits_for_vision(Clock::time_point wall);
+  // The state at the step physics waits at, for the vision to acknowledge:
+  // nothing when it went out already, unless `again` (a vision that started
+  // listening after it went out has not seen it).
+  const Output& state_for_vision(bool again);
 
   // One step; the state after it when one is due.
   const Output& step();
@@ -100,7 +117,8 @@ class PhysicsCore {
   // Sync mode publishes its first state only once the vision emulator listens
   // and the radio emulator has every client it expects (both have spoken), so
   // that every run starts alike.
-  bool ready_to_start() const { return vision_heard_ && radio_ready_; }
+  // Outside sync mode with wait_for_vision: once the vision emulator listens.
+  bool ready_to_start() const { return vision_heard_ && (radio_ready_ || !sync_); }
   bool duration_reached() const;
   // Sync mode: every frame published up to the current state has its answers
   // from every client (the radio emulator says so), so a run may end here.
@@ -117,6 +135,8 @@ class PhysicsCore {
   std::int64_t controls_handled() const { return controls_handled_; }
   std::int64_t packets_received() const { return packets_received_; }
   std::uint64_t demand_late() const { return demand_.late(); }
+  // Times the vision emulator fell silent while physics was waiting for it.
+  std::int64_t vision_silences() const { return vision_silences_; }
   // Paced modes: CPU time of this thread spent in World::step (s), so that
   // the cost of everything else (messages, waiting) can be told from stepping.
 
@@ -148,6 +168,13 @@ class PhysicsCore {
   double referee_horizon_;     // s, from REFEREE (+inf without --sync-referee)
   std::string horizon_bound_ = "the radio emulator (no SIM_SYNC_HORIZON yet)";
   bool vision_heard_ = false;
+  // The vision emulator's progress: the sim time of the last state it
+  // acknowledged (-inf while it has seen none), and when it last spoke.
+  double vision_time_ = -std::numeric_limits<double>::infinity();
+  Clock::time_point vision_wall_{};
+  bool vision_silent_ = false;
+  std::int64_t vision_silences_ = 0;
+  double last_state_time_ = std::numeric_limits<double>::quiet_NaN();  // s, the last state out
   bool radio_ready_ = false;
   std::int64_t steps_ = 0;
   std::int64_t states_published_ = 0;

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,9 +42,16 @@ struct ServerStats {
   // (a client's name, "vision", "registration"), and how many waits.
   std::map<std::string, double> sync_wait_seconds;
   std::map<std::string, std::int64_t> sync_waits;
-  // Sync mode: wall time from the first state to the end (the start, waiting
-  // for the emulators and clients to be ready, left out).
+  // Sync mode and --wait-for-vision: wall time from the first state to the
+  // end (the start, waiting for the emulators and clients to be ready, left out).
   double sync_run_seconds = 0;
+  // As fast as possible: wall time spent waiting for the vision emulator to
+  // catch up (docs/vision.md, "As fast as possible"), how many waits, the
+  // states sent only for it to acknowledge, and how often it fell silent.
+  double vision_wait_seconds = 0;
+  std::int64_t vision_waits = 0;
+  std::int64_t states_for_vision = 0;
+  std::int64_t vision_silences = 0;
 };
 
 class PhysicsServer {
@@ -62,6 +70,8 @@ class PhysicsServer {
   void publish(const PhysicsCore::Output& out);
   void publish_geometry();
   void wait_at_horizon(const ShutdownSignal* shutdown);
+  // As fast as possible: one wait for the vision emulator's acknowledgement.
+  void wait_for_vision(const ShutdownSignal* shutdown);
   // Sync mode, duration reached: until the last frames' answers are in (at most 3 s).
   void wait_for_last_answers(const ShutdownSignal* shutdown);
   // Paced: when to wake for the step that is due at `due`. With states on
@@ -81,7 +91,11 @@ class PhysicsServer {
   std::vector<uint8_t> state_buffer_;  // encoded SIM_STATE, reused every step
   ServerStats stats_;                  // the loop's own figures (wall clock, sync waits)
   SteppingClock stepping_clock_;       // CPU time of the steps in real time
+  // SIM_VISION_SCHEDULE wakes physics (sync mode, or started as fast as possible).
+  bool schedule_wakes_;
   bool first_state_sent_ = false;
+  // When physics began to wait for the vision at the current step.
+  std::optional<Pacer::Clock::time_point> vision_wait_began_;
   Pacer::Clock::time_point first_state_wall_{};
 };
 

@@ -7,7 +7,8 @@
 //
 // Sim time of a packet's arrival is the time of the latest SIM_STATE seen, so
 // with physics paced in real time the arrival time has a granularity of one
-// physics step (4.2 ms at 240 Hz).
+// physics step (4.2 ms at 240 Hz). The core reads no clock: the wall time a
+// state or packet came at is an argument (the process host's clock).
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -42,6 +43,8 @@ struct TeamReport {
 
 class RadioEmulator {
  public:
+  using Clock = std::chrono::steady_clock;
+
   // What one call produced, to publish in this order.
   struct Output {
     std::vector<sim_commands_t> commands;                     // SIM_COMMANDS
@@ -52,9 +55,10 @@ class RadioEmulator {
   RadioEmulator(const std::array<RadioProfile, 2>& profiles,
                 std::optional<std::uint64_t> seed_override);
 
-  Output on_sim_state(const sim_state_t& state);
-  // A packet that came on `channel_team`'s radio channel.
-  Output on_radio_packet(Team channel_team, const radio_packet_t& packet);
+  // `wall`: when the state came (paced modes place packets between states by it).
+  Output on_sim_state(const sim_state_t& state, Clock::time_point wall);
+  // A packet that came on `channel_team`'s radio channel at `wall`.
+  Output on_radio_packet(Team channel_team, const radio_packet_t& packet, Clock::time_point wall);
 
   // Sync mode (docs/sync.md): packets arrive at the sim time given (their
   // frame's publication), not at the latest SIM_STATE's, and a waiting packet
@@ -114,8 +118,8 @@ class RadioEmulator {
   // Physics may publish only some states (on demand): between two, a packet's
   // arrival is the last state's time plus the wall time since, times the speed
   // (paced modes only; as fast as possible there is no better guess).
-  double arrival_time() const;
-  std::chrono::steady_clock::time_point last_state_wall_{};
+  double arrival_time(Clock::time_point wall) const;
+  Clock::time_point last_state_wall_{};
   double speed_factor_ = 0;
   double step_ = 1;  // s, physics' dt
 };

@@ -41,6 +41,11 @@ class SyncDriver {
   // False when that fails the run (strict).
   bool tick();
   void log_summary() const;
+  // Runs once, right before the first horizon that lets physics start (every
+  // expected client registered): the radio's truth demand must reach physics
+  // before its first step, or the feedback instants it names come late and a
+  // rerun publishes other states.
+  void before_release(std::function<void()> hook) { before_release_ = std::move(hook); }
 
   // A wakeup later than this after the previous one means this process did
   // not run (the machine was loaded or paused): the gap does not count
@@ -53,6 +58,8 @@ class SyncDriver {
   void publish_status();
 
   MessageBus& bus_;
+  std::function<void()> before_release_;
+  bool released_ = false;
   std::string horizon_channel_;
   RadioEmulator& emulator_;
   SyncOptions options_;

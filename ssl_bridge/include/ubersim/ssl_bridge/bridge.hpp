@@ -14,7 +14,6 @@
 #include "ubersim/channels.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
-#include "ubersim/shutdown.hpp"
 #include "ubersim/ssl_bridge/latest_state.hpp"
 #include "ubersim/ssl_bridge/official_referee.hpp"
 #include "ubersim/ssl_bridge/referee_translation.hpp"
@@ -65,11 +64,21 @@ struct BridgeOptions {
   double sync_timeout = 1.0;  // s of wall time a team may take to answer a frame
 };
 
+// Driven by the program's process host (main.cpp): the host's loop reads the
+// bus and the bridge's sockets (watched on the bus), tick() runs after every
+// wakeup (at least every 50 ms), stop() once at the end.
 class SslBridge {
  public:
-  SslBridge(MessageBus& bus, const ChannelNames& channels, BridgeOptions options);
-  // Runs until shutdown is requested.
-  void run(const ShutdownSignal& shutdown);
+  // `truth_demand` is the program's announcer (the process host's).
+  SslBridge(MessageBus& bus, const ChannelNames& channels, TruthDemandAnnouncer& truth_demand,
+            BridgeOptions options);
+  // Logs where everything goes and watches the sockets on the bus.
+  void start();
+  // After every wakeup: answers what physics did not acknowledge in time;
+  // sync mode: drops teams past their timeout, says the registered ones again.
+  void tick(std::chrono::steady_clock::time_point now);
+  // Sync mode: the registered teams leave.
+  void stop();
   void log_summary() const;
 
  private:
@@ -98,13 +107,13 @@ class SslBridge {
   // (nullopt: it answers no frame and goes nowhere).
   void say_sync_client(Team team, bool leaving);
   std::optional<double> sync_datagram(Team team);
-  void sync_tick();
+  void sync_tick(std::chrono::steady_clock::time_point now);
   void drop_sync_client(Team team, const std::string& why);
   void sync_leave();
   // Largest radius of the robots on the field (their types' radii), else the configured one.
   double max_robot_radius() const;
   void answer(PendingResponse& pending);
-  void expire_pending();
+  void expire_pending(std::chrono::steady_clock::time_point now);
 
   MessageBus& bus_;
   ChannelNames channels_;
@@ -114,8 +123,7 @@ class SslBridge {
   UdpSocket control_socket_;
   UdpSocket blue_socket_;
   UdpSocket yellow_socket_;
-  bool watching_sockets_ = false;  // run() registers the sockets with the bus once
-  LatestState state_;              // the newest SIM_STATE with a valid sim time
+  LatestState state_;  // the newest SIM_STATE with a valid sim time
   std::map<Team, radio_feedback_t> feedback_;
   std::map<std::string, double> type_radius_;      // m, robot type name -> radius
   std::optional<field_geometry_t> current_field_;  // from the latest VISION_GEOMETRY
@@ -138,7 +146,7 @@ class SslBridge {
   std::map<std::string, uint64_t> counters_;
   // Ground truth at the tracked rate (tracked frames); without them the
   // bridge takes whatever states the others ask for (docs/sync.md).
-  TruthDemandAnnouncer truth_demand_;
+  TruthDemandAnnouncer& truth_demand_;
 };
 
 }  // namespace ubersim::ssl

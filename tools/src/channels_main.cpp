@@ -1,0 +1,32 @@
+// ubersim_channels: the LCM channels ubersim uses, printed from the typed
+// topics (common/include/ubersim/topics.hpp): with --markdown the table the
+// README holds, otherwise one line per channel: name and message type.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "ubersim/cli.hpp"
+#include "ubersim/process_main.hpp"
+#include "ubersim/topics.hpp"
+
+namespace {
+
+int parse_and_run(int argc, char** argv) {
+  bool markdown = false;
+  CLI::App app{"ubersim channels: every LCM channel, its message type, who publishes and reads it"};
+  app.add_flag("--markdown", markdown, "print the README's channel table (Markdown)");
+  if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
+  if (markdown) {
+    std::fputs(ubersim::topic_table_markdown().c_str(), stdout);
+    return 0;
+  }
+  for (const ubersim::TopicRow& row : ubersim::topic_table()) {
+    std::printf("%-50s %s\n", row.channels.c_str(), row.type.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ubersim::run_main("ubersim_channels", [&] { return parse_and_run(argc, argv); });
+}
