@@ -13,10 +13,10 @@
 #include "ubersim/gc_link/gc_link.hpp"
 #include "ubersim/gc_link/gc_process.hpp"
 #include "ubersim/logging.hpp"
-#include "ubersim/message_bus.hpp"
+#include "ubersim/process_host.hpp"
 #include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/sim_link.hpp"
-#include "ubersim/shutdown.hpp"
+#include "ubersim/topics.hpp"
 
 namespace {
 
@@ -48,11 +48,7 @@ milliseconds ms(double seconds) {
 
 class Runner {
  public:
-  Runner(const Options& options, ShutdownSignal& shutdown)
-      : options_(options),
-        shutdown_(shutdown),
-        channels_(options.common.channels()),
-        bus_(with_receive_buffer(options.common.lcm_url)) {
+  Runner(const Options& options, ProcessHost& host) : options_(options), host_(host) {
     if (!options.events_file.empty()) {
       log_.open(options.events_file);
       if (!log_) throw std::runtime_error("cannot write the event log " + options.events_file);
@@ -60,29 +56,33 @@ class Runner {
   }
 
   int run() {
-    referee::SimLink sim(bus_, channels_, "ubersim_gc_link");
+    referee::SimLink sim(host_.bus(), host_.channels(), "ubersim_gc_link");
     field_ = sim.geometry(ms(options_.timeout_s));
     const auto rules = referee::load_game_config(options_.common.config_root(), options_.game);
     start_gc(rules);
     link_.emplace(link_options(rules), field_,
                   [this](const std::string& type) { return radii_(type); });
-    bus_.subscribe<sim_state_t>(
-        channels_(Channel::SimState), [this](const sim_state_t& s) { on_state(s); }, 100000);
-    bus_.subscribe<field_geometry_t>(channels_(Channel::SimGeometry),
-                                     [this](const field_geometry_t& g) { on_geometry(g); });
-    bus_.subscribe<sim_control_ack_t>(
-        channels_(Channel::SimControlAck), [](const sim_control_ack_t& ack) {
-          if (ack.request_id >= kRequestBase && !ack.ok)
-            spdlog::warn("physics refused a placement: {}", ack.message);
-        });
+    MessageBus& bus = host_.bus();
+    const ChannelNames& channels = host_.channels();
+    subscribe(
+        bus, channels, topics::kSimState, [this](const sim_state_t& s) { on_state(s); }, 100000);
+    subscribe(bus, channels, topics::kSimGeometry,
+              [this](const field_geometry_t& g) { on_geometry(g); });
+    subscribe(bus, channels, topics::kSimControlAck, [](const sim_control_ack_t& ack) {
+      if (ack.request_id >= kRequestBase && !ack.ok)
+        spdlog::warn("physics refused a placement: {}", ack.message);
+    });
     spdlog::info("official game controller on {} (CI mode): field {}, game {} s, publishing on {}",
-                 address_, field_.name, half_length(rules) * 2, channels_.referee());
-    wall_start_ = std::chrono::steady_clock::now();
-    while (!shutdown_.requested() && !failed_ && !(over_ && !options_.keep_running)) {
-      bus_.wait_and_handle(100, &shutdown_);
-    }
-    finish();
-    return failed_ ? 1 : 0;
+                 address_, field_.name, half_length(rules) * 2,
+                 channel_name(channels, topics::kReferee));
+    wall_start_ = host_.now();
+    // The game's end, or the GC's failure, ends the run after the wakeup that saw it.
+    host_.after_wake([this](ProcessHost::Clock::time_point) {
+      if (failed_) host_.stop(1);
+      if (over_ && !options_.keep_running) host_.stop(0);
+    });
+    host_.at_stop([this] { finish(); });
+    return host_.run(milliseconds(100));
   }
 
  private:
@@ -142,9 +142,10 @@ class Runner {
     if (out.placement) {
       out.placement->request_id = kRequestBase + next_request_++;
       out.placement->sender = "ubersim_gc_link";
-      bus_.publish(channels_(Channel::SimControl), *out.placement);
+      ubersim::publish(host_.bus(), host_.channels(), topics::kSimControl, *out.placement);
     }
-    if (out.referee) bus_.publish(channels_.referee(), *out.referee);
+    if (out.referee)
+      ubersim::publish(host_.bus(), host_.channels(), topics::kReferee, *out.referee);
     if (out.game_over) over_ = true;
   }
 
@@ -153,8 +154,7 @@ class Runner {
   }
 
   void finish() {
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+    const double wall = std::chrono::duration<double>(host_.now() - wall_start_).count();
     if (!link_) return;
     write(link_->result_line(wall));
     const Referee& gc = link_->gc();
@@ -171,9 +171,7 @@ class Runner {
   }
 
   const Options& options_;
-  ShutdownSignal& shutdown_;
-  ChannelNames channels_;
-  MessageBus bus_;
+  ProcessHost& host_;
   std::ofstream log_;
   field_geometry_t field_{};
   std::optional<GcProcess> gc_process_;
@@ -232,8 +230,8 @@ int main(int argc, char** argv) {
   }
   setup_logging("gc_link", o.common.verbosity());
   try {
-    ShutdownSignal shutdown;
-    Runner runner(o, shutdown);
+    ProcessHost host(o.common, "gc_link");
+    Runner runner(o, host);
     return runner.run();
   } catch (const std::exception& error) {
     std::cerr << "ubersim_gc_link: " << error.what() << "\n";
