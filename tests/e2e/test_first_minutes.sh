@@ -59,13 +59,13 @@ s.bind(("127.0.0.1", 8080)); s.listen(); time.sleep(600)' &
   holder=$!
   for _ in $(seq 50); do port_in_use 8080 && break; sleep 0.1; done
 fi
-mkdir -p "$work/home/config" "$work/home/data/applications"
-printf '#!/bin/sh\necho "$1" > "%s/opened-url"\n' "$work" >"$work/home/record-url"
-chmod +x "$work/home/record-url"
+mkdir -p "$work/user/config" "$work/user/data/applications"
+printf '#!/bin/sh\necho "$1" > "%s/opened-url"\n' "$work" >"$work/user/record-url"
+chmod +x "$work/user/record-url"
 printf '[Desktop Entry]\nType=Application\nName=Recording browser\nExec=%s %%u\nMimeType=x-scheme-handler/http;\n' \
-  "$work/home/record-url" >"$work/home/data/applications/ubersim-test-browser.desktop"
-printf '[Default Applications]\nx-scheme-handler/http=ubersim-test-browser.desktop\n' >"$work/home/config/mimeapps.list"
-desktop="DISPLAY=:0 HOME=$work/home XDG_CONFIG_HOME=$work/home/config XDG_DATA_HOME=$work/home/data"
+  "$work/user/record-url" >"$work/user/data/applications/ubersim-test-browser.desktop"
+printf '[Default Applications]\nx-scheme-handler/http=ubersim-test-browser.desktop\n' >"$work/user/config/mimeapps.list"
+desktop="DISPLAY=:0 HOME=$work/user XDG_CONFIG_HOME=$work/user/config XDG_DATA_HOME=$work/user/data"
 in_terminal demo "env -u TMPDIR -u WAYLAND_DISPLAY $desktop UBERSIM_BUILD_DIR=${UBERSIM_BUILD_DIR:-} \
 $source_dir/tools/demo.sh --channel-prefix $marker --log-dir $work/logs"
 if wait_for demo "Ctrl-C stops everything" 300; then
