@@ -30,47 +30,21 @@
 
 namespace {
 
+using ubersim::physics::bench::bench_dir;
+using ubersim::physics::bench::bench_program;
 using ubersim::physics::bench::load_average;
+using ubersim::physics::bench::median;
+using ubersim::physics::bench::physics_alone;
+using ubersim::physics::bench::read_file;
 
 namespace fs = std::filesystem;
 
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-fs::path own_dir() {
-  return fs::read_symlink("/proc/self/exe").parent_path();
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n == 0 ? 0 : n % 2 == 1 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
-}
-
-// ubersim_physics_bench's server figure for one scenario (SIM_STATE every
-// step on the in-process bus).
+// Physics alone for a scenario name: "_planar" names the drive model
+// (ubersim_physics_bench sets the model itself, on the jointed scenario).
 double physics_bench(const std::string& scenario, double seconds, const fs::path& work) {
   const std::string model = scenario.find("planar") != std::string::npos ? "planar" : "jointed";
-  // The bench sets the drive model itself: run its scenario with the jointed robots.
   const std::string jointed = std::regex_replace(scenario, std::regex("_planar$"), "");
-  const fs::path out = work / "physics_bench.txt";
-  ubersim::ChildProcess bench(
-      {(own_dir() / "ubersim_physics_bench").string(), "--scenarios", jointed, "--models", model,
-       "--only", "server", "--repeat", "1", "--seconds", std::to_string(seconds)},
-      out.string());
-  if (bench.wait(600) != 0) {
-    throw std::runtime_error("ubersim_physics_bench failed: " + bench.log());
-  }
-  std::smatch match;
-  const std::string text = read_file(out);
-  if (!std::regex_search(text, match, std::regex(jointed + R"(\s+\S+\s+\S+\s+([0-9.]+))"))) {
-    throw std::runtime_error("no figure in: " + text);
-  }
-  return std::stod(match[1]);
+  return physics_alone(jointed, model, seconds, work);
 }
 
 struct LaunchOptions {
@@ -113,7 +87,7 @@ long summary_count(const std::string& vision_log, const std::string& name) {
 LaunchRun launch_run(const LaunchOptions& o, const fs::path& work) {
   const fs::path logs = work / "launch";
   fs::remove_all(logs);
-  ::setenv("UBERSIM_BUILD_DIR", own_dir().parent_path().c_str(), 1);
+  ::setenv("UBERSIM_BUILD_DIR", bench_dir().parent_path().c_str(), 1);
   std::vector<std::string> argv{"/bin/bash",  o.source_dir + "/tools/launch.sh",
                                 "--scenario", o.scenario,
                                 "--profile",  o.profile,

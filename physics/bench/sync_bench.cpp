@@ -25,37 +25,13 @@
 
 namespace {
 
+using ubersim::physics::bench::bench_dir;
+using ubersim::physics::bench::bench_program;
 using ubersim::physics::bench::load_average;
+using ubersim::physics::bench::physics_alone;
+using ubersim::physics::bench::read_file;
 
 namespace fs = std::filesystem;
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-fs::path own_dir() {
-  return fs::read_symlink("/proc/self/exe").parent_path();
-}
-
-// The physics alone: ubersim_physics_bench's server figure for one scenario.
-double physics_alone(const std::string& scenario, const std::string& model, double seconds,
-                     const fs::path& work) {
-  const fs::path out = work / ("alone_" + scenario + ".txt");
-  ubersim::ChildProcess bench(
-      {(own_dir() / "ubersim_physics_bench").string(), "--scenarios", scenario, "--models", model,
-       "--only", "server", "--repeat", "1", "--seconds", std::to_string(seconds)},
-      out.string());
-  if (bench.wait(600) != 0)
-    throw std::runtime_error("ubersim_physics_bench failed: " + bench.log());
-  std::smatch match;
-  const std::string text = read_file(out);
-  const std::regex row(scenario + R"(\s+\S+\s+\S+\s+([0-9.]+))");
-  if (!std::regex_search(text, match, row)) throw std::runtime_error("no figure in: " + text);
-  return std::stod(match[1]);
-}
 
 struct SyncRun {
   double sim = 0, wall = 0;
@@ -67,7 +43,7 @@ SyncRun sync_run(const std::string& source_dir, const std::string& scenario,
                  const fs::path& work) {
   const fs::path logs =
       work / ("sync_" + scenario + "_" + profile + (on_demand ? "_on_demand" : ""));
-  ::setenv("UBERSIM_BUILD_DIR", own_dir().parent_path().c_str(), 1);
+  ::setenv("UBERSIM_BUILD_DIR", bench_dir().parent_path().c_str(), 1);
   std::vector<std::string> argv{"/bin/bash",
                                 source_dir + "/tools/launch.sh",
                                 "--sync",

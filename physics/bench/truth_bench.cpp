@@ -42,18 +42,11 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using ubersim::ChildProcess;
 
-fs::path own_dir() {
-  return fs::read_symlink("/proc/self/exe").parent_path();
-}
+using ubersim::physics::bench::bench_program;
+using ubersim::physics::bench::physics_alone;
+using ubersim::physics::bench::read_file;
 std::string program(const char* name) {
-  return (own_dir() / name).string();
-}
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return bench_program(name);
 }
 
 using ubersim::process_cpu_seconds;
@@ -204,21 +197,6 @@ SetResult run_set(const SetOptions& o, const fs::path& work) {
     r.stepping = std::stod(m[1]) / 100;
   }
   return r;
-}
-
-double physics_alone(const std::string& scenario, const std::string& model, double seconds,
-                     const fs::path& work) {
-  const fs::path out = work / "alone.txt";
-  ChildProcess bench({program("ubersim_physics_bench"), "--scenarios", scenario, "--models", model,
-                      "--only", "server", "--repeat", "1", "--seconds", std::to_string(seconds)},
-                     out.string());
-  if (bench.wait(600) != 0) throw std::runtime_error("ubersim_physics_bench failed");
-  std::smatch m;
-  const std::string text = read_file(out);
-  if (!std::regex_search(text, m, std::regex(scenario + R"(\s+\S+\s+\S+\s+([0-9.]+))"))) {
-    throw std::runtime_error("no figure in: " + text);
-  }
-  return std::stod(m[1]);
 }
 
 int run(int argc, char** argv) {
