@@ -364,25 +364,19 @@ if [ "$sync" = 1 ] && [ "$radio" = 1 ]; then
   tail -n +1 -s 0.2 --pid=$$ -F "$log_dir/radio.log" >&"$sync_fd" 2>/dev/null &
   sync_watch=$!
 fi
-if [ "$referee" = builtin ]; then
-  start referee "$bin_dir/ubersim_referee" --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} "${referee_args[@]}"
-  # In sync mode the referee must hear the first state: the teams (whose
-  # registration lets physics start) come once it listens (at most 20 s).
+# start_referee PROGRAM LISTENING: starts the referee (ubersim's or the GC
+# link). In sync mode it must hear the first state: the teams (whose
+# registration lets physics start) come once its log says LISTENING (at most 20 s).
+start_referee() {
+  start referee "$bin_dir/$1" --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} "${referee_args[@]}"
   for _ in $(seq 200); do
-    grep -q "automatic referee:" "$log_dir/referee.log" 2>/dev/null && break
+    grep -q "$2" "$log_dir/referee.log" 2>/dev/null && break
     kill -0 "${pids[-1]}" 2>/dev/null || break  # it failed: the wait below reports it
     sleep 0.1
   done
-fi
-if [ "$gc_ci" = 1 ]; then
-  start referee "$bin_dir/ubersim_gc_link" --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} "${referee_args[@]}"
-  # As the built-in referee: the teams come once the link listens (at most 20 s).
-  for _ in $(seq 200); do
-    grep -q "official game controller on" "$log_dir/referee.log" 2>/dev/null && break
-    kill -0 "${pids[-1]}" 2>/dev/null || break  # it failed: the wait below reports it
-    sleep 0.1
-  done
-fi
+}
+[ "$referee" = builtin ] && start_referee ubersim_referee "automatic referee:"
+[ "$gc_ci" = 1 ] && start_referee ubersim_gc_link "official game controller on"
 for team in yellow blue; do
   if [ "$demo" = "$team" ] || [ "$demo" = both ]; then
     start "demo_$team" "$bin_dir/ubersim_demo_team" "${common[@]}" --team "$team" --mode "$demo_mode" "${demo_args[@]}"
@@ -462,6 +456,8 @@ stop_all() {
       *) echo "launch: ${names[$i]} exited with status $status" >&2; why_failed "${names[$i]}" "$status"; failed=1 ;;
     esac
   done
+  # What the run lost, said once every process is stopped; the sync verdict last.
+  report_losses
   report_sync_clients
 }
 
@@ -502,7 +498,6 @@ report_losses() {
 on_signal() {
   trap '' INT TERM
   stop_all
-  report_losses
   echo "launch: stopped ($1)"
   [ "$failed" = 0 ] || exit 1
   exit "$2"
@@ -533,6 +528,5 @@ while :; do
   done
   trap '' INT TERM
   stop_all
-  report_losses
   exit $failed
 done
