@@ -77,7 +77,7 @@ std::string SyncCoordinator::on_client(const sync_client_t& message) {
 }
 
 void SyncCoordinator::on_schedule(const vision_schedule_t& schedule, Clock::time_point now) {
-  if (schedule.step < 0) return;  // vision listens but has seen no state yet
+  if (schedule.step < 0) return;  // its sender listens but has seen no state yet
   if (!(schedule.t_state >= 0) || !(schedule.next_publication >= schedule.t_state)) {
     ++stats_.schedules_out_of_order;  // not finite or not ahead: a bad message
     return;
@@ -90,7 +90,7 @@ void SyncCoordinator::on_schedule(const vision_schedule_t& schedule, Clock::time
   // A schedule for a step already heard of (a repetition) announces no new frame.
   const bool fresh = reset || schedule.step > last_schedule_step_;
   ++stats_.schedules;
-  vision_heard_ = true;
+  schedule_heard_ = true;
   last_schedule_step_ = schedule.step;
   last_schedule_time_ = schedule.t_state;
   next_publication_ = schedule.next_publication;
@@ -195,14 +195,15 @@ std::string SyncCoordinator::summary() const {
 
 double SyncCoordinator::earliest_arrival(Team team) const {
   const Client& c = client(team);
-  if (!c.present || !vision_heard_) return kInfinity;
+  if (!c.present || !schedule_heard_) return kInfinity;
   if (!c.owed.empty()) return c.owed.front().t_published;
   return next_publication_;
 }
 
-std::string SyncCoordinator::bound_by(Team team) const {
+std::optional<std::string> SyncCoordinator::bound_by(Team team) const {
   const Client& c = client(team);
-  return c.present && !c.owed.empty() ? c.stats.name : std::string("vision");
+  if (c.present && !c.owed.empty()) return c.stats.name;
+  return std::nullopt;
 }
 
 int SyncCoordinator::clients() const {

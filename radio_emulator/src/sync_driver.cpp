@@ -7,41 +7,45 @@
 
 namespace ubersim::radio {
 
-using Clock = SyncCoordinator::Clock;
+namespace {
+
+// What holds physics back when no client owes an answer: the next frame.
+constexpr const char* kNextFrame = "vision";
+
+}  // namespace
 
 SyncDriver::SyncDriver(MessageBus& bus, const ChannelNames& channels, RadioEmulator& emulator,
                        SyncOptions options, Publish publish)
-    : bus_(bus),
-      horizon_channel_(channels.extra(kSyncHorizonChannel)),
+    : publish_horizon_(bus, channels, topics::kSyncHorizon),
+      publish_status_(bus, channels, topics::kSyncStatus),
       emulator_(emulator),
       options_(options),
       publish_(std::move(publish)),
-      coordinator_(options.client_timeout),
-      status_channel_(channels.extra(kSyncStatusChannel)) {
+      coordinator_(options.client_timeout) {
   emulator_.set_sync(true);
   horizon_.horizon = -1;
-  bus_.subscribe<sync_client_t>(channels.extra(kSyncClientChannel),
-                                [this](const sync_client_t& message) {
-                                  const std::string change = coordinator_.on_client(message);
-                                  if (change.empty()) return;
-                                  // A rejoin ends a degraded stretch: as loud as the drop.
-                                  if (change.rfind("sync client rejoined", 0) == 0) {
-                                    spdlog::warn("{}", change);
-                                  } else {
-                                    spdlog::info("{}", change);
-                                  }
-                                  publish_status();
-                                  update(true);
-                                });
-  bus_.subscribe<vision_schedule_t>(channels.extra(kVisionScheduleChannel),
-                                    [this](const vision_schedule_t& schedule) {
-                                      coordinator_.on_schedule(schedule, Clock::now());
-                                      update(true);
-                                    });
 }
 
-void SyncDriver::on_packet(Team team, const radio_packet_t& packet) {
-  const auto answer = coordinator_.on_answer(team, packet.t_sent, Clock::now());
+void SyncDriver::on_client(const sync_client_t& message, Clock::time_point now) {
+  const std::string change = coordinator_.on_client(message);
+  if (change.empty()) return;
+  // A rejoin ends a degraded stretch: as loud as the drop.
+  if (change.rfind("sync client rejoined", 0) == 0) {
+    spdlog::warn("{}", change);
+  } else {
+    spdlog::info("{}", change);
+  }
+  publish_status(now);
+  update(true, now);
+}
+
+void SyncDriver::on_schedule(const vision_schedule_t& schedule, Clock::time_point now) {
+  coordinator_.on_schedule(schedule, now);
+  update(true, now);
+}
+
+void SyncDriver::on_packet(Team team, const radio_packet_t& packet, Clock::time_point now) {
+  const auto answer = coordinator_.on_answer(team, packet.t_sent, now);
   switch (answer.verdict) {
     case SyncCoordinator::Verdict::Unregistered:
       log_.warn(std::string("unregistered:") + team_name(team),
@@ -59,11 +63,10 @@ void SyncDriver::on_packet(Team team, const radio_packet_t& packet) {
       break;
   }
   publish_(emulator_.on_answer(team, packet, answer.t_arrival));
-  update(false);
+  update(false, now);
 }
 
-bool SyncDriver::tick() {
-  const auto now = Clock::now();
+bool SyncDriver::tick(Clock::time_point now) {
   forgive_own_stall(now);
   const auto dropped = coordinator_.expire(now);
   for (const Drop& drop : dropped) {
@@ -73,10 +76,8 @@ bool SyncDriver::tick() {
     }
     spdlog::warn("{}; the run goes on without it", drop.describe());
   }
-  if (!dropped.empty() || now - last_status_ >= std::chrono::seconds(1)) publish_status();
-  // Said again at least 10 times a second: physics waits for a first word
-  // from the radio emulator before it starts.
-  update(!dropped.empty() || Clock::now() - last_published_ >= std::chrono::milliseconds(100));
+  if (!dropped.empty() || now - last_status_ >= kStatusRepeat) publish_status(now);
+  update(!dropped.empty() || now - last_published_ >= kHorizonRepeat, now);
   return true;
 }
 
@@ -97,15 +98,26 @@ void SyncDriver::forgive_own_stall(Clock::time_point now) {
 
 // Sent before the horizon that lets physics past a drop, on the same socket:
 // a listener hears of the drop before any state after it.
-void SyncDriver::publish_status() {
+void SyncDriver::publish_status(Clock::time_point now) {
   const std::int64_t sequence = status_.sequence + 1;
   status_ = coordinator_.status();
   status_.sequence = sequence;
-  bus_.publish(status_channel_, status_);
-  last_status_ = Clock::now();
+  publish_status_(status_);
+  last_status_ = now;
 }
 
-void SyncDriver::update(bool always_publish) {
+std::string SyncDriver::hold(Clock::time_point now) {
+  if (now >= next_hold_log_) {
+    next_hold_log_ = now + std::chrono::seconds(5);
+    spdlog::info("sync: physics holds: waiting for {}",
+                 started_ ? std::string("the vision emulator")
+                          : std::to_string(options_.expected_clients - coordinator_.clients()) +
+                                " more client(s) on SYNC_CLIENT");
+  }
+  return started_ ? kNextFrame : "registration";
+}
+
+void SyncDriver::update(bool always_publish, Clock::time_point now) {
   double horizon = std::numeric_limits<double>::infinity();
   double answered_until = std::numeric_limits<double>::infinity();
   std::string bound;
@@ -113,20 +125,12 @@ void SyncDriver::update(bool always_publish) {
     started_ = true;
     spdlog::info("sync: {} client(s) registered, physics may run", coordinator_.clients());
   }
-  if (!started_ || !coordinator_.vision_heard()) {
+  if (!started_ || !coordinator_.schedule_heard()) {
     // Physics holds where it is until every expected client can see the
     // first frame, so that runs start alike.
     horizon = 0;
     answered_until = 0;
-    bound = started_ ? "vision" : "registration";
-    const auto now = Clock::now();
-    if (now >= next_hold_log_) {
-      next_hold_log_ = now + std::chrono::seconds(5);
-      spdlog::info("sync: physics holds: waiting for {}",
-                   started_ ? std::string("the vision emulator")
-                            : std::to_string(options_.expected_clients - coordinator_.clients()) +
-                                  " more client(s) on SYNC_CLIENT");
-    }
+    bound = hold(now);
   } else {
     for (Team team : kTeams) {
       const double arrival = coordinator_.earliest_arrival(team);
@@ -135,7 +139,7 @@ void SyncDriver::update(bool always_publish) {
       const double apply = emulator_.earliest_apply(team, arrival);
       if (apply < horizon) {
         horizon = apply;
-        bound = coordinator_.bound_by(team);
+        bound = coordinator_.bound_by(team).value_or(kNextFrame);
       }
     }
   }
@@ -152,8 +156,8 @@ void SyncDriver::update(bool always_publish) {
   horizon_.answered_until = answered_until;
   horizon_.waiting_for = bound;
   horizon_.clients = coordinator_.clients();
-  bus_.publish(horizon_channel_, horizon_);
-  last_published_ = Clock::now();
+  publish_horizon_(horizon_);
+  last_published_ = now;
 }
 
 void SyncDriver::log_summary() const {

@@ -37,8 +37,6 @@ ALLOWED = {
     ("physics/src/physics_server.cpp", "PhysicsServer::run"),
     # The vision process's wiring and loop.
     ("vision_emulator/src/vision_process.cpp", "run_vision_process"),
-    # The radio emulator's wiring and loop.
-    ("radio_emulator/src/main.cpp", "run"),
 }
 
 SOURCE_SUFFIXES = (".cpp", ".cc", ".hpp", ".h")

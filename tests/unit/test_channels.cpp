@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "ubersim/channels.hpp"
 #include "ubersim/cli.hpp"
@@ -85,6 +87,10 @@ struct can_publish<T, M,
 static_assert(can_publish<ubersim::sim_state_t, ubersim::sim_state_t>::value);
 static_assert(!can_publish<ubersim::sim_state_t, ubersim::referee_t>::value);
 static_assert(!can_publish<ubersim::radio_packet_t, ubersim::radio_feedback_t>::value);
+
+// A Publisher takes its topic's message only.
+static_assert(std::is_invocable_v<ubersim::Publisher<ubersim::sim_state_t>, ubersim::sim_state_t>);
+static_assert(!std::is_invocable_v<ubersim::Publisher<ubersim::sim_state_t>, ubersim::referee_t>);
 }  // namespace typed_topics
 
 // Every channel has its topic, under the name the channel list gives it: the
@@ -106,4 +112,26 @@ TEST(Channels, EveryChannelHasATypedTopicOfTheSameName) {
   EXPECT_EQ(ubersim::channel_name(channels, ubersim::topics::kReferee), "P_REFEREE");
   EXPECT_EQ(ubersim::channel_name(channels, ubersim::topics::kRadio.of(ubersim::Team::Blue)),
             "P_RADIO_BLUE");
+}
+
+// A Publisher sends on the channel name the process gives its topic (prefix
+// and overrides applied once, when it is made), over the real bus.
+TEST(Channels, PublisherSendsOnTheTopicsChannelInThisProcess) {
+  ubersim::MessageBus bus("memq://");
+  const ChannelNames channels("P_", {{"RADIO_FEEDBACK_BLUE", "FB"}});
+  const ubersim::Publisher<ubersim::radio_feedback_t> feedback(
+      bus, channels, ubersim::topics::kRadioFeedback.of(Team::Blue));
+  const ubersim::Publisher<ubersim::sim_commands_t> commands(bus, channels,
+                                                             ubersim::topics::kSimCommands);
+  EXPECT_EQ(feedback.channel(), "FB");
+  EXPECT_EQ(commands.channel(), "P_SIM_COMMANDS");
+  std::vector<std::string> heard;
+  bus.subscribe<ubersim::radio_feedback_t>(
+      "FB", [&](const ubersim::radio_feedback_t&) { heard.push_back("feedback"); });
+  bus.subscribe<ubersim::sim_commands_t>(
+      "P_SIM_COMMANDS", [&](const ubersim::sim_commands_t&) { heard.push_back("commands"); });
+  commands(ubersim::sim_commands_t{});
+  feedback(ubersim::radio_feedback_t{});
+  bus.handle_pending();
+  EXPECT_EQ(heard, (std::vector<std::string>{"commands", "feedback"}));
 }

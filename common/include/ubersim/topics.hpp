@@ -92,6 +92,23 @@ void publish(MessageBus& bus, const ChannelNames& channels, const Topic<Msg>& to
   bus.publish(channel_name(channels, topic), message);
 }
 
+// A topic's publisher with the channel name resolved once, for a hot path (a
+// message or more per wakeup): publish() builds the name on every call.
+template <class Msg>
+class Publisher {
+ public:
+  Publisher(MessageBus& bus, const ChannelNames& channels, const Topic<Msg>& topic)
+      : bus_(&bus), channel_(channel_name(channels, topic)) {}
+  void operator()(const typename Topic<Msg>::Message& message) const {
+    bus_->publish(channel_, message);
+  }
+  const std::string& channel() const { return channel_; }
+
+ private:
+  MessageBus* bus_;
+  std::string channel_;
+};
+
 // One row of the channel table: who publishes and reads a topic, and how often.
 struct TopicRow {
   std::string channels;  // "`RADIO_YELLOW`, `RADIO_BLUE`"

@@ -1,14 +1,15 @@
 #pragma once
-// Sync mode's bookkeeping in the radio emulator (docs/sync.md), without LCM:
-// which control programs take part (SYNC_CLIENT), which frames the vision
-// emulator published and when (SIM_VISION_SCHEDULE), and which of those each
-// client has answered (its radio packets, t_sent = the frame's t_capture).
+// Sync mode's bookkeeping (docs/sync.md), without LCM and without a clock (the
+// wall time of each event is an argument): which control programs take part
+// (SYNC_CLIENT), which frames were published and when (the frame schedule,
+// SIM_VISION_SCHEDULE), and which of those each client has answered (its radio
+// packets, t_sent = the frame's t_capture).
 //
 // An answer arrives, in sim time, when its frame was published: the client's
 // own processing takes no sim time. So the earliest sim time a client's next
 // answer can arrive is its oldest unanswered frame's publication, or, when it
-// is up to date, the vision emulator's next publication. The radio links add
-// their delay to that to give physics its horizon.
+// is up to date, the schedule's next publication. The radio links add their
+// delay to that to give the simulation its horizon.
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -92,24 +93,25 @@ class SyncCoordinator {
   // Drops every client whose oldest unanswered frame waits longer than the
   // timeout (the run goes on without it); returns them.
   std::vector<Drop> expire(Clock::time_point now);
-  // The radio emulator itself did not run for `gap` (a stalled process or a
-  // paused machine): the clients could not answer in that time either, so it
+  // The process keeping these books did not run for `gap` (a stalled process
+  // or a paused machine): the clients could not answer in that time either, so it
   // does not count against their timeout.
   void forgive(Clock::duration gap);
 
   // The earliest sim time a further answer of `team` can arrive (kInfinity
-  // when the team has no client, or vision has not been heard yet).
+  // when the team has no client, or no frame schedule was heard yet).
   double earliest_arrival(Team team) const;
-  // Who holds `team` back: its client's name when it owes an answer, else "vision".
-  std::string bound_by(Team team) const;
+  // Who holds `team` back: its client's name when it owes an answer; nothing
+  // when it waits for the schedule's next frame.
+  std::optional<std::string> bound_by(Team team) const;
 
-  bool vision_heard() const { return vision_heard_; }
+  bool schedule_heard() const { return schedule_heard_; }
   int clients() const;
   std::optional<std::string> client_name(Team team) const;
   std::vector<SyncClientStats> client_stats() const;
   const SyncStats& stats() const { return stats_; }
   const TeamControl& control(Team team) const { return control_[static_cast<int>(team)]; }
-  // s of sim time of the latest state the vision emulator announced (-inf before any).
+  // s of sim time of the latest state the frame schedule announced (-inf before any).
   double sim_time() const { return last_schedule_time_; }
   // The teams' control as SIM_SYNC_STATUS says it (sequence not set).
   sync_status_t status() const;
@@ -132,7 +134,7 @@ class SyncCoordinator {
 
   double timeout_;
   Client clients_[2];
-  bool vision_heard_ = false;
+  bool schedule_heard_ = false;
   double next_publication_ = 0;
   double last_schedule_time_ = -kInfinity;
   std::int64_t last_schedule_step_ = -1;

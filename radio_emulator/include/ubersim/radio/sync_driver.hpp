@@ -1,23 +1,29 @@
 #pragma once
-// Sync mode in the radio emulator process (docs/sync.md): wires the
-// SyncCoordinator and the emulator's links to the bus. It listens to
-// SYNC_CLIENT and SIM_VISION_SCHEDULE, takes the teams' radio packets as
-// answers, and publishes on SIM_SYNC_HORIZON how far physics may step:
-// the earliest t_apply any command not yet forwarded can still get. Each
-// client it drops, and each that rejoins, is one log line and goes out on
-// SIM_SYNC_STATUS (docs/sync.md, "A dropped client").
+// Sync mode in the radio emulator process (docs/sync.md): joins the
+// SyncCoordinator and the emulator's links. The program's wiring block
+// (main.cpp) hands it what comes on SYNC_CLIENT and SIM_VISION_SCHEDULE and the
+// teams' radio packets, which it takes as answers, and calls tick() after every
+// wakeup; it publishes on SIM_SYNC_HORIZON how far physics may step: the
+// earliest t_apply any command not yet forwarded can still get. Each client it
+// drops, and each that rejoins, is one log line and goes out on
+// SIM_SYNC_STATUS (docs/sync.md, "A dropped client"). It reads no clock: the
+// wall time of each call is an argument (the process host's clock).
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <ubersim/radio_packet_t.hpp>
+#include <ubersim/sync_client_t.hpp>
 #include <ubersim/sync_horizon_t.hpp>
 #include <ubersim/sync_status_t.hpp>
+#include <ubersim/vision_schedule_t.hpp>
 
 #include "ubersim/channels.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/radio/radio_emulator.hpp"
 #include "ubersim/radio/sync_coordinator.hpp"
+#include "ubersim/topics.hpp"
 
 namespace ubersim::radio {
 
@@ -29,17 +35,22 @@ struct SyncOptions {
 
 class SyncDriver {
  public:
+  using Clock = SyncCoordinator::Clock;
   // `publish` sends what the emulator's links let through (main.cpp's, the
   // same as outside sync mode), before the horizon that lets physics past it.
   using Publish = std::function<void(const RadioEmulator::Output&)>;
   SyncDriver(MessageBus& bus, const ChannelNames& channels, RadioEmulator& emulator,
              SyncOptions options, Publish publish);
 
+  // A registration or goodbye on SYNC_CLIENT.
+  void on_client(const sync_client_t& message, Clock::time_point now);
+  // The frames announced on SIM_VISION_SCHEDULE.
+  void on_schedule(const vision_schedule_t& schedule, Clock::time_point now);
   // A packet on RADIO_<team>: an answer, if the team has a client.
-  void on_packet(Team team, const radio_packet_t& packet);
+  void on_packet(Team team, const radio_packet_t& packet, Clock::time_point now);
   // Every wakeup (at least every 50 ms): drops clients past the timeout.
   // False when that fails the run (strict).
-  bool tick();
+  bool tick(Clock::time_point now);
   void log_summary() const;
   // Runs once, right before the first horizon that lets physics start (every
   // expected client registered): the radio's truth demand must reach physics
@@ -51,16 +62,22 @@ class SyncDriver {
   // not run (the machine was loaded or paused): the gap does not count
   // against the clients, who could not run either.
   static constexpr auto kStall = std::chrono::milliseconds(250);
+  // The horizon is said again at least this often: physics waits for a first
+  // word from the radio emulator before it starts.
+  static constexpr auto kHorizonRepeat = std::chrono::milliseconds(100);
+  static constexpr auto kStatusRepeat = std::chrono::seconds(1);
 
  private:
-  void update(bool always_publish);
-  void forgive_own_stall(std::chrono::steady_clock::time_point now);
-  void publish_status();
+  void update(bool always_publish, Clock::time_point now);
+  // The horizon while physics holds at the start: 0, bound by what it waits for.
+  std::string hold(Clock::time_point now);
+  void forgive_own_stall(Clock::time_point now);
+  void publish_status(Clock::time_point now);
 
-  MessageBus& bus_;
   std::function<void()> before_release_;
   bool released_ = false;
-  std::string horizon_channel_;
+  Publisher<sync_horizon_t> publish_horizon_;
+  Publisher<sync_status_t> publish_status_;
   RadioEmulator& emulator_;
   SyncOptions options_;
   Publish publish_;
@@ -68,12 +85,11 @@ class SyncDriver {
   bool started_ = false;  // the expected clients registered once
   sync_horizon_t horizon_{};
   ThrottledLog log_;
-  std::chrono::steady_clock::time_point next_hold_log_{};
-  std::chrono::steady_clock::time_point last_published_{};
-  std::string status_channel_;
+  Clock::time_point next_hold_log_{};
+  Clock::time_point last_published_{};
   sync_status_t status_{};
-  std::chrono::steady_clock::time_point last_status_{};
-  std::chrono::steady_clock::time_point last_tick_{};
+  Clock::time_point last_status_{};
+  Clock::time_point last_tick_{};
   std::uint64_t stalls_ = 0;
   double stalled_seconds_ = 0;
 };
