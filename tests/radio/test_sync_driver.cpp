@@ -1,0 +1,126 @@
+// Sync mode in the radio emulator process (docs/sync.md), over a real bus
+// (LCM's in-process memq://): the SyncDriver is handed the wall time of every
+// call, so its timeouts, its own stalls and its repeats are checked here at
+// given instants, without sleeping.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+#include <ubersim/sync_horizon_t.hpp>
+#include <ubersim/sync_status_t.hpp>
+#include <ubersim/truth_demand_t.hpp>
+#include <vector>
+
+#include "radio_test_util.hpp"
+#include "ubersim/radio/sync_driver.hpp"
+#include "ubersim/topics.hpp"
+
+using ubersim::radio::SyncDriver;
+using Clock = SyncDriver::Clock;
+using std::chrono::milliseconds;
+
+namespace {
+
+ubersim::sync_client_t client(int team, const std::string& name) {
+  ubersim::sync_client_t m{};
+  m.team = static_cast<std::int8_t>(team);
+  m.name = name;
+  return m;
+}
+
+// One frame captured at 0 s, published at 0.1 s; the next at 0.13 s.
+ubersim::vision_schedule_t first_frame() {
+  ubersim::vision_schedule_t s{};
+  s.t_state = 0.1;
+  s.step = 24;
+  s.next_publication = s.next_capture = 0.13;
+  s.num_frames = 1;
+  s.camera_id = {0};
+  s.frame_number = {0};
+  s.t_capture = {0.0};
+  return s;
+}
+
+// The driver of a yellow client ("a"), and what it says on the bus, in order:
+// "horizon:<waiting_for>", "status:<yellow drops>", "demand" (its before_release).
+struct Rig {
+  explicit Rig(bool strict) : emulator(profiles(), 1) {
+    using namespace ubersim;
+    subscribe(bus, channels, topics::kSyncHorizon,
+              [this](const sync_horizon_t& h) { said.push_back("horizon:" + h.waiting_for); });
+    subscribe(bus, channels, topics::kSyncStatus, [this](const sync_status_t& s) {
+      said.push_back("status:" + std::to_string(s.drops[0]));
+    });
+    subscribe(bus, channels, topics::kTruthDemand,
+              [this](const truth_demand_t&) { said.push_back("demand"); });
+    ubersim::radio::SyncOptions options;
+    options.client_timeout = 0.5;
+    options.strict = strict;
+    options.expected_clients = 1;
+    driver = std::make_unique<SyncDriver>(bus, channels, emulator, options,
+                                          [](const ubersim::radio::RadioEmulator::Output&) {});
+    driver->before_release(
+        [this] { publish(bus, channels, ubersim::topics::kTruthDemand, emulator.truth_demand()); });
+  }
+  static std::array<ubersim::radio::RadioProfile, 2> profiles() {
+    return {radio_test::profile(60, 0.033), radio_test::profile(60, 0.033)};
+  }
+  std::vector<std::string> heard() {
+    said.clear();
+    bus.handle_pending();
+    return said;
+  }
+
+  ubersim::MessageBus bus{"memq://"};
+  ubersim::ChannelNames channels;
+  ubersim::radio::RadioEmulator emulator;
+  std::unique_ptr<SyncDriver> driver;
+  std::vector<std::string> said;
+};
+
+}  // namespace
+
+TEST(SyncDriver, HoldsUntilRegisteredAndAnnouncesTheDemandRightBeforeTheRelease) {
+  Rig rig(false);
+  const Clock::time_point t0 = Clock::now();
+  ASSERT_TRUE(rig.driver->tick(t0));
+  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"status:0", "horizon:registration"}));
+  ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(50)));
+  EXPECT_TRUE(rig.heard().empty()) << "nothing new, and less than 100 ms since the last horizon";
+  ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(100)));
+  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"horizon:registration"})) << "the repeat";
+  rig.driver->on_client(client(0, "a"), t0 + milliseconds(120));
+  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"status:0", "demand", "horizon:vision"}));
+  rig.driver->on_schedule(first_frame(), t0 + milliseconds(130));
+  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"horizon:a"})) << "once only: no demand";
+}
+
+TEST(SyncDriver, OwnStallIsForgivenAndAClientPastTheTimeoutDropped) {
+  Rig rig(false);
+  const Clock::time_point t0 = Clock::now();
+  rig.driver->on_client(client(0, "a"), t0);
+  rig.driver->on_schedule(first_frame(), t0);  // "a" owes the frame from t0
+  ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(100)));
+  // No wakeup for 800 ms: this process did not run, so neither could the client.
+  ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(900)));
+  ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(1000)));
+  ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(1100)));
+  rig.heard();
+  ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(1200))) << "0.4 s owed: in time";
+  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"horizon:a"}));
+  ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(1350))) << "0.55 s owed: dropped, run goes on";
+  // No client left: nothing bounds the horizon.
+  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"status:1", "horizon:"}))
+      << "the drop goes out before the horizon that lets physics past it";
+}
+
+TEST(SyncDriver, StrictFailsTheRunAtTheFirstDrop) {
+  Rig rig(true);
+  const Clock::time_point t0 = Clock::now();
+  rig.driver->on_client(client(0, "a"), t0);
+  rig.driver->on_schedule(first_frame(), t0);
+  for (int ms = 100; ms <= 500; ms += 100) ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(ms)));
+  rig.heard();
+  EXPECT_FALSE(rig.driver->tick(t0 + milliseconds(600)));
+  EXPECT_TRUE(rig.heard().empty()) << "nothing more is said: the run stops";
+}
