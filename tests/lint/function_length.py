@@ -35,8 +35,6 @@ MAX_LINES = 100
 ALLOWED = {
     # PhysicsServer's loop: idle, pre-start, sync, as-fast-as-possible and paced modes.
     ("physics/src/physics_server.cpp", "PhysicsServer::run"),
-    # The vision process's wiring and loop.
-    ("vision_emulator/src/vision_process.cpp", "run_vision_process"),
 }
 
 SOURCE_SUFFIXES = (".cpp", ".cc", ".hpp", ".h")

@@ -1036,3 +1036,52 @@ TEST_F(VisionProcess, InRealTimeDemandsComeEveryFewFramesAndSchedulesOnlyAsRepet
   EXPECT_EQ(frames_listed, static_cast<int>(sync_frames));
   stop();
 }
+
+// Physics in sync mode starts on the vision's schedule and must know its truth
+// demand by then: at start the demand goes out before the first ("listening")
+// schedule, and the demand of the first state and of a reset right before the
+// schedule of that state.
+TEST_F(VisionProcess, TheDemandGoesOutBeforeTheScheduleThatNeedsIt) {
+  struct Said {
+    bool demand;
+    std::int64_t step;  // a schedule's
+  };
+  std::vector<Said> said;
+  // Listening before the child can speak; one socket, so in the order sent.
+  ubersim::MessageBus spy(ubersim::with_receive_buffer(ubersim::default_lcm_url()));
+  const ubersim::ChannelNames channels;
+  spy.subscribe<ubersim::truth_demand_t>(channels.extra(ubersim::kTruthDemandChannel),
+                                         [&](const ubersim::truth_demand_t& d) {
+                                           if (d.consumer == "vision") said.push_back({true, 0});
+                                         });
+  spy.subscribe<ubersim::vision_schedule_t>(channels.extra(ubersim::kVisionScheduleChannel),
+                                            [&](const ubersim::vision_schedule_t& s) {
+                                              said.push_back({false, s.step});
+                                            });
+  start(profile(base_keys()));
+  const World world = [](double t) { return moving_robots(t, false); };
+  lockstep(0, 60, world);
+  lockstep(0, 30, world);  // a reset
+  stop();
+  while (spy.handle_pending() > 0) {
+  }
+
+  ASSERT_GE(said.size(), 2u);
+  EXPECT_TRUE(said[0].demand);
+  EXPECT_FALSE(said[1].demand);
+  EXPECT_EQ(said[1].step, -1);
+  // The schedules of step 0: the first state's, then the reset's (not their
+  // repetitions: the same step as the schedule before).
+  int step0_schedules = 0;
+  std::int64_t last_step = -1;
+  for (std::size_t i = 0; i < said.size(); ++i) {
+    if (said[i].demand) continue;
+    const bool repetition = said[i].step == last_step;
+    last_step = said[i].step;
+    if (said[i].step != 0 || repetition) continue;
+    ++step0_schedules;
+    ASSERT_GT(i, 0u);
+    EXPECT_TRUE(said[i - 1].demand) << "schedule of step 0 number " << step0_schedules;
+  }
+  EXPECT_EQ(step0_schedules, 2);
+}

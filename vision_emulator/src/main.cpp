@@ -7,10 +7,8 @@
 #include <exception>
 
 #include "ubersim/cli.hpp"
-#include "ubersim/config.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/process_main.hpp"
-#include "ubersim/shutdown.hpp"
 #include "ubersim/vision/vision_process.hpp"
 
 namespace {
@@ -19,9 +17,8 @@ int run(int argc, char** argv) {
   CLI::App app{
       "ubersim vision emulator: turns ground truth on SIM_STATE into detection frames on "
       "VISION (rate, latency, noise, dropouts, cameras) as the team's real vision server would"};
-  ubersim::CommonOptions common;
-  ubersim::add_common_options(app, common);
   ubersim::vision::VisionProcessOptions options;
+  ubersim::add_common_options(app, options.common);
   app.add_option("--profile", options.profile,
                  "emulator profile: a name under <config-dir>/vision/ or a .cfg path")
       ->capture_default_str();
@@ -33,12 +30,8 @@ int run(int argc, char** argv) {
   if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
   if (app.count("--seed") > 0) options.seed = seed;
 
-  ubersim::setup_logging("vision", common.verbosity());
-  options.lcm_url = common.lcm_url;
-  options.channels = common.channels();
-  options.config_dir = common.config_root();
-  ubersim::ShutdownSignal shutdown;
-  return ubersim::vision::run_vision_process(options, shutdown);
+  ubersim::setup_logging("vision", options.common.verbosity());
+  return ubersim::vision::run_vision_process(options);
 }
 
 }  // namespace

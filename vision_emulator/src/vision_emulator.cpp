@@ -187,7 +187,7 @@ void VisionEmulator::check_step_fits(const sim_state_t& state) {
     const CameraProfile& c = camera.timing;
     if (!whole_steps(c.period(), state.dt) || !whole_steps(c.phase, state.dt)) {
       spdlog::warn(
-          "camera {}: its capture instants ({} Hz, phase {} s) fall between physics steps of "
+          "camera {}: its capture instants ({} Hz, phase {} s) fall between simulation steps of "
           "{} s; each is served by the first step after it (up to one step late)",
           c.id, c.frame_rate, c.phase, state.dt);
     }

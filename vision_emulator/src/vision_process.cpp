@@ -3,26 +3,47 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <functional>
 #include <limits>
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/vision_schedule_t.hpp>
 
-#include "ubersim/cli.hpp"
 #include "ubersim/field_config.hpp"
 #include "ubersim/logging.hpp"
-#include "ubersim/message_bus.hpp"
+#include "ubersim/process_host.hpp"
 #include "ubersim/robot_type_definition.hpp"
-#include "ubersim/shutdown.hpp"
+#include "ubersim/topics.hpp"
 #include "ubersim/vision/vision_emulator.hpp"
 #include "ubersim/vision_backpressure.hpp"
 
 namespace ubersim::vision {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = ProcessHost::Clock;
 
-void log_start(const VisionProfile& profile, const VisionProcessOptions& options) {
+// The last schedule again, this long after anything was said on
+// SIM_VISION_SCHEDULE, for a process that started later.
+constexpr auto kScheduleRepeat = std::chrono::milliseconds(100);
+// The longest wait of the loop (the schedule repeat and the demand's
+// once-a-second check ride on its wakeups).
+constexpr auto kMaxWait = std::chrono::milliseconds(100);
+// On SIGTERM, at most this long for what already waits in the socket.
+constexpr auto kDrainLimit = std::chrono::seconds(1);
+
+// A topic's channel, resolved once: VISION frames and schedules go out up
+// to thousands of times a second as fast as possible.
+template <class Msg>
+class Outlet {
+ public:
+  Outlet(ProcessHost& host, const Topic<Msg>& topic)
+      : bus_(host.bus()), channel_(channel_name(host.channels(), topic)) {}
+  void publish(const Msg& message) { bus_.publish(channel_, message); }
+
+ private:
+  MessageBus& bus_;
+  std::string channel_;
+};
+
+void log_start(const VisionProfile& profile, const ChannelNames& channels) {
   spdlog::info("profile '{}', seed {}, {} camera(s), latency {} s (jitter {} s), processing {} s",
                profile.name, profile.seed, profile.cameras.size(), profile.latency,
                profile.latency_jitter, profile.processing_time);
@@ -31,9 +52,10 @@ void log_start(const VisionProfile& profile, const VisionProcessOptions& options
                  c.frame_rate, c.phase, c.position.x(), c.position.y(), c.position.z(),
                  c.focal_length, c.image_width, c.image_height);
   }
-  spdlog::info("subscribing {} and {}; publishing {} and {}", options.channels(Channel::SimState),
-               options.channels(Channel::SimGeometry), options.channels(Channel::Vision),
-               options.channels(Channel::VisionGeometry));
+  spdlog::info(
+      "subscribing {} and {}; publishing {} and {}", channel_name(channels, topics::kSimState),
+      channel_name(channels, topics::kSimGeometry), channel_name(channels, topics::kVision),
+      channel_name(channels, topics::kVisionGeometry));
 }
 
 void log_summary(const VisionStats& s, std::uint64_t undecodable) {
@@ -49,258 +71,340 @@ void log_summary(const VisionStats& s, std::uint64_t undecodable) {
               s.camera_sets_invalid, s.frames_dropped_with_camera);
 }
 
-// On SIGTERM, what already waits in the socket (physics may have sent its
-// last states just before it exited) is still handled, so that a run's last
-// frames are published rather than lost. Bounded: as fast as possible physics
-// is at most kVisionLead ahead; a flood must not hold the exit.
-void handle_what_waits(MessageBus& bus) {
-  const auto deadline = Clock::now() + std::chrono::seconds(1);
-  while (Clock::now() < deadline && bus.handle_pending() > 0) {
+void log_realism(const emulator_realism_t& realism, const VisionProfile& p) {
+  spdlog::info(
+      "realism from '{}': robot sigma {} m / {} rad, ball sigma {} m, detection {} / {}, "
+      "false balls {}/s, latency {} s, camera overlap {} m, position error {} m, object "
+      "offset {} m, ball area sigma {}",
+      realism.sender, p.robot_sigma_x, p.robot_sigma_orientation, p.ball_sigma_x,
+      p.robot_detection_probability, p.ball_detection_probability, p.false_ball_rate,
+      realism.vision_latency, p.camera_overlap, p.camera_position_error, p.object_position_offset,
+      p.ball_area_sigma);
+}
+
+void log_cameras(const vision_cameras_t& cameras, const VisionEmulator& emulator) {
+  spdlog::info("cameras from '{}': {} camera(s), overlap {} m", cameras.sender,
+               emulator.camera_count(), emulator.profile().camera_overlap);
+  for (std::size_t i = 0; i < emulator.camera_count(); ++i) {
+    const PinholeCamera& c = emulator.camera(i).truth();
+    spdlog::info("camera {}: at ({}, {}, {}) m, f {} px", emulator.camera(i).id(), c.position().x(),
+                 c.position().y(), c.position().z(), c.intrinsics().focal_length);
   }
 }
 
-}  // namespace
-
-int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal& shutdown) {
-  VisionProfile profile = load_vision_profile(options.config_dir, options.profile);
-  if (options.seed) profile.seed = *options.seed;
-  log_start(profile, options);
-  const auto geometry_period = std::chrono::duration_cast<Clock::duration>(
-      std::chrono::duration<double>(profile.geometry_period));
-
-  VisionEmulator emulator(profile, RobotSizes::from_config_dir(options.config_dir));
-  if (!options.field.empty()) {
-    emulator.on_field_geometry(
-        load_field_config(options.config_dir, options.field).to_message(profile.ball_radius));
-  }
-
-  MessageBus bus(with_receive_buffer(options.lcm_url));
-  ThrottledLog bad_content;
-  ThrottledLog lost_frames;
-  const std::string vision_channel = options.channels(Channel::Vision);
-  const std::string geometry_channel = options.channels(Channel::VisionGeometry);
-  Clock::time_point next_geometry = Clock::now();
-  auto publish_geometry = [&] {
-    if (!emulator.field()) return;  // nothing to say about the field yet
-    bus.publish(geometry_channel, emulator.geometry_message());
-    next_geometry = Clock::now() + geometry_period;
-  };
-
-  // The schedule goes out before the frames it lists, on the same bus, so a
-  // listener (the radio emulator in sync mode) knows when a frame was
-  // published before any answer to it can reach it.
-  const std::string schedule_channel = options.channels.extra(kVisionScheduleChannel);
-  const std::string demand_channel = options.channels.extra(kTruthDemandChannel);
+// "Listening, no state yet" (step -1): what physics in sync mode waits for
+// before its first state.
+vision_schedule_t listening_schedule() {
   vision_schedule_t schedule{};
-  // Until the first state: "listening, no state yet" (step -1), which is what
-  // physics in sync mode waits for before its first state.
   schedule.t_state = -1;
   schedule.step = -1;
   schedule.next_publication = schedule.next_capture = std::numeric_limits<double>::infinity();
-  double announced_next = -1;
-  Clock::time_point last_schedule{};
-  // What ground truth it needs: said again only when the frames it announced
-  // run low (every kFramesAhead - 2 frames of a camera), after a reset or a
-  // realism change, and once a second. Each demand wakes physics, and one per
-  // frame was a third of what physics woke for in real time (docs/sync.md).
-  double demand_renewal = 0;  // sim time
-  Clock::time_point last_demand{};
-  auto announce_demand = [&](bool now, double sim_time) {
-    if (!now && sim_time < demand_renewal - CaptureSchedule::kTolerance &&
-        Clock::now() - last_demand < std::chrono::seconds(1)) {
+  return schedule;
+}
+
+void list_frames(vision_schedule_t& schedule, const std::vector<vision_frame_t>& frames) {
+  schedule.num_frames = static_cast<std::int32_t>(frames.size());
+  schedule.camera_id.clear();
+  schedule.frame_number.clear();
+  schedule.t_capture.clear();
+  for (const vision_frame_t& frame : frames) {
+    schedule.camera_id.push_back(frame.camera_id);
+    schedule.frame_number.push_back(frame.frame_number);
+    schedule.t_capture.push_back(frame.t_capture);
+  }
+}
+
+// Everything around the core that is not the host's: what each message does,
+// the schedule and its acknowledgements, when the truth demand is renewed, the
+// geometry. One method per input or repeat; the wiring block below hands them
+// to the host.
+class VisionShell {
+ public:
+  VisionShell(ProcessHost& host, VisionEmulator& emulator)
+      : host_(host),
+        emulator_(emulator),
+        vision_(host, topics::kVision),
+        vision_geometry_(host, topics::kVisionGeometry),
+        schedule_out_(host, topics::kVisionSchedule) {}
+
+  // The host's timers of the two repeats: a schedule or a geometry said out
+  // of turn puts its repeat off by a whole period.
+  void repeat_on(ProcessHost::Timer& schedule, ProcessHost::Timer& geometry) {
+    schedule_repeat_ = &schedule;
+    geometry_repeat_ = &geometry;
+  }
+
+  void on_sim_state(const sim_state_t& state);
+  void on_sim_geometry(const field_geometry_t& geometry);
+  void on_sim_control(const sim_control_t& request);
+  void on_realism(const emulator_realism_t& realism);
+  void on_cameras(const vision_cameras_t& cameras);
+
+  // Ask physics for the field now rather than wait for its next periodic one.
+  void request_geometry();
+  void repeat_geometry(Clock::time_point now) { publish_geometry(now); }
+  void repeat_schedule(Clock::time_point now);
+  // The truth demand as the announcer sends it (it asks at each send).
+  truth_demand_t truth_demand();
+  // SIGTERM: what waits is still handled, then the summary.
+  void stop();
+
+ private:
+  void warn_lost_frames(std::uint64_t lost_before, double sim_time);
+  void publish_geometry(Clock::time_point now);
+  void after_state(const sim_state_t& state, const std::vector<vision_frame_t>& frames, bool always,
+                   Clock::time_point now);
+  void announce_demand(bool always, double sim_time, Clock::time_point now);
+  void send_schedule(Clock::time_point now);
+
+  ProcessHost& host_;
+  VisionEmulator& emulator_;
+  Outlet<vision_frame_t> vision_;
+  Outlet<vision_geometry_t> vision_geometry_;
+  Outlet<vision_schedule_t> schedule_out_;
+  ProcessHost::Timer* schedule_repeat_ = nullptr;
+  ProcessHost::Timer* geometry_repeat_ = nullptr;
+  ThrottledLog bad_content_;
+  ThrottledLog lost_frames_;
+  vision_schedule_t schedule_ = listening_schedule();
+  double announced_next_ = -1;
+  // What ground truth it needs is said again only when the frames it
+  // announced run low (every kFramesAhead - 2 frames of a camera), after a
+  // reset or a realism change, and once a second. Each demand wakes physics,
+  // and one per frame was a third of what physics woke for in real time
+  // (docs/sync.md).
+  double demand_renewal_ = 0;  // sim time
+};
+
+void VisionShell::on_sim_state(const sim_state_t& state) {
+  const std::uint64_t lost_before = emulator_.stats().capture_instants_missed;
+  auto outcome = emulator_.on_sim_state(state);
+  warn_lost_frames(lost_before, state.sim_time);
+  using Verdict = VisionEmulator::Verdict;
+  switch (outcome.verdict) {
+    case Verdict::Invalid:
+      bad_content_.warn("invalid", "skipped a SIM_STATE: " + outcome.problem);
+      break;
+    case Verdict::OutOfOrder:
+      bad_content_.warn("out_of_order", "skipped a SIM_STATE older than one already used");
+      break;
+    case Verdict::Reset:
+      spdlog::info("sim time went back to {} s: simulation reset, pending frames dropped",
+                   state.sim_time);
+      after_state(state, outcome.frames, true, host_.now());
+      break;
+    case Verdict::Repeated:
+      break;
+    case Verdict::Used:
+      after_state(state, outcome.frames, false, host_.now());
+      break;
+  }
+  for (const vision_frame_t& frame : outcome.frames) vision_.publish(frame);
+}
+
+void VisionShell::warn_lost_frames(std::uint64_t lost_before, double sim_time) {
+  const std::uint64_t lost = emulator_.stats().capture_instants_missed;
+  if (lost == lost_before) return;
+  lost_frames_.warn("lost", fmt::format("lost {} frame(s) before sim time {} s ({} so far): "
+                                        "no SIM_STATE reached this process for their "
+                                        "capture instants (it fell behind physics, or "
+                                        "the datagrams were dropped)",
+                                        lost - lost_before, sim_time, lost));
+}
+
+// The schedule goes out before the frames it lists, on the same bus, so a
+// listener (the radio emulator in sync mode) knows when a frame was published
+// before any answer to it can reach it.
+void VisionShell::after_state(const sim_state_t& state, const std::vector<vision_frame_t>& frames,
+                              bool always, Clock::time_point now) {
+  // The demand before the schedule (physics in sync mode starts on the
+  // schedule, and must know the demand by then).
+  announce_demand(always, state.sim_time, now);
+  const double next = emulator_.next_publication();
+  // As fast as possible (and in sync mode) physics waits for this process
+  // to acknowledge a state at most kVisionLead behind it: every
+  // kVisionAckInterval of sim time at least, the schedule goes out even
+  // when it has nothing new (docs/vision.md, "As fast as possible").
+  const bool acknowledge =
+      state.speed_factor == 0 &&
+      state.sim_time >= schedule_.t_state + kVisionAckInterval - CaptureSchedule::kTolerance;
+  if (!always && frames.empty() && next == announced_next_ && !acknowledge) return;
+  announced_next_ = next;
+  schedule_.t_state = state.sim_time;
+  schedule_.step = state.step;
+  schedule_.next_publication = next;
+  schedule_.next_capture = emulator_.next_capture();
+  list_frames(schedule_, frames);
+  // Only sync mode (speed 0 in the state) waits for frames; in real time
+  // the schedule's one reader is physics, which wants to know that vision
+  // listens: the repetition says so 10 times a second.
+  if (!always && state.speed_factor > 0) return;
+  send_schedule(now);
+}
+
+// A demand when the last one runs low or `always`; otherwise the
+// announcer's once a second, checked here as well as after each wakeup.
+void VisionShell::announce_demand(bool always, double sim_time, Clock::time_point now) {
+  TruthDemandAnnouncer& demand = host_.truth_demand();
+  if (always || sim_time >= demand_renewal_ - CaptureSchedule::kTolerance) {
+    demand.announce(now);
+  } else {
+    demand.tick(now);
+  }
+}
+
+truth_demand_t VisionShell::truth_demand() {
+  demand_renewal_ = emulator_.demand_renewal_time();
+  return emulator_.truth_demand();
+}
+
+void VisionShell::send_schedule(Clock::time_point now) {
+  schedule_out_.publish(schedule_);
+  schedule_repeat_->due_at(now + kScheduleRepeat);
+}
+
+void VisionShell::repeat_schedule(Clock::time_point now) {
+  // The frames were announced once: a repetition must not announce them again.
+  list_frames(schedule_, {});
+  // Not forced: in real time this repetition runs 10 times a second, and
+  // the demand's own rules (renewal, once a second; at once before the
+  // first state) already put one out before any schedule physics waits for.
+  announce_demand(false, emulator_.sim_time(), now);
+  send_schedule(now);
+}
+
+void VisionShell::publish_geometry(Clock::time_point now) {
+  if (!emulator_.field()) return;  // nothing to say about the field yet
+  vision_geometry_.publish(emulator_.geometry_message());
+  geometry_repeat_->due_at(now + geometry_repeat_->period());
+}
+
+void VisionShell::on_sim_geometry(const field_geometry_t& geometry) {
+  const auto before = emulator_.stats().geometry_invalid;
+  if (emulator_.on_field_geometry(geometry)) {
+    spdlog::info("field '{}' ({} x {} m), ball radius {} m", geometry.name, geometry.field_length,
+                 geometry.field_width, geometry.ball_radius);
+    publish_geometry(host_.now());
+  } else if (emulator_.stats().geometry_invalid != before) {
+    bad_content_.warn("geometry", "ignored an invalid SIM_GEOMETRY");
+  }
+}
+
+// Robot types defined at run time (e.g. SSL robot specs): the same text
+// physics builds the robots from gives their size here.
+void VisionShell::on_sim_control(const sim_control_t& request) {
+  if (request.action != sim_control_t::DEFINE_ROBOT_TYPE) return;
+  try {
+    const RobotTypeConfig type =
+        parse_robot_type_definition(request.robot_type_name, request.robot_type_config);
+    if (!emulator_.define_robot_size(type.name,
+                                     RobotSize{type.radius, type.height, type.front_distance})) {
+      bad_content_.warn("robot_types", "too many robot types defined; ignored " + type.name);
       return;
     }
-    bus.publish(demand_channel, emulator.truth_demand());
-    demand_renewal = emulator.demand_renewal_time();
-    last_demand = Clock::now();
-  };
-  auto publish_schedule = [&](const sim_state_t& state, const std::vector<vision_frame_t>& frames,
-                              bool always) {
-    // The demand before the schedule (physics in sync mode starts on the
-    // schedule, and must know the demand by then).
-    announce_demand(always, state.sim_time);
-    const double next = emulator.next_publication();
-    // As fast as possible (and in sync mode) physics waits for this process
-    // to acknowledge a state at most kVisionLead behind it: every
-    // kVisionAckInterval of sim time at least, the schedule goes out even
-    // when it has nothing new (docs/vision.md, "As fast as possible").
-    const bool acknowledge =
-        state.speed_factor == 0 &&
-        state.sim_time >= schedule.t_state + kVisionAckInterval - CaptureSchedule::kTolerance;
-    if (!always && frames.empty() && next == announced_next && !acknowledge) return;
-    announced_next = next;
-    schedule.t_state = state.sim_time;
-    schedule.step = state.step;
-    schedule.next_publication = next;
-    schedule.next_capture = emulator.next_capture();
-    schedule.num_frames = static_cast<std::int32_t>(frames.size());
-    schedule.camera_id.clear();
-    schedule.frame_number.clear();
-    schedule.t_capture.clear();
-    for (const vision_frame_t& frame : frames) {
-      schedule.camera_id.push_back(frame.camera_id);
-      schedule.frame_number.push_back(frame.frame_number);
-      schedule.t_capture.push_back(frame.t_capture);
-    }
-    // Only sync mode (speed 0 in the state) waits for frames; in real time
-    // the schedule's one reader is physics, which wants to know that vision
-    // listens: the repetition below says so 10 times a second.
-    if (!always && state.speed_factor > 0) return;
-    bus.publish(schedule_channel, schedule);
-    last_schedule = Clock::now();
-  };
-  // The last schedule again, 10 times a second when nothing new was said, for
-  // a process that started later.
-  const auto repeat_schedule = [&] {
-    if (Clock::now() - last_schedule < std::chrono::milliseconds(100)) return;
-    // The frames were announced once: a repetition must not announce them again.
-    schedule.num_frames = 0;
-    schedule.camera_id.clear();
-    schedule.frame_number.clear();
-    schedule.t_capture.clear();
-    // Not forced: in real time this repetition runs 10 times a second, and
-    // the demand's own rules (renewal, once a second; at once before the
-    // first state) already put one out before any schedule physics waits for.
-    announce_demand(false, emulator.sim_time());
-    bus.publish(schedule_channel, schedule);
-    last_schedule = Clock::now();
-  };
+    spdlog::info("robot type {} defined: radius {} m, height {} m", type.name, type.radius,
+                 type.height);
+  } catch (const std::exception& error) {
+    bad_content_.warn("robot_type",
+                      std::string("ignored a robot type definition: ") + error.what());
+  }
+}
 
-  bus.subscribe<sim_state_t>(
-      options.channels(Channel::SimState),
-      std::function<void(const sim_state_t&)>([&](const sim_state_t& state) {
-        const std::uint64_t lost_before = emulator.stats().capture_instants_missed;
-        auto outcome = emulator.on_sim_state(state);
-        if (const std::uint64_t lost = emulator.stats().capture_instants_missed;
-            lost > lost_before) {
-          lost_frames.warn("lost", fmt::format("lost {} frame(s) before sim time {} s ({} so far): "
-                                               "no SIM_STATE reached this process for their "
-                                               "capture instants (it fell behind physics, or "
-                                               "the datagrams were dropped)",
-                                               lost - lost_before, state.sim_time, lost));
-        }
-        using Verdict = VisionEmulator::Verdict;
-        switch (outcome.verdict) {
-          case Verdict::Invalid:
-            bad_content.warn("invalid", "skipped a SIM_STATE: " + outcome.problem);
-            break;
-          case Verdict::OutOfOrder:
-            bad_content.warn("out_of_order", "skipped a SIM_STATE older than one already used");
-            break;
-          case Verdict::Reset:
-            spdlog::info("sim time went back to {} s: simulation reset, pending frames dropped",
-                         state.sim_time);
-            publish_schedule(state, outcome.frames, true);
-            break;
-          case Verdict::Repeated:
-            break;
-          case Verdict::Used:
-            publish_schedule(state, outcome.frames, false);
-            break;
-        }
-        for (const vision_frame_t& frame : outcome.frames) bus.publish(vision_channel, frame);
-      }));
-  bus.subscribe<field_geometry_t>(
-      options.channels(Channel::SimGeometry),
-      std::function<void(const field_geometry_t&)>([&](const field_geometry_t& geometry) {
-        const auto before = emulator.stats().geometry_invalid;
-        if (emulator.on_field_geometry(geometry)) {
-          spdlog::info("field '{}' ({} x {} m), ball radius {} m", geometry.name,
-                       geometry.field_length, geometry.field_width, geometry.ball_radius);
-          publish_geometry();
-        } else if (emulator.stats().geometry_invalid != before) {
-          bad_content.warn("geometry", "ignored an invalid SIM_GEOMETRY");
-        }
-      }));
+// Realism changed at run time (e.g. an SSL realism preset through the bridge).
+void VisionShell::on_realism(const emulator_realism_t& realism) {
+  const std::string problem = emulator_.apply_realism(realism);
+  if (!problem.empty()) {
+    bad_content_.warn("realism",
+                      "ignored a realism change from '" + realism.sender + "': " + problem);
+    return;
+  }
+  demand_renewal_ = 0;  // the latency changed: so did the frames' publication times
+  log_realism(realism, emulator_.profile());
+}
 
-  // Robot types defined at run time (e.g. SSL robot specs): the same text
-  // physics builds the robots from gives their size here.
-  bus.subscribe<sim_control_t>(
-      options.channels(Channel::SimControl),
-      std::function<void(const sim_control_t&)>([&](const sim_control_t& request) {
-        if (request.action != sim_control_t::DEFINE_ROBOT_TYPE) return;
-        try {
-          const RobotTypeConfig type =
-              parse_robot_type_definition(request.robot_type_name, request.robot_type_config);
-          if (!emulator.define_robot_size(
-                  type.name, RobotSize{type.radius, type.height, type.front_distance})) {
-            bad_content.warn("robot_types", "too many robot types defined; ignored " + type.name);
-            return;
-          }
-          spdlog::info("robot type {} defined: radius {} m, height {} m", type.name, type.radius,
-                       type.height);
-        } catch (const std::exception& error) {
-          bad_content.warn("robot_type",
-                           std::string("ignored a robot type definition: ") + error.what());
-        }
-      }));
+// New cameras at run time (e.g. the calibrations of an SSL client's geometry).
+void VisionShell::on_cameras(const vision_cameras_t& cameras) {
+  const std::string problem = emulator_.apply_cameras(cameras);
+  if (!problem.empty()) {
+    bad_content_.warn("cameras", "ignored a camera set from '" + cameras.sender + "': " + problem);
+    return;
+  }
+  demand_renewal_ = 0;  // other capture instants: other states needed
+  log_cameras(cameras, emulator_);
+  publish_geometry(host_.now());  // the new calibrations, at once
+}
 
-  // Realism changed at run time (e.g. an SSL realism preset through the bridge).
-  bus.subscribe<emulator_realism_t>(
-      options.channels.emulator_realism(),
-      std::function<void(const emulator_realism_t&)>([&](const emulator_realism_t& realism) {
-        const std::string problem = emulator.apply_realism(realism);
-        if (!problem.empty()) {
-          bad_content.warn("realism",
-                           "ignored a realism change from '" + realism.sender + "': " + problem);
-          return;
-        }
-        demand_renewal = 0;  // the latency changed: so did the frames' publication times
-        const VisionProfile& p = emulator.profile();
-        spdlog::info(
-            "realism from '{}': robot sigma {} m / {} rad, ball sigma {} m, detection {} / {}, "
-            "false balls {}/s, latency {} s, camera overlap {} m, position error {} m, object "
-            "offset {} m, ball area sigma {}",
-            realism.sender, p.robot_sigma_x, p.robot_sigma_orientation, p.ball_sigma_x,
-            p.robot_detection_probability, p.ball_detection_probability, p.false_ball_rate,
-            realism.vision_latency, p.camera_overlap, p.camera_position_error,
-            p.object_position_offset, p.ball_area_sigma);
-      }));
-
-  // New cameras at run time (e.g. the calibrations of an SSL client's geometry).
-  bus.subscribe<vision_cameras_t>(
-      options.channels.vision_cameras(),
-      std::function<void(const vision_cameras_t&)>([&](const vision_cameras_t& cameras) {
-        const std::string problem = emulator.apply_cameras(cameras);
-        if (!problem.empty()) {
-          bad_content.warn("cameras",
-                           "ignored a camera set from '" + cameras.sender + "': " + problem);
-          return;
-        }
-        demand_renewal = 0;  // other capture instants: other states needed
-        spdlog::info("cameras from '{}': {} camera(s), overlap {} m", cameras.sender,
-                     emulator.camera_count(), emulator.profile().camera_overlap);
-        for (std::size_t i = 0; i < emulator.camera_count(); ++i) {
-          const PinholeCamera& c = emulator.camera(i).truth();
-          spdlog::info("camera {}: at ({}, {}, {}) m, f {} px", emulator.camera(i).id(),
-                       c.position().x(), c.position().y(), c.position().z(),
-                       c.intrinsics().focal_length);
-        }
-        publish_geometry();  // the new calibrations, at once
-      }));
-
-  // Ask physics for the field now rather than waiting for its next periodic message.
+void VisionShell::request_geometry() {
   sim_control_t request{};
   request.request_id = 1;
   request.sender = "ubersim_vision";
   request.action = sim_control_t::REQUEST_GEOMETRY;
-  bus.publish(options.channels(Channel::SimControl), request);
-  publish_geometry();
+  publish(host_.bus(), host_.channels(), topics::kSimControl, request);
+}
 
-  while (!shutdown.requested()) {
-    const auto wait =
-        std::chrono::duration_cast<std::chrono::milliseconds>(next_geometry - Clock::now());
-    bus.wait_and_handle(static_cast<int>(std::clamp<std::int64_t>(wait.count(), 0, 100)),
-                        &shutdown);
-    repeat_schedule();
-    if (Clock::now() >= next_geometry) {
-      publish_geometry();
-      if (!emulator.field()) next_geometry = Clock::now() + geometry_period;
-    }
+// What already waits in the socket (physics may have sent its last states
+// just before it exited) is still handled, so that a run's last frames are
+// published rather than lost. Bounded: as fast as possible physics is at most
+// kVisionLead ahead; a flood must not hold the exit.
+void VisionShell::stop() {
+  const auto deadline = host_.now() + kDrainLimit;
+  while (host_.now() < deadline && host_.bus().handle_pending() > 0) {
   }
-  handle_what_waits(bus);
-  log_summary(emulator.stats(), bus.malformed_count());
-  return 0;
+  log_summary(emulator_.stats(), host_.bus().malformed_count());
+}
+
+VisionEmulator make_emulator(const VisionProfile& profile, const VisionProcessOptions& options) {
+  const std::string config_dir = options.common.config_root();
+  VisionEmulator emulator(profile, RobotSizes::from_config_dir(config_dir));
+  if (!options.field.empty()) {
+    emulator.on_field_geometry(
+        load_field_config(config_dir, options.field).to_message(profile.ball_radius));
+  }
+  return emulator;
+}
+
+}  // namespace
+
+int run_vision_process(const VisionProcessOptions& options) {
+  const ChannelNames channels = options.common.channels();
+  VisionProfile profile = load_vision_profile(options.common.config_root(), options.profile);
+  if (options.seed) profile.seed = *options.seed;
+  log_start(profile, channels);
+  VisionEmulator emulator = make_emulator(profile, options);
+
+  ProcessHost host(with_receive_buffer(options.common.lcm_url), channels, "vision");
+  VisionShell shell(host, emulator);
+  MessageBus& bus = host.bus();
+  subscribe(bus, channels, topics::kSimState, [&](const sim_state_t& m) { shell.on_sim_state(m); });
+  subscribe(bus, channels, topics::kSimGeometry,
+            [&](const field_geometry_t& m) { shell.on_sim_geometry(m); });
+  subscribe(bus, channels, topics::kSimControl,
+            [&](const sim_control_t& m) { shell.on_sim_control(m); });
+  subscribe(bus, channels, topics::kEmulatorRealism,
+            [&](const emulator_realism_t& m) { shell.on_realism(m); });
+  subscribe(bus, channels, topics::kVisionCameras,
+            [&](const vision_cameras_t& m) { shell.on_cameras(m); });
+
+  // The demand goes out when the shell says it runs low (and once a second).
+  host.truth_demand().follow([&] { return shell.truth_demand(); },
+                             TruthDemandAnnouncer::Renewal::OnAnnounce);
+  ProcessHost::Timer& schedule_repeat =
+      host.every(kScheduleRepeat, [&](Clock::time_point now) { shell.repeat_schedule(now); });
+  const auto geometry_period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(profile.geometry_period));
+  ProcessHost::Timer& geometry_repeat =
+      host.every(geometry_period, [&](Clock::time_point now) { shell.repeat_geometry(now); });
+  shell.repeat_on(schedule_repeat, geometry_repeat);
+  host.at_stop([&] { shell.stop(); });
+
+  // At start: ask for the field, say the one known (--field), then the
+  // demand and the schedule that says "listening" (physics in sync mode waits
+  // for it before its first state). Said here, before the first wait, the
+  // demand also counts as the announcer's first.
+  shell.request_geometry();
+  shell.repeat_geometry(host.now());
+  shell.repeat_schedule(host.now());
+  return host.run(kMaxWait);
 }
 
 }  // namespace ubersim::vision

@@ -1,32 +1,28 @@
 #pragma once
-// The ubersim_vision process: a VisionEmulator on the LCM bus. Subscribes
-// SIM_STATE and SIM_GEOMETRY, publishes VISION (one vision_frame_t per camera
-// frame, in sim time) and VISION_GEOMETRY (at start once the field is known,
-// whenever it changes, and every GEOMETRY_PERIOD seconds of wall-clock time, so
-// a control program that starts while physics is paused still gets it).
+// The ubersim_vision process: a VisionEmulator on the process host
+// (docs/design.md, "The process host"). Subscribes SIM_STATE and SIM_GEOMETRY,
+// publishes VISION (one vision_frame_t per camera frame, in sim time) and
+// VISION_GEOMETRY (at start once the field is known, whenever it changes, and
+// every GEOMETRY_PERIOD seconds of wall-clock time, so a control program that
+// starts while physics is paused still gets it); SIM_VISION_SCHEDULE and
+// SIM_TRUTH_DEMAND say which frames come when and which ground truth they need.
 #include <cstdint>
 #include <optional>
 #include <string>
 
-#include "ubersim/channels.hpp"
-
-namespace ubersim {
-class ShutdownSignal;
-}
+#include "ubersim/cli.hpp"
 
 namespace ubersim::vision {
 
 struct VisionProcessOptions {
-  std::string lcm_url;
-  ChannelNames channels;
-  std::string config_dir;
+  CommonOptions common;
   std::string profile = "cmdragons02";
   std::optional<std::uint64_t> seed;  // overrides the profile's SEED
   std::string field;                  // geometry to use until SIM_GEOMETRY arrives ("" = none)
 };
 
-// Runs until the shutdown signal; returns the process exit code. Throws
+// Runs until SIGINT/SIGTERM; returns the process exit code. Throws
 // ConfigError for a bad profile or field, std::runtime_error when LCM fails.
-int run_vision_process(const VisionProcessOptions& options, const ShutdownSignal& shutdown);
+int run_vision_process(const VisionProcessOptions& options);
 
 }  // namespace ubersim::vision
