@@ -29,20 +29,6 @@ constexpr auto kMaxWait = std::chrono::milliseconds(100);
 // On SIGTERM, at most this long for what already waits in the socket.
 constexpr auto kDrainLimit = std::chrono::seconds(1);
 
-// A topic's channel, resolved once: VISION frames and schedules go out up
-// to thousands of times a second as fast as possible.
-template <class Msg>
-class Outlet {
- public:
-  Outlet(ProcessHost& host, const Topic<Msg>& topic)
-      : bus_(host.bus()), channel_(channel_name(host.channels(), topic)) {}
-  void publish(const Msg& message) { bus_.publish(channel_, message); }
-
- private:
-  MessageBus& bus_;
-  std::string channel_;
-};
-
 void log_start(const VisionProfile& profile, const ChannelNames& channels) {
   spdlog::info("profile '{}', seed {}, {} camera(s), latency {} s (jitter {} s), processing {} s",
                profile.name, profile.seed, profile.cameras.size(), profile.latency,
@@ -123,9 +109,9 @@ class VisionShell {
   VisionShell(ProcessHost& host, VisionEmulator& emulator)
       : host_(host),
         emulator_(emulator),
-        vision_(host, topics::kVision),
-        vision_geometry_(host, topics::kVisionGeometry),
-        schedule_out_(host, topics::kVisionSchedule) {}
+        vision_(host.bus(), host.channels(), topics::kVision),
+        vision_geometry_(host.bus(), host.channels(), topics::kVisionGeometry),
+        schedule_out_(host.bus(), host.channels(), topics::kVisionSchedule) {}
 
   // The host's timers of the two repeats: a schedule or a geometry said out
   // of turn puts its repeat off by a whole period.
@@ -159,9 +145,11 @@ class VisionShell {
 
   ProcessHost& host_;
   VisionEmulator& emulator_;
-  Outlet<vision_frame_t> vision_;
-  Outlet<vision_geometry_t> vision_geometry_;
-  Outlet<vision_schedule_t> schedule_out_;
+  // Channels resolved once: frames and schedules go out up to thousands of
+  // times a second as fast as possible.
+  Publisher<vision_frame_t> vision_;
+  Publisher<vision_geometry_t> vision_geometry_;
+  Publisher<vision_schedule_t> schedule_out_;
   ProcessHost::Timer* schedule_repeat_ = nullptr;
   ProcessHost::Timer* geometry_repeat_ = nullptr;
   ThrottledLog bad_content_;
@@ -199,7 +187,7 @@ void VisionShell::on_sim_state(const sim_state_t& state) {
       after_state(state, outcome.frames, false, host_.now());
       break;
   }
-  for (const vision_frame_t& frame : outcome.frames) vision_.publish(frame);
+  for (const vision_frame_t& frame : outcome.frames) vision_(frame);
 }
 
 void VisionShell::warn_lost_frames(std::uint64_t lost_before, double sim_time) {
@@ -259,7 +247,7 @@ truth_demand_t VisionShell::truth_demand() {
 }
 
 void VisionShell::send_schedule(Clock::time_point now) {
-  schedule_out_.publish(schedule_);
+  schedule_out_(schedule_);
   schedule_repeat_->due_at(now + kScheduleRepeat);
 }
 
@@ -275,7 +263,7 @@ void VisionShell::repeat_schedule(Clock::time_point now) {
 
 void VisionShell::publish_geometry(Clock::time_point now) {
   if (!emulator_.field()) return;  // nothing to say about the field yet
-  vision_geometry_.publish(emulator_.geometry_message());
+  vision_geometry_(emulator_.geometry_message());
   geometry_repeat_->due_at(now + geometry_repeat_->period());
 }
 
