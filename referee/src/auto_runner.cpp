@@ -6,25 +6,24 @@
 #include <iostream>
 #include <ubersim/referee_t.hpp>
 #include <ubersim/sync_status_t.hpp>
-#include <ubersim/truth_demand_t.hpp>
 #include <vector>
 
 #include "ubersim/config.hpp"
 #include "ubersim/logging.hpp"
-#include "ubersim/message_bus.hpp"
+#include "ubersim/process_host.hpp"
 #include "ubersim/referee/referee_message.hpp"
 #include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/sim_link.hpp"
 #include "ubersim/referee/state_judge.hpp"
-#include "ubersim/shutdown.hpp"
 #include "ubersim/topics.hpp"
 
 namespace ubersim::referee {
 namespace {
 
 constexpr std::int64_t kRequestBase = 7LL << 56;  // our request ids, apart from the CLI's
-// SIM_TRUTH_DEMAND is repeated this often (physics forgets a demand after 3 s).
-constexpr auto kDemandRepeat = std::chrono::seconds(1);
+// Who the referee is to physics: the sender of its requests and placements,
+// the consumer of its truth demand.
+constexpr const char* kName = "ubersim_referee auto";
 
 std::vector<char> encoded(const field_geometry_t& geometry) {
   std::vector<char> bytes(static_cast<std::size_t>(geometry.getEncodedSize()));
@@ -45,11 +44,7 @@ bool usable(const field_geometry_t& f) {
 
 class Runner {
  public:
-  Runner(const AutoOptions& options, ShutdownSignal& shutdown)
-      : options_(options),
-        shutdown_(shutdown),
-        channels_(options.common.channels()),
-        bus_(with_receive_buffer(options.common.lcm_url)) {
+  Runner(const AutoOptions& options, ProcessHost& host) : options_(options), host_(host) {
     if (!options.events_file.empty()) {
       log_.open(options.events_file);
       if (!log_) throw std::runtime_error("cannot write the event log " + options.events_file);
@@ -57,19 +52,39 @@ class Runner {
   }
 
   int run() {
+    start();
+    // Physics (ground truth on demand, its default) sends only the states someone asked for.
+    // In sync mode physics stops at the state the referee judges next
+    // (REFEREE.next_judge_time) and sends it: that is the referee's demand.
+    // Otherwise physics does not wait for the referee, which then needs every
+    // state to see the ones it judges.
+    if (!options_.sync) host_.truth_demand().every_step();
+    // Stopped before the game is over (a signal): the result says so.
+    host_.at_stop([this] {
+      if (!over_) finish();
+    });
+    return host_.run(std::chrono::milliseconds(100));
+  }
+
+ private:
+  // The field, the judge, the subscriptions, physics resumed (--start): the
+  // referee listens once it logs its first line.
+  void start() {
+    MessageBus& bus = host_.bus();
+    const ChannelNames& channels = host_.channels();
     const std::chrono::milliseconds timeout(static_cast<long>(options_.timeout_s * 1000));
-    SimLink link(bus_, channels_, "ubersim_referee auto");
+    SimLink link(bus, channels, kName);
     field_ = link.geometry(timeout);
     judge_.emplace(
         JudgeOptions{options_.game, options_.sides, options_.sync, options_.judge_every_step},
         field_, [this](const std::string& type) { return radii_(type); });
     ubersim::subscribe(
-        bus_, channels_, topics::kSimState, [this](const sim_state_t& s) { on_state(s); }, 100000);
+        bus, channels, topics::kSimState, [this](const sim_state_t& s) { on_state(s); }, 100000);
     // In sync mode the radio emulator says which teams lost control: the result says so.
-    ubersim::subscribe(bus_, channels_, topics::kSyncStatus,
+    ubersim::subscribe(bus, channels, topics::kSyncStatus,
                        [this](const sync_status_t& s) { on_sync_status(s); });
     // Physics announces its field now and then and at once after a SET_FIELD.
-    ubersim::subscribe(bus_, channels_, topics::kSimGeometry,
+    ubersim::subscribe(bus, channels, topics::kSimGeometry,
                        [this](const field_geometry_t& g) { on_geometry(g); });
     if (options_.start_physics) {
       // Physics waited paused for us: the game starts at the first state we see.
@@ -78,40 +93,18 @@ class Runner {
       const auto ack = link.request(resume, timeout);
       if (!ack.ok) throw std::runtime_error("physics refused to resume: " + ack.message);
     }
-    ubersim::subscribe(bus_, channels_, topics::kSimControlAck, [](const sim_control_ack_t& ack) {
+    ubersim::subscribe(bus, channels, topics::kSimControlAck, [](const sim_control_ack_t& ack) {
       if (ack.request_id >= kRequestBase && !ack.ok)
         spdlog::warn("physics refused a placement: {}", ack.message);
     });
     spdlog::info("automatic referee: field {}, game {} s in {} half(s), publishing on {}{}",
-                 field_.name, options_.game.game_length, options_.game.halves, channels_.referee(),
+                 field_.name, options_.game.game_length, options_.game.halves,
+                 channel_name(channels, topics::kReferee),
                  options_.sync ? " after every state (sync)" : "");
-    while (!shutdown_.requested() && !(over_ && options_.exit_at_end)) {
-      announce_demand();
-      bus_.wait_and_handle(100, &shutdown_);
-    }
-    if (!over_) finish();
-    return 0;
   }
 
- private:
   void write(const std::string& line) {
     if (log_.is_open()) log_ << line << "\n" << std::flush;
-  }
-
-  // Physics (ground truth on demand, its default) sends only the states someone asked for.
-  // In sync mode physics stops at the state the referee judges next
-  // (REFEREE.next_judge_time) and sends it: that is the referee's demand.
-  // Otherwise physics does not wait for the referee, which then needs every
-  // state to see the ones it judges.
-  void announce_demand() {
-    if (options_.sync) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_demand_ < kDemandRepeat) return;
-    last_demand_ = now;
-    truth_demand_t demand{};
-    demand.consumer = "ubersim_referee auto";
-    demand.every_step = true;
-    ubersim::publish(bus_, channels_, topics::kTruthDemand, demand);
   }
 
   void on_geometry(const field_geometry_t& geometry) {
@@ -155,24 +148,26 @@ class Runner {
     if (!out.judged) return;
     if (!started_) {
       started_ = true;
-      wall_start_ = std::chrono::steady_clock::now();
+      wall_start_ = host_.now();
     }
     for (const std::string& line : out.log_lines) write(line);
     if (out.placement) {
       out.placement->request_id = kRequestBase + next_request_++;
-      out.placement->sender = "ubersim_referee auto";
-      ubersim::publish(bus_, channels_, topics::kSimControl, *out.placement);
+      out.placement->sender = kName;
+      ubersim::publish(host_.bus(), host_.channels(), topics::kSimControl, *out.placement);
     }
-    if (out.referee) ubersim::publish(bus_, channels_, topics::kReferee, *out.referee);
-    if (out.game_over) finish();
+    if (out.referee)
+      ubersim::publish(host_.bus(), host_.channels(), topics::kReferee, *out.referee);
+    if (!out.game_over) return;
+    finish();
+    // The run ends once the handlers of this wakeup are done, before the next turn.
+    if (options_.exit_at_end) host_.stop(0);
   }
 
   void finish() {
     over_ = true;
     const double wall =
-        started_
-            ? std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count()
-            : 0.0;
+        started_ ? std::chrono::duration<double>(host_.now() - wall_start_).count() : 0.0;
     const RefereeState empty;
     const auto& s = judge_ ? judge_->state() : empty;
     const double last_time = judge_ ? judge_->last_time() : 0.0;
@@ -187,9 +182,7 @@ class Runner {
   }
 
   const AutoOptions& options_;
-  ShutdownSignal& shutdown_;
-  ChannelNames channels_;
-  MessageBus bus_;
+  ProcessHost& host_;
   std::ofstream log_;
   field_geometry_t field_{};
   sync_status_t sync_status_{};  // the latest; all zero (nobody dropped) until one arrives
@@ -197,16 +190,16 @@ class Runner {
   RobotRadii radii_{options_.common.config_root()};  // robot types from SIM_STATE
   std::int64_t next_request_ = 0;
   ThrottledLog bad_input_;
-  std::chrono::steady_clock::time_point last_demand_{};
   bool started_ = false;
   bool over_ = false;
-  std::chrono::steady_clock::time_point wall_start_;
+  ProcessHost::Clock::time_point wall_start_;
 };
 
 }  // namespace
 
-int run_auto_referee(const AutoOptions& options, ShutdownSignal& shutdown) {
-  Runner runner(options, shutdown);
+int run_auto_referee(const AutoOptions& options) {
+  ProcessHost host(options.common, kName);
+  Runner runner(options, host);
   return runner.run();
 }
 

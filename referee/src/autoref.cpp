@@ -12,7 +12,7 @@ namespace {
 
 // The referee's placement has arrived when the ball is this close to its spot.
 constexpr double kPlacedTolerance = 0.05;  // m
-// A placement physics never carried out (refused, lost) is given up after this.
+// A placement the simulation never carried out (refused, lost) is given up after this.
 constexpr double kPlacementWait = 1.0;  // s
 
 Team team_of(const robot_state_t& robot) {
@@ -478,7 +478,7 @@ void AutoReferee::run_phase(const sim_state_t& state, Decision& decision) {
 Decision AutoReferee::update(const sim_state_t& state) {
   Decision decision;
   if (phase_ == Phase::Over) return decision;
-  // Time only moves forwards for the referee; a reset of physics (sim time
+  // Time only moves forwards for the referee; a reset of the simulation (sim time
   // going back) just re-bases it.
   const double dt = have_time_ ? std::max(0.0, state.sim_time - now_) : 0.0;
   now_ = state.sim_time;
@@ -490,7 +490,7 @@ Decision AutoReferee::update(const sim_state_t& state) {
   }
   advance_clock(dt);
 
-  // Until physics has carried out the referee's placement, the ball still lies
+  // Until the simulation has carried out the referee's placement, the ball still lies
   // where it went out: judge nothing on it.
   if (placement_pending_) {
     const bool arrived = std::hypot(state.ball.position[0] - kick_anchor_x_,

@@ -5,7 +5,7 @@
 // limit after a touch, the ball moved some distance, a clock ran out. Between
 // two judged states none of these can become true sooner than the distances
 // involved allow at the fastest the ball and the robots can move, so the
-// referee names the first state at which one could, and physics (sync mode)
+// referee names the first state at which one could, and the simulation (sync mode)
 // runs up to it without a round trip per step. While the ball is in the air,
 // touched, or about to be, that is the very next step.
 #include <algorithm>
@@ -70,7 +70,7 @@ double AutoReferee::next_judge_time(const sim_state_t& state) const {
   if (state_.stage == Stage::FirstHalf || state_.stage == Stage::SecondHalf) {
     within(stage_end_ - now);
   }
-  if (placement_pending_) within(0);  // until physics shows the ball placed
+  if (placement_pending_) within(0);  // until the simulation shows the ball placed
 
   if (state.ball_present) {
     const auto& b = state.ball;

@@ -17,7 +17,6 @@
 #include "ubersim/referee/sim_link.hpp"
 #include "ubersim/referee/situations.hpp"
 #include "ubersim/scenario_config.hpp"
-#include "ubersim/shutdown.hpp"
 
 namespace {
 
@@ -67,8 +66,7 @@ int run_auto(const Options& o) {
   a.start_physics = o.start_physics;
   a.sync = o.sync;
   a.judge_every_step = o.judge_every_step;
-  ShutdownSignal shutdown;
-  return run_auto_referee(a, shutdown);
+  return run_auto_referee(a);
 }
 
 class Referee {

@@ -14,7 +14,7 @@ namespace {
 
 constexpr double kPublishPeriod = 0.1;  // s of sim time between unchanged referee_t
 
-// A state physics could have sent (sim_state_numbers.hpp), with a step that
+// A state the simulation could have sent (sim_state_numbers.hpp), with a step that
 // is a number too: anyone on the bus may send another.
 bool judgeable(const sim_state_t& state) {
   return sim_state_numbers_fit(state) && state_number_fits(state.dt);
@@ -31,7 +31,7 @@ StateJudge::StateJudge(JudgeOptions options, field_geometry_t field,
 
 bool StateJudge::judges(const sim_state_t& state) const {
   if (options_.judge_every_step || !judged_any_) return true;
-  if (state.sim_time < last_time_) return true;  // physics was reset
+  if (state.sim_time < last_time_) return true;  // the simulation was reset
   return state.sim_time >= next_judge_ - 1e-6 * std::max(state.dt, 1e-6);
 }
 

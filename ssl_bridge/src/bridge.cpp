@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <ubersim/sim_control_ack_t.hpp>
-#include <ubersim/sync_client_t.hpp>
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/ssl_bridge/datagram_decoding.hpp"
@@ -56,6 +55,8 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
       referee_source_("ubersim-" + random_uuid()),
       referee_translator_(referee_source_),
       sync_{{SyncAnswers(options_.sync_timeout), SyncAnswers(options_.sync_timeout)}},
+      sync_clients_{{SyncClient(bus_, channels_, Team::Yellow, "ssl_bridge_yellow"),
+                     SyncClient(bus_, channels_, Team::Blue, "ssl_bridge_blue")}},
       truth_demand_(truth_demand) {
   // protobuf logs every datagram that misses a required field to stderr, one
   // line each, at any rate; decoded() counts and logs them throttled instead.
@@ -378,27 +379,22 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
   (team == Team::Blue ? blue_socket_ : yellow_socket_).send_to(out, from);
 }
 
-void SslBridge::say_sync_client(Team team, bool leaving) {
-  sync_client_t message{};
-  message.team = team_code(team);
-  message.name = std::string("ssl_bridge_") + team_name(team);
-  message.leaving = leaving;
-  ubersim::publish(bus_, channels_, topics::kSyncClient, message);
-}
-
 std::optional<double> SslBridge::sync_datagram(Team team) {
   const std::string name = team_name(team);
   const SyncAnswers::Datagram datagram = sync_[static_cast<int>(team)].on_datagram();
   switch (datagram.kind) {
-    case SyncAnswers::Kind::Registered:
-      spdlog::info("sync: the {} team spoke on its port: registered as sync client ssl_bridge_{}",
-                   name, name);
+    case SyncAnswers::Kind::Registered: {
+      SyncClient& client = sync_clients_[static_cast<int>(team)];
+      spdlog::info("sync: the {} team spoke on its port: registered as sync client {}", name,
+                   client.name());
       // Physics starts stepping once the teams are registered: it must know the
       // tracked frames' instants before, or two sync runs publish other states.
       // (A team speaks only after a detection packet, so physics listens by now.)
-      truth_demand_.announce();
-      say_sync_client(team, false);
+      const auto now = std::chrono::steady_clock::now();
+      truth_demand_.announce(now);
+      client.join(now);
       return std::nullopt;
+    }
     case SyncAnswers::Kind::Extra:
       ++counters_[name + " robot control datagrams answering no frame (ignored)"];
       bad_input_.warn(name + "_sync_extra",
@@ -420,17 +416,12 @@ void SslBridge::sync_tick(std::chrono::steady_clock::time_point now) {
     }
   }
   // Said again every second, for a radio emulator that starts later.
-  if (now < next_sync_hello_) return;
-  next_sync_hello_ = now + std::chrono::seconds(1);
-  for (Team team : kTeams) {
-    if (sync_[static_cast<int>(team)].registered()) say_sync_client(team, false);
-  }
+  for (SyncClient& client : sync_clients_) client.tick(now);
 }
 
-// No `leaving` on SYNC_CLIENT: the radio emulator owes the same frames and
-// drops the client by its own timeout, which makes the run degraded where the
-// user looks (docs/sync.md, "A dropped client"); a goodbye would not.
+// Silent, no goodbye on SYNC_CLIENT (SyncClient::drop says why).
 void SslBridge::drop_sync_client(Team team, const std::string& why) {
+  sync_clients_[static_cast<int>(team)].drop();
   spdlog::warn("sync: the {} team {}: dropped (its next RobotControl registers it again)",
                team_name(team), why);
 }
@@ -440,7 +431,7 @@ void SslBridge::sync_leave() {
     SyncAnswers& answers = sync_[static_cast<int>(team)];
     if (!answers.registered()) continue;
     answers.leave();
-    say_sync_client(team, true);
+    sync_clients_[static_cast<int>(team)].leave();
   }
 }
 

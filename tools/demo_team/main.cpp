@@ -6,9 +6,10 @@
 // and answers every frame, with an empty packet when it has nothing to send.
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <iostream>
+#include <optional>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/referee_t.hpp>
-#include <ubersim/sync_client_t.hpp>
 #include <ubersim/team_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
 #include <ubersim/vision_geometry_t.hpp>
@@ -17,10 +18,23 @@
 #include "referee_rules.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/logging.hpp"
-#include "ubersim/message_bus.hpp"
-#include "ubersim/shutdown.hpp"
+#include "ubersim/process_host.hpp"
+#include "ubersim/sync_client.hpp"
+#include "ubersim/topics.hpp"
 
 namespace {
+
+struct Options {
+  ubersim::CommonOptions common;
+  std::string team_text = "yellow";
+  std::string mode = "play";
+  std::string defends_text;
+  double rate = 60.0;
+  double figure8_speed = 0.8;
+  double figure8_size = 1.0;
+  bool sync = false;
+  demo::TeamSetup team;
+};
 
 // In play mode the referee decides what the team may do.
 std::vector<ubersim::robot_command_t> play_by_the_rules(demo::GameMode mode,
@@ -38,128 +52,154 @@ std::vector<ubersim::robot_command_t> play_by_the_rules(demo::GameMode mode,
   return demo::play(world, team);
 }
 
+// The team itself: each vision frame updates what it sees, and at --rate (in
+// capture time) it sends one radio packet. In sync mode it answers every
+// frame: with an empty packet whose t_sent is the frame's t_capture when it
+// has nothing to send (docs/sync.md).
+class DemoTeam {
+ public:
+  DemoTeam(const Options& options, ubersim::Team own, ubersim::MessageBus& bus,
+           const ubersim::ChannelNames& channels)
+      : options_(options),
+        team_(options.team),
+        yellow_(own == ubersim::Team::Yellow),
+        team_code_(yellow_ ? ubersim::team_t::YELLOW : ubersim::team_t::BLUE),
+        bus_(bus),
+        radio_channel_(ubersim::channel_name(channels, ubersim::topics::kRadio.of(own))),
+        world_(yellow_),
+        referee_(yellow_) {}
+
+  const demo::TeamSetup& setup() const { return team_; }
+  std::int64_t packets() const { return sequence_; }
+
+  void on_geometry(const ubersim::vision_geometry_t& geometry) {
+    team_.field_length = geometry.field.field_length;
+    team_.field_width = geometry.field.field_width;
+  }
+
+  void on_referee(const ubersim::referee_t& referee) { referee_.update(referee); }
+
+  void on_frame(const ubersim::vision_frame_t& frame) {
+    if (frame.t_capture + 1.0 < world_.now()) {  // the simulation was reset
+      world_ = demo::WorldModel(yellow_);
+      last_sent_ = -1e9;
+    }
+    world_.update(frame);
+    referee_.advance_to(frame.t_sent);
+    team_.keeper_id = referee_.goalkeeper();
+    if (world_.now() - last_sent_ < 1.0 / options_.rate - 1e-9) {
+      if (options_.sync) send({}, frame.t_capture);  // nothing to send: the answer says so
+      return;
+    }
+    last_sent_ = world_.now();
+    world_.forget_older_than(1.0);
+    send(commands(), options_.sync ? frame.t_capture : world_.now());
+  }
+
+ private:
+  std::vector<ubersim::robot_command_t> commands() const {
+    if (options_.mode == "positions") return demo::hold_positions(world_, team_);
+    if (options_.mode == "figure8") {
+      return demo::figure_eights(world_, team_, options_.figure8_speed, options_.figure8_size);
+    }
+    return play_by_the_rules(referee_.mode(), world_, team_);
+  }
+
+  void send(std::vector<ubersim::robot_command_t> commands, double t_sent) {
+    ubersim::radio_packet_t packet{};
+    packet.team = team_code_;
+    packet.sequence = sequence_++;
+    packet.t_sent = t_sent;
+    packet.commands = std::move(commands);
+    packet.num_commands = static_cast<int32_t>(packet.commands.size());
+    bus_.publish(radio_channel_, packet);
+  }
+
+  const Options& options_;
+  demo::TeamSetup team_;
+  bool yellow_;
+  std::int8_t team_code_;
+  ubersim::MessageBus& bus_;
+  std::string radio_channel_;  // RADIO_<TEAM>
+  demo::WorldModel world_;
+  demo::RefereeFollower referee_;
+  double last_sent_ = -1e9;
+  std::int64_t sequence_ = 0;
+};
+
+// The wiring block: the team on the process host.
+int run(const Options& options, ubersim::Team own) {
+  using ubersim::ProcessHost;
+  namespace topics = ubersim::topics;
+  const std::string name = std::string("demo_") + ubersim::team_name(own);
+  ProcessHost host(options.common, name);
+  DemoTeam team(options, own, host.bus(), host.channels());
+  ubersim::subscribe(host.bus(), host.channels(), topics::kVisionGeometry,
+                     [&](const ubersim::vision_geometry_t& g) { team.on_geometry(g); });
+  ubersim::subscribe(host.bus(), host.channels(), topics::kReferee,
+                     [&](const ubersim::referee_t& r) { team.on_referee(r); });
+  ubersim::subscribe(host.bus(), host.channels(), topics::kVision,
+                     [&](const ubersim::vision_frame_t& frame) { team.on_frame(frame); });
+  spdlog::info("{} team, mode {}, defending the {} goal: listening on {}, sending on {}",
+               ubersim::team_name(own), options.mode,
+               team.setup().defends < 0 ? "negative-x" : "positive-x",
+               ubersim::channel_name(host.channels(), topics::kVision),
+               ubersim::channel_name(host.channels(), topics::kRadio.of(own)));
+  // Sync mode's registration: said now, again every second (for a radio
+  // emulator that starts later), goodbye at the stop.
+  std::optional<ubersim::SyncClient> sync_client;
+  if (options.sync) {
+    sync_client.emplace(host.bus(), host.channels(), own, name);
+    sync_client->join(host.now());
+    host.after_wake([&](ProcessHost::Clock::time_point now) { sync_client->tick(now); });
+    host.at_stop([&] { sync_client->leave(); });
+  }
+  host.at_stop([&] { spdlog::info("stopped after {} packets", team.packets()); });
+  return host.run(std::chrono::milliseconds(100));
+}
+
+void add_options(CLI::App& app, Options& o) {
+  ubersim::add_common_options(app, o.common);
+  app.add_option("--team", o.team_text, "yellow | blue")->capture_default_str();
+  app.add_option("--mode", o.mode, "play | positions | figure8")
+      ->check(CLI::IsMember({"play", "positions", "figure8"}))
+      ->capture_default_str();
+  app.add_option("--defends", o.defends_text,
+                 "negative | positive x goal (default: yellow negative, blue positive)")
+      ->check(CLI::IsMember({"negative", "positive"}));
+  app.add_option("--rate", o.rate, "commands per second of capture time (Hz)")
+      ->capture_default_str()
+      ->check(ubersim::greater_than(0));
+  app.add_option("--figure8-speed", o.figure8_speed, "m/s")->capture_default_str();
+  app.add_option("--figure8-size", o.figure8_size, "m across")->capture_default_str();
+  app.add_option("--kick-speed", o.team.kick_speed, "m/s")->capture_default_str();
+  app.add_option("--max-speed", o.team.limits.max_speed, "m/s")->capture_default_str();
+  app.add_flag("--sync", o.sync,
+               "sync client: register on SYNC_CLIENT and answer every vision frame "
+               "(docs/sync.md)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  ubersim::CommonOptions common;
-  std::string team_text = "yellow";
-  std::string mode = "play";
-  std::string defends_text;
-  double rate = 60.0;
-  double figure8_speed = 0.8;
-  double figure8_size = 1.0;
-  bool sync = false;
-  demo::TeamSetup team;
-
+  Options options;
   CLI::App app{"ubersim demo team: drives one team's robots from VISION over RADIO_<TEAM>"};
-  ubersim::add_common_options(app, common);
-  app.add_option("--team", team_text, "yellow | blue")->capture_default_str();
-  app.add_option("--mode", mode, "play | positions | figure8")
-      ->check(CLI::IsMember({"play", "positions", "figure8"}))
-      ->capture_default_str();
-  app.add_option("--defends", defends_text,
-                 "negative | positive x goal (default: yellow negative, blue positive)")
-      ->check(CLI::IsMember({"negative", "positive"}));
-  app.add_option("--rate", rate, "commands per second of capture time (Hz)")
-      ->capture_default_str()
-      ->check(ubersim::greater_than(0));
-  app.add_option("--figure8-speed", figure8_speed, "m/s")->capture_default_str();
-  app.add_option("--figure8-size", figure8_size, "m across")->capture_default_str();
-  app.add_option("--kick-speed", team.kick_speed, "m/s")->capture_default_str();
-  app.add_option("--max-speed", team.limits.max_speed, "m/s")->capture_default_str();
-  app.add_flag("--sync", sync,
-               "sync client: register on SYNC_CLIENT and answer every vision frame "
-               "(docs/sync.md)");
+  add_options(app, options);
   if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
 
   ubersim::Team own{};
-  if (!ubersim::parse_team(team_text, own)) {
+  if (!ubersim::parse_team(options.team_text, own)) {
     std::cerr << "demo_team: --team must be yellow or blue\n";
     return 2;
   }
-  ubersim::setup_logging(std::string("demo_") + ubersim::team_name(own), common.verbosity());
+  ubersim::setup_logging(std::string("demo_") + ubersim::team_name(own),
+                         options.common.verbosity());
   const bool yellow = own == ubersim::Team::Yellow;
-  team.defends = defends_text.empty() ? (yellow ? -1 : 1) : (defends_text == "negative" ? -1 : 1);
-
+  options.team.defends = options.defends_text.empty()
+                             ? (yellow ? -1 : 1)
+                             : (options.defends_text == "negative" ? -1 : 1);
   try {
-    ubersim::ShutdownSignal shutdown;
-    ubersim::MessageBus bus(ubersim::with_receive_buffer(common.lcm_url));
-    const auto channels = common.channels();
-    demo::WorldModel world(yellow);
-    demo::RefereeFollower referee(yellow);
-    double last_sent = -1e9;
-    std::int64_t sequence = 0;
-    const std::string radio_channel = channels.radio(own);
-    const std::int8_t team_code = yellow ? ubersim::team_t::YELLOW : ubersim::team_t::BLUE;
-
-    // Sync mode's contract, all of it: say who we are (again every second,
-    // for a radio emulator that starts later), and answer every frame with
-    // a packet whose t_sent is the frame's t_capture -- empty when there is
-    // nothing to send.
-    ubersim::sync_client_t hello{};
-    hello.team = team_code;
-    hello.name = std::string("demo_") + ubersim::team_name(own);
-    const std::string sync_channel = channels.extra(ubersim::kSyncClientChannel);
-    auto next_hello = std::chrono::steady_clock::now();
-    auto answer_nothing = [&](const ubersim::vision_frame_t& frame) {
-      ubersim::radio_packet_t nothing{};
-      nothing.team = team_code;
-      nothing.sequence = sequence++;
-      nothing.t_sent = frame.t_capture;
-      bus.publish(radio_channel, nothing);
-    };
-
-    bus.subscribe<ubersim::vision_geometry_t>(channels(ubersim::Channel::VisionGeometry),
-                                              [&](const ubersim::vision_geometry_t& g) {
-                                                team.field_length = g.field.field_length;
-                                                team.field_width = g.field.field_width;
-                                              });
-    bus.subscribe<ubersim::referee_t>(channels.referee(),
-                                      [&](const ubersim::referee_t& r) { referee.update(r); });
-    bus.subscribe<ubersim::vision_frame_t>(
-        channels(ubersim::Channel::Vision), [&](const ubersim::vision_frame_t& frame) {
-          if (frame.t_capture + 1.0 < world.now()) {  // the simulation was reset
-            world = demo::WorldModel(yellow);
-            last_sent = -1e9;
-          }
-          world.update(frame);
-          referee.advance_to(frame.t_sent);
-          team.keeper_id = referee.goalkeeper();
-          if (world.now() - last_sent < 1.0 / rate - 1e-9) {
-            if (sync) answer_nothing(frame);
-            return;
-          }
-          last_sent = world.now();
-          world.forget_older_than(1.0);
-
-          ubersim::radio_packet_t packet{};
-          packet.team = team_code;
-          packet.sequence = sequence++;
-          packet.t_sent = sync ? frame.t_capture : world.now();
-          packet.commands = mode == "positions" ? demo::hold_positions(world, team)
-                            : mode == "figure8"
-                                ? demo::figure_eights(world, team, figure8_speed, figure8_size)
-                                : play_by_the_rules(referee.mode(), world, team);
-          packet.num_commands = static_cast<int32_t>(packet.commands.size());
-          bus.publish(radio_channel, packet);
-        });
-
-    spdlog::info("{} team, mode {}, defending the {} goal: listening on {}, sending on {}",
-                 ubersim::team_name(own), mode, team.defends < 0 ? "negative-x" : "positive-x",
-                 channels(ubersim::Channel::Vision), channels.radio(own));
-    while (!shutdown.requested()) {
-      if (sync && std::chrono::steady_clock::now() >= next_hello) {
-        bus.publish(sync_channel, hello);
-        next_hello += std::chrono::seconds(1);
-      }
-      bus.wait_and_handle(100, &shutdown);
-    }
-    if (sync) {
-      hello.leaving = true;
-      bus.publish(sync_channel, hello);
-    }
-    spdlog::info("stopped after {} packets", sequence);
-    return 0;
+    return run(options, own);
   } catch (const std::exception& error) {
     spdlog::error("{}", error.what());
     return 1;

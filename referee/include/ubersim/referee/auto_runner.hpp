@@ -2,16 +2,12 @@
 // `ubersim_referee auto`: the automatic referee on the bus. It judges the
 // SIM_STATEs where a rule could decide (AutoReferee::next_judge_time), publishes referee_t on
 // REFEREE (on each change and at 10 Hz of sim time), carries out each restart's placement through
-// the safe placement (SIM_CONTROL PLACE), and writes the event log. It returns when the game is
-// over (or on SIGINT/SIGTERM).
+// the safe placement (SIM_CONTROL PLACE), and writes the event log. It runs on the process host
+// (docs/design.md, "The process host") and returns when the game is over (or on SIGINT/SIGTERM).
 #include <string>
 
 #include "ubersim/cli.hpp"
 #include "ubersim/referee/autoref.hpp"
-
-namespace ubersim {
-class ShutdownSignal;
-}
 
 namespace ubersim::referee {
 
@@ -31,6 +27,6 @@ struct AutoOptions {
 };
 
 // Returns 0 after a finished game (or a clean stop), 1 on an error.
-int run_auto_referee(const AutoOptions& options, ShutdownSignal& shutdown);
+int run_auto_referee(const AutoOptions& options);
 
 }  // namespace ubersim::referee

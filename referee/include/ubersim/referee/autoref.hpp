@@ -1,6 +1,6 @@
 #pragma once
 // The automatic referee: pure game logic. It takes ground truth (sim_state_t,
-// one per physics step or fewer) and the field geometry, and returns what a
+// one per simulation step or fewer) and the field geometry, and returns what a
 // game controller plus an autoref would decide: the referee command and stage,
 // score, game events, and the ball/robot placement that starts each restart.
 // No LCM in here: `ubersim_referee auto` (auto_runner) puts it on the bus, and
@@ -8,7 +8,7 @@
 //
 // Numbering of stages, commands and event types is that of the SSL game
 // controller's protocol (ssl_gc_referee_message.proto, ssl_gc_game_event.proto),
-// so the SSL bridge forwards them without a translation table.
+// so they go out as SSL messages without a translation table.
 #include <optional>
 #include <string>
 #include <ubersim/field_geometry_t.hpp>
@@ -147,7 +147,7 @@ class AutoReferee {
   Decision update(const sim_state_t& state);
 
   // The field changed at run time (a SIM_GEOMETRY that differs, e.g. the
-  // geometry the SSL bridge applied): rules and restart spots use it from now on.
+  // geometry a SET_FIELD applied): rules and restart spots use it from now on.
   void set_field(const field_geometry_t& field) { field_ = field; }
   const field_geometry_t& field() const { return field_; }
 
@@ -208,7 +208,7 @@ class AutoReferee {
       kicker_;                  // took the last kick-off / free kick; no other robot touched since
   std::vector<bool> touching_;  // per robot index of the last state
   int touch_counter_ = 0;
-  bool placement_pending_ = false;  // placed, and physics has not shown it yet
+  bool placement_pending_ = false;  // placed, and the simulation has not shown it yet
   double placement_time_ = 0;       // s
   int judged_speed_touch_ = -1;
   int judged_shot_touch_ = -1;

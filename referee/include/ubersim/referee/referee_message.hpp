@@ -19,8 +19,8 @@ referee_event_t to_message(const GameEvent& event);
 // command, and the final result with every team's figures.
 std::string event_line(const GameEvent& event);
 std::string command_line(const RefereeState& state, double sim_time);
-// A team that played part of a sync run without control: the radio emulator
-// dropped its client (SIM_SYNC_STATUS, docs/sync.md "A dropped client").
+// A team that played part of a sync run without control: its sync client was
+// dropped (SIM_SYNC_STATUS, docs/sync.md "A dropped client").
 struct ControlLoss {
   std::string team;
   std::string client;

@@ -57,7 +57,7 @@ class StateJudge {
 
  private:
   // Whether this state is judged: the first at or after the time the referee
-  // named (physics in sync mode sends that one), or after a reset.
+  // named (the simulation in sync mode sends that one), or after a reset.
   bool judges(const sim_state_t& state) const;
   std::optional<sim_control_t> place(const SituationRequest& request, const sim_state_t& state);
 

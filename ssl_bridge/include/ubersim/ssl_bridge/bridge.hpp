@@ -23,6 +23,7 @@
 #include "ubersim/ssl_bridge/tracked_frames.hpp"
 #include "ubersim/ssl_bridge/udp_socket.hpp"
 #include "ubersim/ssl_bridge/vision_translation.hpp"
+#include "ubersim/sync_client.hpp"
 #include "ubersim/truth_demand_announcer.hpp"
 
 namespace ubersim::ssl {
@@ -102,10 +103,9 @@ class SslBridge {
   void handle_control_datagram(const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void handle_robot_datagram(Team team, const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void send_vision(const SSL_WrapperPacket& packet);
-  // Sync mode: registration and goodbye on SYNC_CLIENT, and the team's frame
-  // bookkeeping; sync_datagram() says what a robot control datagram answers
-  // (nullopt: it answers no frame and goes nowhere).
-  void say_sync_client(Team team, bool leaving);
+  // Sync mode: registration and goodbye on SYNC_CLIENT (sync_clients_), and
+  // the team's frame bookkeeping; sync_datagram() says what a robot control
+  // datagram answers (nullopt: it answers no frame and goes nowhere).
   std::optional<double> sync_datagram(Team team);
   void sync_tick(std::chrono::steady_clock::time_point now);
   void drop_sync_client(Team team, const std::string& why);
@@ -141,7 +141,7 @@ class SslBridge {
   int64_t next_request_id_ = 1;
   std::array<int64_t, 2> radio_sequence_{};  // per team: each RADIO_<TEAM> on its own
   std::array<SyncAnswers, 2> sync_;          // by Team
-  std::chrono::steady_clock::time_point next_sync_hello_{};
+  std::array<SyncClient, 2> sync_clients_;   // by Team: ssl_bridge_<team> on SYNC_CLIENT
   ThrottledLog bad_input_;
   std::map<std::string, uint64_t> counters_;
   // Ground truth at the tracked rate (tracked frames); without them the
