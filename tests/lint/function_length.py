@@ -33,8 +33,6 @@ MAX_LINES = 100
 # rewritten there rather than split here. Remove an entry when its function
 # is rewritten (the test fails on an entry whose function is short enough).
 ALLOWED = {
-    # PhysicsServer's loop: idle, pre-start, sync, as-fast-as-possible and paced modes.
-    ("physics/src/physics_server.cpp", "PhysicsServer::run"),
     # The vision process's wiring and loop.
     ("vision_emulator/src/vision_process.cpp", "run_vision_process"),
     # The radio emulator's wiring and loop.
