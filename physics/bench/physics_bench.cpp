@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <stdexcept>
 #include <ubersim/sim_commands_t.hpp>
 
 #include "bare_ode_scene.hpp"
@@ -109,6 +110,8 @@ double run_server(const WorldSetup& setup, const std::string& url, double sim_se
       channel_name(host.channels(), topics::kSimState),
       [&feeder](const std::string&, const void*, std::size_t, std::int64_t) { feeder.on_state(); });
   server.run();
+  // The host stops a run on Ctrl-C; the bench stops with it rather than go on to the next run.
+  if (host.shutdown().requested()) throw std::runtime_error("stopped (Ctrl-C)");
   if (stats_out != nullptr) *stats_out = server.stats();
   return sim_seconds / server.stats().wall_seconds;
 }
