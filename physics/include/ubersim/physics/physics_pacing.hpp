@@ -12,8 +12,9 @@
 //   real time, speed factor     PacedSteps        step when the Pacer says it is due
 //
 // The policies get the wall time from the host (turn(now)) and hand it on:
-// the core reads no clock. The step loops make no system call and no
-// std::function call per step: they look at the bus every MESSAGE_POLL_PERIOD.
+// the core reads no clock. A step turn makes no bus call and no std::function
+// call (Turn::again()); the step loops look at the bus once per
+// MESSAGE_POLL_PERIOD, so a step costs no system call beyond its publication.
 #include <chrono>
 #include <cstdint>
 #include <optional>
