@@ -22,6 +22,7 @@
 #include "ubersim/channels.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/physics/physics_server.hpp"
+#include "ubersim/process_host.hpp"
 
 namespace {
 
@@ -98,15 +99,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size < 1) return 0;
   const auto channel = static_cast<PhysicsChannel>((data[0] & ubersim::fuzz::kChannelMask) %
                                                    static_cast<int>(PhysicsChannel::Count));
-  ubersim::MessageBus bus("memq://");
-  const ubersim::ChannelNames channels;
+  // The host's bus (memq://) is the one ubersim_physics has on udpm://.
+  ubersim::ProcessHost host("memq://", ubersim::ChannelNames(), "physics");
+  ubersim::MessageBus& bus = host.bus();
+  const ubersim::ChannelNames& channels = host.channels();
   ubersim::physics::ServerOptions options;
   options.scenario = "division_b_6v6";
   options.speed = -1;  // lockstep: it steps when told, whatever the wall clock does
   options.truth_on_demand = true;
   options.sync_referee = (data[0] & ubersim::fuzz::kSyncRefereeBit) != 0;
   options.sync = options.sync_referee || (data[0] & ubersim::fuzz::kSyncBit) != 0;
-  ubersim::physics::PhysicsServer server(division_b(), bus, channels, options);
+  ubersim::physics::PhysicsServer server(division_b(), host, options);
   bus.subscribe<ubersim::sim_state_t>(
       channels(ubersim::Channel::SimState),
       [](const ubersim::sim_state_t& state) {

@@ -8,8 +8,8 @@
 #include "ubersim/config.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/physics/physics_server.hpp"
+#include "ubersim/process_host.hpp"
 #include "ubersim/process_main.hpp"
-#include "ubersim/shutdown.hpp"
 
 namespace {
 
@@ -83,10 +83,9 @@ int run(int argc, char** argv) {
   options.sync_referee = sync_referee;
   options.truth_on_demand = !truth_every_step;
   options.wait_for_vision = wait_for_vision;
-  ubersim::MessageBus bus(ubersim::with_receive_buffer(common.lcm_url));
-  ubersim::ShutdownSignal shutdown;
-  ubersim::physics::PhysicsServer server(std::move(setup), bus, common.channels(), options);
-  return server.run(&shutdown);
+  ubersim::ProcessHost host(common, "physics");
+  ubersim::physics::PhysicsServer server(std::move(setup), host, options);
+  return server.run();
 }
 
 }  // namespace

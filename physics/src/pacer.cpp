@@ -6,9 +6,7 @@ Pacer::Pacer(double dt, double speed, double max_lag_seconds)
     : dt_(dt),
       speed_(speed),
       max_lag_(std::chrono::duration_cast<Clock::duration>(
-          std::chrono::duration<double>(max_lag_seconds))) {
-  restart(Clock::now(), 0);
-}
+          std::chrono::duration<double>(max_lag_seconds))) {}
 
 void Pacer::set_speed(double speed, Clock::time_point now, std::int64_t step) {
   speed_ = speed;

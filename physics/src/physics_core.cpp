@@ -3,8 +3,6 @@
 #include <cmath>
 #include <limits>
 
-#include "ubersim/vision_backpressure.hpp"
-
 namespace ubersim::physics {
 namespace {
 
@@ -45,11 +43,10 @@ const char* action_name(int action) {
 
 }  // namespace
 
-PhysicsCore::PhysicsCore(WorldSetup setup, ServerOptions options)
+PhysicsCore::PhysicsCore(WorldSetup setup, CoreOptions options)
     : world_(std::move(setup)),
       options_(std::move(options)),
-      pacer_(world_.dt(), options_.speed < 0 ? -1.0 : options_.speed,
-             world_.setup().physics.max_pacing_lag),
+      speed_(options_.speed < 0 ? -1.0 : options_.speed),
       paused_(options_.paused),
       next_state_time_(first_state_time()),
       sync_(options_.sync),
@@ -64,43 +61,15 @@ void PhysicsCore::on_sync_horizon(const sync_horizon_t& h) {
   if (std::isnan(h.horizon)) return;
   horizon_ = h.horizon;
   if (!std::isnan(h.answered_until)) answered_until_ = h.answered_until;
-  // Until its clients registered, the radio holds the start.
-  radio_ready_ = h.waiting_for != "registration";
-  horizon_bound_ = h.waiting_for.empty() ? "?" : h.waiting_for;
+  horizon_heard_ = true;
+  horizon_waiting_for_ = h.waiting_for;
 }
 
-void PhysicsCore::on_vision_schedule(const vision_schedule_t& schedule, Clock::time_point wall) {
-  vision_heard_ = true;
-  vision_wall_ = wall;
-  vision_silent_ = false;
-  // Step -1: listening, no state seen yet. The latest counts, not the
-  // greatest: after a reset the vision's time starts again from 0 too.
-  vision_time_ = schedule.step < 0 || !std::isfinite(schedule.t_state)
-                     ? -std::numeric_limits<double>::infinity()
-                     : schedule.t_state;
-}
-
-bool PhysicsCore::waits_for_vision(Clock::time_point wall) {
-  if (sync_ || paused_ || !vision_heard_ || !pacer_.as_fast_as_possible()) return false;
-  if (wall - vision_wall_ > kVisionSilence) {
-    if (!vision_silent_) {
-      vision_silent_ = true;
-      ++vision_silences_;
-      spdlog::warn(
-          "the vision emulator has said nothing for {} s: physics runs on without waiting for it "
-          "(its frames may be lost)",
-          std::chrono::duration_cast<std::chrono::seconds>(kVisionSilence).count());
-    }
-    return false;
-  }
-  return world_.time() + world_.dt() * 1e-6 >= vision_time_ + kVisionLead;
-}
-
-const PhysicsCore::Output& PhysicsCore::state_for_vision(bool again) {
+const PhysicsCore::Output& PhysicsCore::state_to_acknowledge(bool again) {
   clear_output();
-  // The vision acknowledges only states it gets: the one physics waits at
-  // goes out if no demand sent it. An extra state changes no frame (a capture
-  // or release is served by the first state at or after its instant).
+  // A reader acknowledges only states it gets: the one physics waits at goes
+  // out if no demand sent it. An extra state changes no frame (a capture or
+  // release is served by the first state at or after its instant).
   if (again || !(last_state_time_ == world_.time())) add_state();
   return out_;
 }
@@ -127,8 +96,10 @@ void PhysicsCore::expire_demand(Clock::time_point wall) {
   }
 }
 
-std::string PhysicsCore::horizon_bound() const {
-  return referee_horizon_ < horizon_ ? "referee" : horizon_bound_;
+PhysicsCore::HorizonBound PhysicsCore::horizon_bound() const {
+  if (referee_horizon_ < horizon_) return {HorizonBound::By::Referee, {}};
+  if (!horizon_heard_) return {};
+  return {HorizonBound::By::Horizon, horizon_waiting_for_};
 }
 
 bool PhysicsCore::duration_reached() const {
@@ -201,7 +172,7 @@ void PhysicsCore::add_state() {
   sim_state_t& state = out_.states.back();
   world_.fill_state(state);
   state.paused = paused_;
-  state.speed_factor = sync_ ? 0.0 : pacer_.speed();
+  state.speed_factor = sync_ ? 0.0 : speed_;
   ++states_published_;
   last_state_time_ = world_.time();
   demand_.published(world_.time());
@@ -234,17 +205,18 @@ void PhysicsCore::on_step_request(const sim_control_t& request) {
     return;
   }
   for (int i = 0; i < request.step_count; ++i) step_once(true);
-  pacer_.restart(Clock::now(), world_.step_index());
+  ++schedule_epoch_;
   acknowledge(request, true, "stepped " + std::to_string(request.step_count));
 }
 
-void PhysicsCore::on_speed_request(const sim_control_t& request, Clock::time_point now) {
+void PhysicsCore::on_speed_request(const sim_control_t& request) {
   if (!std::isfinite(request.speed_factor)) {
     acknowledge(request, false, "speed_factor must be finite");
     return;
   }
   const double speed = request.speed_factor < 0 ? -1.0 : request.speed_factor;
-  pacer_.set_speed(speed, now, world_.step_index());
+  speed_ = speed;
+  ++schedule_epoch_;
   sync_ = false;
   acknowledge(request, true,
               speed < 0    ? std::string("lockstep")
@@ -276,7 +248,6 @@ const PhysicsCore::Output& PhysicsCore::on_control(const sim_control_t& request,
                                                    const std::string& dropped_input) {
   ++controls_handled_;
   clear_output();
-  const auto now = Clock::now();
   switch (request.action) {
     case sim_control_t::PLACE:
     case sim_control_t::SETUP: {
@@ -292,14 +263,14 @@ const PhysicsCore::Output& PhysicsCore::on_control(const sim_control_t& request,
       return out_;
     case sim_control_t::RESUME:
       paused_ = false;
-      pacer_.restart(now, world_.step_index());
+      ++schedule_epoch_;
       acknowledge(request, true, "running");
       return out_;
     case sim_control_t::RESET:
       world_.reset();
       demand_.reset();
       next_state_time_ = first_state_time();
-      pacer_.restart(now, world_.step_index());
+      ++schedule_epoch_;
       add_state();
       acknowledge(request, true, "reset to scenario " + options_.scenario);
       return out_;
@@ -307,7 +278,7 @@ const PhysicsCore::Output& PhysicsCore::on_control(const sim_control_t& request,
       on_step_request(request);
       return out_;
     case sim_control_t::SET_SPEED:
-      on_speed_request(request, now);
+      on_speed_request(request);
       return out_;
     case sim_control_t::SET_SYNC:
       sync_ = true;

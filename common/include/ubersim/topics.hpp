@@ -86,6 +86,14 @@ void subscribe(MessageBus& bus, const ChannelNames& channels, const Topic<Msg>& 
   bus.subscribe<Msg>(channel_name(channels, topic), std::move(handler), queue_capacity);
 }
 
+// Like subscribe, but a message on the topic never wakes the loop: it is read
+// when the loop wakes for anything else (MessageBus::subscribe_unhurried).
+template <class Msg>
+void subscribe_unhurried(MessageBus& bus, const ChannelNames& channels, const Topic<Msg>& topic,
+                         std::function<void(const typename Topic<Msg>::Message&)> handler) {
+  bus.subscribe_unhurried<Msg>(channel_name(channels, topic), std::move(handler));
+}
+
 template <class Msg>
 void publish(MessageBus& bus, const ChannelNames& channels, const Topic<Msg>& topic,
              const typename Topic<Msg>::Message& message) {

@@ -3,7 +3,9 @@
 // absolute schedule: step n (ending at sim time (n + 1) dt) is due at
 // anchor + (n + 1 - anchor_step) dt / speed,
 // so late wake-ups never add up to drift. The schedule restarts (re-anchors)
-// on resume, reset, speed changes and when the machine cannot keep up.
+// on resume, reset, speed changes and when the machine cannot keep up. It
+// reads no clock: every time point is handed in (the schedule starts with
+// restart or set_speed).
 #include <chrono>
 #include <cstdint>
 

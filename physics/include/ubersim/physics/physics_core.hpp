@@ -1,11 +1,13 @@
 #pragma once
 // The physics server without its transport: the world, what SIM_CONTROL does
-// to it, the pacing schedule, sync mode's horizons and which states go out.
-// It knows nothing of LCM: the server (physics_server.hpp) subscribes, calls
-// the on_* methods and publishes the Output each returns, in its order. The
-// same shape as the radio and vision emulator cores (docs/design.md, "One
-// shape for the cores").
+// to it, the mode (speed, pause, sync), sync mode's horizons and which states
+// go out. It knows nothing of LCM, reads no clock and names no other process:
+// the server (physics_server.hpp) subscribes, calls the on_* methods (with the
+// wall time where one matters) and publishes the Output each returns, in its
+// order; its pacing (physics_pacing.hpp) decides when to step. The same shape
+// as the other simulation cores (docs/design.md, "One shape for the cores").
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -18,22 +20,20 @@
 #include <ubersim/sim_state_t.hpp>
 #include <ubersim/sync_horizon_t.hpp>
 #include <ubersim/truth_demand_t.hpp>
-#include <ubersim/vision_schedule_t.hpp>
 #include <vector>
 
 #include "ubersim/logging.hpp"
-#include "ubersim/physics/pacer.hpp"
 #include "ubersim/physics/truth_demand.hpp"
 #include "ubersim/physics/world.hpp"
 
 namespace ubersim::physics {
 
-struct ServerOptions {
+struct CoreOptions {
   std::string scenario;  // for logs and acknowledgements
   double speed = 1.0;    // > 0 times real time, 0 as fast as possible, < 0 lockstep
   bool paused = false;
-  double duration = 0;  // s of sim time after which run() returns, 0 = never
-  bool sync = false;    // sync mode (docs/sync.md): step up to the radio emulator's horizon
+  double duration = 0;  // s of sim time after which the run ends, 0 = never
+  bool sync = false;    // sync mode (docs/sync.md): step up to the horizon SIM_SYNC_HORIZON names
   // Sync mode with the automatic referee: also never past the state the referee
   // judges next (its REFEREE message names it, next_judge_time), so each
   // placement it decides on a state applies at the step from that state.
@@ -44,15 +44,11 @@ struct ServerOptions {
   // (every step while nobody has asked): docs/sync.md, "Ground truth on demand".
   // The default; --truth-every-step turns it off.
   bool truth_on_demand = true;
-  // Outside sync mode: publish no state and take no step until a vision
-  // emulator listens (its SIM_VISION_SCHEDULE), as sync mode does, so that it
-  // sees the run from sim time 0 (tools/launch.sh --speed 0 passes it).
-  bool wait_for_vision = false;
 };
 
 class PhysicsCore {
  public:
-  using Clock = Pacer::Clock;
+  using Clock = std::chrono::steady_clock;
 
   // What one call produced, to publish in this order. Returned by reference
   // to one the core reuses (valid until its next call), so that a state is
@@ -63,7 +59,7 @@ class PhysicsCore {
     std::optional<sim_control_ack_t> ack;      // SIM_CONTROL_ACK
   };
 
-  PhysicsCore(WorldSetup setup, ServerOptions options);
+  PhysicsCore(WorldSetup setup, CoreOptions options);
 
   void on_commands(const sim_commands_t& packet);
   // `dropped_input` is what the transport dropped, for the PING reply.
@@ -73,18 +69,10 @@ class PhysicsCore {
   // and judges the one at its next_judge_time next.
   void on_referee(const referee_t& referee);
   void on_truth_demand(const truth_demand_t& demand, Clock::time_point wall);
-  // The vision emulator listens; as fast as possible, its t_state says how
-  // far it has got (docs/vision.md, "As fast as possible").
-  void on_vision_schedule(const vision_schedule_t& schedule, Clock::time_point wall);
-  // As fast as possible outside sync mode: whether the next step must wait
-  // because physics is kVisionLead ahead of the last state the vision
-  // acknowledged. False while no vision is heard, or one fell silent for
-  // kVisionSilence (logged once per silence).
-  bool waits_for_vision(Clock::time_point wall);
-  // The state at the step physics waits at, for the vision to acknowledge:
-  // nothing when it went out already, unless `again` (a vision that started
-  // listening after it went out has not seen it).
-  const Output& state_for_vision(bool again);
+  // The state at the step physics waits at, for a reader to acknowledge (as
+  // fast as possible): nothing when it went out already, unless `again` (a
+  // reader that started listening after it went out has not seen it).
+  const Output& state_to_acknowledge(bool again);
 
   // One step; the state after it when one is due.
   const Output& step();
@@ -100,9 +88,18 @@ class PhysicsCore {
   std::int64_t steps_to_wanted_state(std::int64_t max_steps) const;
 
   // Nothing advances by itself: paused, or lockstep outside sync mode.
-  bool idle() const { return paused_ || (!sync_ && pacer_.lockstep()); }
+  bool idle() const { return paused_ || (!sync_ && lockstep()); }
   bool sync() const { return sync_; }
   bool paused() const { return paused_; }
+  // The speed asked for: > 0 times real time, 0 as fast as possible, < 0 lockstep.
+  double speed() const { return speed_; }
+  bool lockstep() const { return speed_ < 0; }
+  bool as_fast_as_possible() const { return speed_ == 0; }
+  bool paced() const { return speed_ > 0; }
+  // Changes whenever a wall-clock schedule must start again from the current
+  // step (RESUME, RESET, STEP, SET_SPEED): the pacing re-anchors at its next
+  // turn, at the wall time it is handed.
+  std::uint64_t schedule_epoch() const { return schedule_epoch_; }
   // Sync mode: whether the step starting now may run: no command can still
   // come that applies at its start (docs/sync.md).
   bool below_horizon() const {
@@ -112,33 +109,27 @@ class PhysicsCore {
   bool below_referee_horizon() const {
     return world_.time() + world_.dt() * 1e-6 < referee_horizon_;
   }
-  // Sync mode: what holds physics at the horizon (a client's name, "vision", "referee" ...).
-  std::string horizon_bound() const;
-  // Sync mode publishes its first state only once the vision emulator listens
-  // and the radio emulator has every client it expects (both have spoken), so
-  // that every run starts alike.
-  // Outside sync mode with wait_for_vision: once the vision emulator listens.
-  bool ready_to_start() const { return vision_heard_ && (radio_ready_ || !sync_); }
+  // Sync mode: what holds physics at the horizon. The server names it.
+  struct HorizonBound {
+    enum class By { NoHorizonYet, Horizon, Referee };
+    By by = By::NoHorizonYet;
+    std::string waiting_for;  // By::Horizon: what SIM_SYNC_HORIZON says it waits for
+  };
+  HorizonBound horizon_bound() const;
   bool duration_reached() const;
   // Sync mode: every frame published up to the current state has its answers
-  // from every client (the radio emulator says so), so a run may end here.
+  // from every client (SIM_SYNC_HORIZON's answered_until), so a run may end here.
   bool last_frames_answered() const { return answered_until_ > world_.time() + world_.dt() * 1e-6; }
   double answered_until() const { return answered_until_; }
 
   World& world() { return world_; }
   const World& world() const { return world_; }
-  Pacer& pacer() { return pacer_; }
-  const Pacer& pacer() const { return pacer_; }
   ThrottledLog& warnings() { return log_; }
   std::int64_t steps() const { return steps_; }
   std::int64_t states_published() const { return states_published_; }
   std::int64_t controls_handled() const { return controls_handled_; }
   std::int64_t packets_received() const { return packets_received_; }
   std::uint64_t demand_late() const { return demand_.late(); }
-  // Times the vision emulator fell silent while physics was waiting for it.
-  std::int64_t vision_silences() const { return vision_silences_; }
-  // Paced modes: CPU time of this thread spent in World::step (s), so that
-  // the cost of everything else (messages, waiting) can be told from stepping.
 
  private:
   // Empties out_, keeping its states' memory in spare_ for the next ones.
@@ -148,14 +139,15 @@ class PhysicsCore {
   void acknowledge(const sim_control_t& request, bool ok, const std::string& message);
   // SIM_CONTROL actions with more to them than a line or two (on_control).
   void on_step_request(const sim_control_t& request);
-  void on_speed_request(const sim_control_t& request, Clock::time_point now);
+  void on_speed_request(const sim_control_t& request);
   void on_define_robot_type(const sim_control_t& request);
   void on_set_field(const sim_control_t& request);
   double first_state_time() const;
 
   World world_;
-  ServerOptions options_;
-  Pacer pacer_;
+  CoreOptions options_;
+  double speed_;
+  std::uint64_t schedule_epoch_ = 0;
   bool paused_;
   double next_state_time_ = 0;  // sim time of the next publication (STATE_PUBLISH_RATE > 0)
   Output out_;
@@ -166,16 +158,10 @@ class PhysicsCore {
   double horizon_ = 0;         // s, from SIM_SYNC_HORIZON
   double answered_until_ = 0;  // s, from SIM_SYNC_HORIZON: frames published before it are answered
   double referee_horizon_;     // s, from REFEREE (+inf without --sync-referee)
-  std::string horizon_bound_ = "the radio emulator (no SIM_SYNC_HORIZON yet)";
-  bool vision_heard_ = false;
-  // The vision emulator's progress: the sim time of the last state it
-  // acknowledged (-inf while it has seen none), and when it last spoke.
-  double vision_time_ = -std::numeric_limits<double>::infinity();
-  Clock::time_point vision_wall_{};
-  bool vision_silent_ = false;
-  std::int64_t vision_silences_ = 0;
+  // Whether a SIM_SYNC_HORIZON came, and what its sender said it waits for.
+  bool horizon_heard_ = false;
+  std::string horizon_waiting_for_;
   double last_state_time_ = std::numeric_limits<double>::quiet_NaN();  // s, the last state out
-  bool radio_ready_ = false;
   std::int64_t steps_ = 0;
   std::int64_t states_published_ = 0;
   std::int64_t controls_handled_ = 0;

@@ -1,102 +1,72 @@
 #pragma once
-// The physics server: a PhysicsCore (physics_core.hpp) on the bus, and the
-// loop that paces it and waits for messages.
+// The physics server: a PhysicsCore (physics_core.hpp) on the process host
+// (process_host.hpp), with the pacing policies that step it
+// (physics_pacing.hpp). Its wiring block:
 //
-//   subscribes SIM_COMMANDS (sim_commands_t): held until t_apply, then applied
+//   subscribes SIM_COMMANDS (sim_commands_t): held until t_apply, then applied (unhurried)
 //              SIM_CONTROL  (sim_control_t):  place, setup, pause, resume, reset,
 //                                             step, speed, sync, seed, geometry, ping
 //              SIM_SYNC_HORIZON (sync_horizon_t): in sync mode, how far it may step
+//              SIM_TRUTH_DEMAND (truth_demand_t): which states its readers want
+//              SIM_VISION_SCHEDULE (vision_schedule_t): the vision listens, and how far it got
+//              REFEREE (referee_t): with --sync-referee, the state it judges next
 //   publishes  SIM_STATE    (sim_state_t):    at the steps SIM_TRUTH_DEMAND asks for (every
 //                                             step while nobody asks, or at STATE_PUBLISH_RATE)
 //              SIM_GEOMETRY (field_geometry_t): at start, every GEOMETRY_PUBLISH_PERIOD
-//                                             of wall time, and on request
+//                                             of wall time (a host timer), and on request
 //              SIM_CONTROL_ACK (sim_control_ack_t): one per SIM_CONTROL
-#include <chrono>
-#include <cstdint>
-#include <map>
+//   timers     the geometry (and, while idle, the state for late joiners); the
+//              expiry of truth consumers not heard for 3 s
+//   at stop    the run's summary (the lines tools/launch.sh and the benches read)
 #include <optional>
-#include <string>
-#include <vector>
 
-#include "ubersim/channels.hpp"
-#include "ubersim/message_bus.hpp"
+#include "ubersim/physics/output_publisher.hpp"
 #include "ubersim/physics/physics_core.hpp"
+#include "ubersim/physics/physics_pacing.hpp"
+#include "ubersim/physics/server_stats.hpp"
 #include "ubersim/physics/stepping_clock.hpp"
-
-namespace ubersim {
-class ShutdownSignal;
-}
+#include "ubersim/process_host.hpp"
 
 namespace ubersim::physics {
 
-struct ServerStats {
-  std::int64_t steps = 0;
-  std::int64_t states_published = 0;
-  std::uint64_t demand_late = 0;  // demanded instants physics had passed when the demand came
-  std::int64_t controls_handled = 0;
-  std::int64_t packets_received = 0;
-  std::int64_t schedule_restarts = 0;  // times real time could not be kept
-  double wall_seconds = 0;
-  double drift = 0;  // s, sim time ahead of the real-time schedule at the end (paced modes)
-  // Sync mode: wall time spent waiting at the horizon, by what bounded it
-  // (a client's name, "vision", "registration"), and how many waits.
-  std::map<std::string, double> sync_wait_seconds;
-  std::map<std::string, std::int64_t> sync_waits;
-  // Sync mode and --wait-for-vision: wall time from the first state to the
-  // end (the start, waiting for the emulators and clients to be ready, left out).
-  double sync_run_seconds = 0;
-  // As fast as possible: wall time spent waiting for the vision emulator to
-  // catch up (docs/vision.md, "As fast as possible"), how many waits, the
-  // states sent only for it to acknowledge, and how often it fell silent.
-  double vision_wait_seconds = 0;
-  std::int64_t vision_waits = 0;
-  std::int64_t states_for_vision = 0;
-  std::int64_t vision_silences = 0;
+struct ServerOptions : CoreOptions {
+  // Outside sync mode: publish no state and take no step until a vision
+  // emulator listens (its SIM_VISION_SCHEDULE), as sync mode does, so that it
+  // sees the run from sim time 0 (tools/launch.sh --speed 0 passes it).
+  bool wait_for_vision = false;
 };
 
 class PhysicsServer {
  public:
-  PhysicsServer(WorldSetup setup, MessageBus& bus, const ChannelNames& channels,
-                ServerOptions options);
+  // Subscribes on the host's bus; the host must outlive the server.
+  PhysicsServer(WorldSetup setup, ProcessHost& host, ServerOptions options);
+  PhysicsServer(const PhysicsServer&) = delete;
+  PhysicsServer& operator=(const PhysicsServer&) = delete;
 
-  // Runs until the shutdown signal (if any) or the duration. Returns the exit code.
-  int run(const ShutdownSignal* shutdown);
+  // Runs on the host until a signal, host.stop() or the duration. Returns the
+  // exit code. Once per server.
+  int run();
 
   World& world() { return core_.world(); }
   // The core's counters with the loop's wall-clock figures.
   ServerStats stats() const;
 
  private:
-  void publish(const PhysicsCore::Output& out);
-  void publish_geometry();
-  void wait_at_horizon(const ShutdownSignal* shutdown);
-  // As fast as possible: one wait for the vision emulator's acknowledgement.
-  void wait_for_vision(const ShutdownSignal* shutdown);
-  // Sync mode, duration reached: until the last frames' answers are in (at most 3 s).
-  void wait_for_last_answers(const ShutdownSignal* shutdown);
-  // Paced: when to wake for the step that is due at `due`. With states on
-  // demand, the steps before the next wanted state run when that one is due
-  // (docs/sync.md, "Steps nobody sees"), instead of one wakeup a step.
-  Pacer::Clock::time_point wake_for(Pacer::Clock::time_point due) const;
-  void log_sync_waits() const;
-  // Waits until `deadline` or a message or a signal; handles messages.
-  void wait_until(Pacer::Clock::time_point deadline, const ShutdownSignal* shutdown);
+  void subscribe();
+  // The geometry repeat and the truth-demand expiry, on the host's timers.
+  void add_timers();
+  void log_start() const;
+  // The summary at stop (tools/launch.sh and the benches read its lines).
+  void log_stop(Pacing::Clock::time_point start);
+  void log_waits() const;
 
-  PhysicsCore core_;
-  MessageBus& bus_;
-  std::string state_channel_;
-  std::string geometry_channel_;
-  std::string ack_channel_;
+  ProcessHost& host_;
   ServerOptions options_;
-  std::vector<uint8_t> state_buffer_;  // encoded SIM_STATE, reused every step
-  ServerStats stats_;                  // the loop's own figures (wall clock, sync waits)
-  SteppingClock stepping_clock_;       // CPU time of the steps in real time
-  // SIM_VISION_SCHEDULE wakes physics (sync mode, or started as fast as possible).
-  bool schedule_wakes_;
-  bool first_state_sent_ = false;
-  // When physics began to wait for the vision at the current step.
-  std::optional<Pacer::Clock::time_point> vision_wait_began_;
-  Pacer::Clock::time_point first_state_wall_{};
+  PhysicsCore core_;
+  OutputPublisher publisher_;
+  ServerStats stats_;             // the loop's own figures (wall clock, waits)
+  SteppingClock stepping_clock_;  // CPU time of the steps in real time
+  PhysicsPacing pacing_;
 };
 
 }  // namespace ubersim::physics
