@@ -86,6 +86,11 @@ GcProcess::GcProcess(const std::string& binary, const std::string& folder, const
   const std::string absolute = fs::absolute(binary).string();
   std::vector<std::string> args = {absolute, "-timeAcquisitionMode", "ci", "-ciAddress",
                                    address,  "-backendOnly"};
+  // Built before fork: the child of a threaded process should not allocate before execv.
+  std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
   pid_ = ::fork();
   if (pid_ < 0) throw std::runtime_error("cannot start the game controller (fork failed)");
   if (pid_ == 0) {
@@ -96,9 +101,6 @@ GcProcess::GcProcess(const std::string& binary, const std::string& folder, const
       ::dup2(out, 2);
     }
     if (::chdir(folder.c_str()) != 0) ::_exit(127);
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
     ::execv(argv[0], argv.data());
     ::_exit(127);
   }

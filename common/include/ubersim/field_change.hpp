@@ -10,7 +10,7 @@
 
 namespace ubersim {
 
-inline constexpr std::size_t kMaxFieldChangeText = 4 * 1024;  // bytes
+inline constexpr std::size_t kMaxFieldChangeText = std::size_t{4} * 1024;  // bytes
 
 // `current` with the keys of `text` replaced. Throws ConfigError (file "field change").
 FieldConfig change_field(const FieldConfig& current, const std::string& text);

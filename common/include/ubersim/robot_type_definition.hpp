@@ -11,7 +11,8 @@
 namespace ubersim {
 
 inline constexpr std::size_t kMaxRobotTypeNameLength = 64;
-inline constexpr std::size_t kMaxRobotTypeText = 16 * 1024;  // bytes; a robot file is ~3 KB
+inline constexpr std::size_t kMaxRobotTypeText =
+    std::size_t{16} * 1024;  // bytes; a robot file is ~3 KB
 
 // 1..64 letters, digits, '_' or '-': a name, never a path. Robot type names
 // from the network (a definition, a SIM_STATE's robot_type) must be one.
