@@ -26,8 +26,9 @@ packages=(
   libwebsocketpp-dev libasio-dev nlohmann-json3-dev chromium
   # fuzz targets (fuzz/, tools/fuzz.sh): clang with libFuzzer and the sanitizers
   clang libclang-rt-14-dev
-  # lint test (tests/lint): the tree stays formatted with .clang-format
-  clang-format
+  # lint tests (tests/lint): the tree stays formatted with .clang-format, and clang-tidy
+  # finds nothing with the checks .clang-tidy enables (Debian 12: both version 14)
+  clang-format clang-tidy
   # first-minutes test (tests/e2e/test_first_minutes.sh): a real terminal, and the desktop opener
   tmux xdg-utils
   # Python module (python/, docs/python.md): pybind11, Python's headers, numpy, pytest;
