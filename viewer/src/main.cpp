@@ -20,6 +20,7 @@
 #include "ubersim/logging.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/process_main.hpp"
+#include "ubersim/topics.hpp"
 #include "ubersim/viewer/json_encoding.hpp"
 #include "ubersim/viewer/viewer_model.hpp"
 #include "ubersim/viewer/web_server.hpp"
@@ -69,32 +70,29 @@ void subscribe_model(ubersim::ProcessHost& host, ubersim::viewer::ViewerModel& m
   using namespace ubersim;
   const ChannelNames& channels = host.channels();
   MessageBus& bus = host.bus();
-  model.set_channel_names({{"SIM_STATE", channels(Channel::SimState)},
-                           {"VISION", channels(Channel::Vision)},
-                           {"VISION_GEOMETRY", channels(Channel::VisionGeometry)},
-                           {"SIM_GEOMETRY", channels(Channel::SimGeometry)},
-                           {"RADIO_YELLOW", channels.radio(Team::Yellow)},
-                           {"RADIO_BLUE", channels.radio(Team::Blue)}});
+  model.set_channel_names({{"SIM_STATE", channel_name(channels, topics::kSimState)},
+                           {"VISION", channel_name(channels, topics::kVision)},
+                           {"VISION_GEOMETRY", channel_name(channels, topics::kVisionGeometry)},
+                           {"SIM_GEOMETRY", channel_name(channels, topics::kSimGeometry)},
+                           {"RADIO_YELLOW", channel_name(channels, topics::kRadio.yellow)},
+                           {"RADIO_BLUE", channel_name(channels, topics::kRadio.blue)}});
 
-  bus.subscribe<sim_state_t>(channels(Channel::SimState),
-                             [&](const sim_state_t& m) { model.on_sim_state(m, host.now()); });
-  bus.subscribe<vision_frame_t>(channels(Channel::Vision),
-                                [&](const vision_frame_t& m) { model.on_vision(m, host.now()); });
-  bus.subscribe<vision_geometry_t>(
-      channels(Channel::VisionGeometry),
-      [&](const vision_geometry_t& m) { model.on_vision_geometry(m, host.now()); });
-  bus.subscribe<field_geometry_t>(channels(Channel::SimGeometry), [&](const field_geometry_t& m) {
-    model.on_sim_geometry(m, host.now());
-  });
+  subscribe(bus, channels, topics::kSimState,
+            [&](const sim_state_t& m) { model.on_sim_state(m, host.now()); });
+  subscribe(bus, channels, topics::kVision,
+            [&](const vision_frame_t& m) { model.on_vision(m, host.now()); });
+  subscribe(bus, channels, topics::kVisionGeometry,
+            [&](const vision_geometry_t& m) { model.on_vision_geometry(m, host.now()); });
+  subscribe(bus, channels, topics::kSimGeometry,
+            [&](const field_geometry_t& m) { model.on_sim_geometry(m, host.now()); });
   for (Team team : kTeams) {
-    bus.subscribe<radio_packet_t>(channels.radio(team), [&, team](const radio_packet_t& m) {
+    subscribe(bus, channels, topics::kRadio.of(team), [&, team](const radio_packet_t& m) {
       model.on_radio(static_cast<int>(team), m, host.now());
     });
   }
-  bus.subscribe<sim_control_ack_t>(channels(Channel::SimControlAck),
-                                   [&](const sim_control_ack_t& ack) {
-                                     if (ack.sender == "viewer") model.on_ack(ack);
-                                   });
+  subscribe(bus, channels, topics::kSimControlAck, [&](const sim_control_ack_t& ack) {
+    if (ack.sender == "viewer") model.on_ack(ack);
+  });
 }
 
 ubersim::viewer::WebServerOptions server_options_of(const Options& options) {
@@ -108,9 +106,9 @@ ubersim::viewer::WebServerOptions server_options_of(const Options& options) {
 }
 
 // The pages' requests, checked, out on SIM_CONTROL (on the main thread: LCM's).
-void forward_page_requests(ControlInbox& inbox, ubersim::MessageBus& bus,
-                           const std::string& control_channel, std::int64_t& next_request_id,
-                           ubersim::ThrottledLog& bad_request) {
+void forward_page_requests(ControlInbox& inbox,
+                           const ubersim::Publisher<ubersim::sim_control_t>& control,
+                           std::int64_t& next_request_id, ubersim::ThrottledLog& bad_request) {
   for (const std::string& text : inbox.take()) {
     auto parsed = ubersim::viewer::parse_control_request(text, next_request_id, "viewer");
     if (!parsed.request) {
@@ -119,7 +117,7 @@ void forward_page_requests(ControlInbox& inbox, ubersim::MessageBus& bus,
     }
     ++next_request_id;
     spdlog::debug("page request: {}", text);
-    bus.publish(control_channel, *parsed.request);
+    control(*parsed.request);
   }
 }
 
@@ -153,17 +151,17 @@ int run(const Options& options) {
                server.port(), options.display_rate, options.common.lcm_url);
 
   // Ask physics for the field at once rather than wait for its next periodic one.
-  const std::string control_channel = host.channels()(Channel::SimControl);
+  const Publisher<sim_control_t> control(host.bus(), host.channels(), topics::kSimControl);
   std::int64_t next_request_id = 1;
   sim_control_t geometry_request{};
   geometry_request.request_id = next_request_id++;
   geometry_request.sender = "viewer";
   geometry_request.action = sim_control_t::REQUEST_GEOMETRY;
-  host.bus().publish(control_channel, geometry_request);
+  control(geometry_request);
 
   ThrottledLog bad_request;
   host.after_wake([&](Clock::time_point) {
-    forward_page_requests(inbox, host.bus(), control_channel, next_request_id, bad_request);
+    forward_page_requests(inbox, control, next_request_id, bad_request);
   });
   // Ground truth at the display rate is all a page can show (physics
   // publishes no more for the viewer's sake).
