@@ -390,14 +390,22 @@ udp_port_holder() {
       if (parts[n] != port) next
       address = substr($4, 1, length($4) - length(port) - 1)
       if (want != "0.0.0.0" && address != want && address != "0.0.0.0" && address != "*" && address != "[::]") next
-      holder = "another program"
+      holder = "- another program"
       if (match($0, /users:\(\("[^"]*",pid=[0-9]+/)) {
         split(substr($0, RSTART + 9, RLENGTH - 9), who, "\",pid=")
-        holder = who[1] " (pid " who[2] ")"
+        holder = who[2] " " who[1]
       }
       print holder
       exit
-    }'
+    }' | {
+    # ss gives the name the kernel keeps (15 characters); the program's own is in its command line.
+    local pid name program
+    read -r pid name || return 0
+    [ "$pid" = - ] && { echo "$name"; return 0; }
+    program=$(tr '\0' '\n' <"/proc/$pid/cmdline" 2>/dev/null | head -n 1)
+    [ -z "$program" ] || name=${program##*/}
+    echo "$name (pid $pid)"
+  }
 }
 check_no_other_simulator
 

@@ -109,7 +109,7 @@ status=$?
 echo "a second launch.sh --ssl -> exit $status: $(cat "$work/launch2.err")"
 [ "$status" = 1 ] || fail "second launch.sh --ssl: exit $status, expected 1"
 [ "$(wc -l <"$work/launch2.err")" = 1 ] || fail "second launch.sh --ssl: not one line on stderr"
-grep -qE "^launch: UDP 127\.0\.0\.1:10300 \(simulation control\) is taken by ubersim_ssl_bri.* \(pid [0-9]+\)" "$work/launch2.err" ||
+grep -qE "^launch: UDP 127\.0\.0\.1:10300 \(simulation control\) is taken by ubersim_ssl_bridge \(pid [0-9]+\)" "$work/launch2.err" ||
   fail "second launch.sh --ssl: the line does not name the bridge holding 10300"
 [ -e "$work/logs2" ] && fail "second launch.sh --ssl made its log folder (started?)"
 grep -q "exited with status" "$work/launch.err" && fail "the first set lost a process: $(cat "$work/launch.err")"

@@ -68,6 +68,7 @@ grep -q -- "--channel-prefix" "$work/second.err" || fail "second physics: no --c
 sleep 1
 still_running "$first" "the first physics (after the second start)"
 after=$(sim_time "$url")
+echo "the first physics: sim time $before s before the second start, $after s after"
 awk -v a="$after" -v b="$before" 'BEGIN { exit !(a > b) }' || fail "the first physics stopped stepping ($before -> $after)"
 # --check-bus says the same and starts nothing.
 "$bin/ubersim_physics" --check-bus 2>"$work/check.err"
