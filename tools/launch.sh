@@ -286,7 +286,10 @@ set_ssl_ports
 # Every port a team's software needs, in one block (the bridge's, from set_ssl_ports).
 print_ssl_ports() {
   local host=$ssl_listen referee_note multicast_note=""
-  [ "$lan" = 1 ] && host="<this PC's address>"
+  if [ "$lan" = 1 ]; then
+    host=$(hostname -I 2>/dev/null | awk '{ print $1 }')
+    host=${host:-"<this PC's address>"}
+  fi
   case "$referee" in
     builtin) referee_note="ubersim's automatic referee" ;;
     official) referee_note="the official game controller's"
@@ -298,7 +301,9 @@ print_ssl_ports() {
   [ -n "$vision_interface" ] && multicast_note+=", sent on $vision_interface"
   [ -n "$vision_ttl" ] && multicast_note+=", TTL $vision_ttl"
   echo "ports for your team's software (SSL protocols):"
-  echo "  vision               224.5.23.2:$ssl_vision_port (SSL-Vision multicast$multicast_note); an AI on ssl-vision's default port 10006: add --vision-port 10006"
+  local vision_hint="; an AI on ssl-vision's default port 10006: add --vision-port 10006"
+  [ "$ssl_vision_port" != 10006 ] || vision_hint=""
+  echo "  vision               224.5.23.2:$ssl_vision_port (SSL-Vision multicast$multicast_note)$vision_hint"
   if [ "$tracked" = 1 ]; then
     echo "  tracked              224.5.23.2:$ssl_tracked_port (TrackerWrapperPacket multicast)"
   else
@@ -310,7 +315,7 @@ print_ssl_ports() {
   echo "  robot control        $host:$ssl_blue_port (blue) / $host:$ssl_yellow_port (yellow)"
   [ "$viewer" = 1 ] && echo "  viewer               $viewer_url"
   if [ "$lan" = 1 ]; then
-    echo "  the command ports listen on every interface (--lan): anyone on your network can command the robots"
+    echo "  the command ports listen on every interface of this PC (--lan): anyone on your network can command the robots"
   else
     echo "  the command ports listen on this host only; --lan opens them to an AI on another PC"
   fi

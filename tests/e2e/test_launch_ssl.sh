@@ -8,7 +8,9 @@
 #      127.0.0.1:10300 is already in use ..."), the first keeps running;
 #   3. a second launch.sh --ssl (on another LCM port) exits 1 before it starts
 #      anything, naming the program that holds the port;
-#   4. SIGTERM stops the set (143) and leaves no process behind.
+#   4. SIGTERM stops the set (143) and leaves no process behind;
+#   5. --lan --vision-port 10006: the command ports bound on 0.0.0.0, SSL-Vision
+#      on 10006, and the block says both.
 # Usage: test_launch_ssl.sh SOURCE_DIR  (UBERSIM_BUILD_DIR: the build; run isolated)
 set -uo pipefail
 source_dir=$1
@@ -124,6 +126,27 @@ echo "launch.sh --ssl after SIGTERM -> exit $status"
 [ "$status" = 143 ] || fail "launch.sh --ssl: exit $status after SIGTERM, expected 143: $(cat "$work/launch.err")"
 sleep 0.5
 [ -z "$(processes_of_this_test)" ] || fail "processes left: $(processes_of_this_test)"
+
+# 5. Open to the LAN, vision on ssl-vision's port.
+"$launch" --ssl --lan --vision-port 10006 --channel-prefix "$marker" --log-dir "$work/logs3" \
+  >"$work/launch3.out" 2>"$work/launch3.err" </dev/null &
+launcher=$!
+for _ in $(seq 300); do grep -q "Ctrl-C stops everything" "$work/launch3.out" && break; sleep 0.1; done
+sleep 2
+bound=$(ss -Huln)
+for p in 10300 10301 10302; do
+  grep -qE "0\.0\.0\.0:$p " <<<"$bound" || fail "--lan: nothing bound on 0.0.0.0:$p"
+done
+grep -qE "vision +224\.5\.23\.2:10006 \(SSL-Vision multicast\)$" "$work/launch3.out" || fail "--vision-port 10006: not in the ports block"
+grep -q "listen on every interface of this PC (--lan)" "$work/launch3.out" || fail "--lan: the block does not say so"
+vision=$(multicast_datagrams 224.5.23.2 10006)
+echo "--lan --vision-port 10006: $vision SSL-Vision datagrams on 10006 in 3 s"
+[ "${vision:-0}" -gt 0 ] || fail "--vision-port 10006: no SSL-Vision datagram there"
+kill -TERM "$launcher"
+wait "$launcher"
+status=$?
+launcher=""
+[ "$status" = 143 ] || fail "launch.sh --ssl --lan: exit $status after SIGTERM: $(cat "$work/launch3.err")"
 
 if [ "$failures" != 0 ]; then
   echo "$failures failure(s); outputs in $work"
