@@ -369,7 +369,10 @@ fi
 check_no_other_simulator() {
   local line
   if ! line=$("$bin_dir/ubersim_physics" --check-bus --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} 2>&1 >/dev/null); then
-    echo "launch: ${line##*$'\n'}" >&2
+    line=${line##*$'\n'}
+    # Beside another run with the bridge, its SSL ports must differ too.
+    [ "$ssl_bridge" = 0 ] || line+="; with the SSL bridge also --ssl-port-offset N"
+    echo "launch: $line" >&2
     exit 1
   fi
   [ "$ssl_bridge" = 0 ] && return 0

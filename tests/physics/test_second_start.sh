@@ -100,6 +100,15 @@ grep -q "^launch: ubersim_physics: another ubersim_physics (pid $first)" "$work/
   fail "launch.sh: the line does not name the first's pid"
 [ -e "$work/launch-logs" ] && fail "launch.sh made its log folder (started?)"
 still_running "$first" "the first physics (after launch.sh)"
+# With the SSL bridge (where it is built), the line also names the option for other SSL ports.
+if [ -x "$bin/ubersim_ssl_bridge" ] && [ -x "$bin/ubersim_viewer" ]; then
+  timeout 30 "$source_dir/tools/launch.sh" --ssl --log-dir "$work/launch-logs" >"$work/launch.out" 2>"$work/launch.err" </dev/null
+  status=$?
+  [ "$status" = 1 ] || fail "launch.sh --ssl: exit $status, expected 1"
+  grep -q "(pid $first).*; with the SSL bridge also --ssl-port-offset N$" "$work/launch.err" ||
+    fail "launch.sh --ssl: no --ssl-port-offset in its line: $(cat "$work/launch.err")"
+  [ -e "$work/launch-logs" ] && fail "launch.sh --ssl made its log folder (started?)"
+fi
 
 # 3. Killed, the first leaves no claim behind.
 kill -KILL "$first"
