@@ -581,7 +581,7 @@ echo "channels: ${prefix}VISION ${prefix}VISION_GEOMETRY ${prefix}RADIO_YELLOW $
 echo "watch:    tools/lcm-spy.sh -l '$lcm_url'      control: build/bin/ubersim_referee --help"
 [ "$referee" = builtin ] && echo "referee:  automatic, on ${prefix}REFEREE; event log $log_dir/events.jsonl"
 [ "$gc_ci" = 1 ] && echo "referee:  the official game controller in CI mode (sim time), on ${prefix}REFEREE; its log $log_dir/gc/gc.log; event log $log_dir/events.jsonl"
-[ "$referee" = official ] && [ "$gc_ci" = 0 ] && echo "referee:  the official game controller's Referee on 224.5.23.1:10003, forwarded to ${prefix}REFEREE"
+[ "$referee" = official ] && [ "$gc_ci" = 0 ] && echo "referee:  the official game controller's Referee on 224.5.23.1:$ssl_referee_port, forwarded to ${prefix}REFEREE"
 [ "$ssl_bridge" = 1 ] && print_ssl_ports
 [ "$vision" = 0 ] && echo "vision:   not started: a real vision server must publish ${prefix}VISION"
 [ "$radio" = 0 ] && echo "radio:    not started: a real radio server must listen on ${prefix}RADIO_YELLOW / ${prefix}RADIO_BLUE"
