@@ -529,6 +529,33 @@ if [ "$gc_ci" = 1 ]; then
   [ -n "$game_length" ] && referee_args+=(--game-length "$game_length")
 fi
 start physics "${placement[@]}" "$bin_dir/ubersim_physics" "${common[@]}" "${physics_args[@]}" "${seed_args[@]}"
+# wait_for_bus_claim PID: the rest starts once physics holds its bus (it claims
+# it first thing), at most 2 s. Two launches at one instant both pass
+# check_no_other_simulator; the loser's physics exits at once, and its
+# emulators must never run on the winner's bus: the loser stops here.
+wait_for_bus_claim() {
+  [[ $lcm_url == udpm://* ]] || return 0
+  for _ in $(seq 60); do
+    if ! kill -0 "$1" 2>/dev/null; then
+      wait "$1"
+      local status=$? refused
+      refused=$(grep -m 1 '^ubersim_physics: another ubersim_physics' "$log_dir/physics.log")
+      if [ -n "$refused" ]; then
+        echo "launch: $refused" >&2  # the same one line as check_no_other_simulator's
+      else
+        echo "launch: physics exited with status $status at start (see $log_dir/physics.log)" >&2
+        why_failed physics "$status"
+      fi
+      [ "${names[0]}" != logger ] || { kill -TERM "${pids[0]}"; wait "${pids[0]}"; }
+      exit 1
+    fi
+    # (Not a pipe into grep: with pipefail the check's exit 1 would hide grep's match.)
+    [[ $("$bin_dir/ubersim_physics" --check-bus --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} 2>&1) == *"(pid $1)"* ]] &&
+      return 0
+    sleep 0.02
+  done
+}
+wait_for_bus_claim "${pids[-1]}"
 [ "$vision" = 1 ] && start vision "${placement[@]}" "$bin_dir/ubersim_vision" "${common[@]}" --profile "$profile" "${seed_args[@]}"
 [ "$radio" = 1 ] && start radio "${placement[@]}" "$bin_dir/ubersim_radio" "${common[@]}" --profile "$profile" "${seed_args[@]}" "${radio_args[@]}"
 # Sync mode: the radio emulator drops a client that stops answering, and logs

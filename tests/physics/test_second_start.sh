@@ -8,7 +8,9 @@
 #   3. the claim goes with its process: after the first is killed (SIGKILL)
 #      a physics on its URL starts;
 #   4. tools/launch.sh started while a physics runs on its bus says that line
-#      and exits 1 before it starts anything (no log folder, no process).
+#      and exits 1 before it starts anything (no log folder, no process);
+#   5. of two tools/launch.sh started at one instant one runs, the other exits 1
+#      naming the first's physics, and starts no emulator.
 # Usage: test_second_start.sh SOURCE_DIR  (UBERSIM_BUILD_DIR: the build)
 set -uo pipefail
 source_dir=$1
@@ -122,6 +124,40 @@ sleep 1.5
 still_running "$after_crash" "a physics after the first was killed"
 kill -TERM "$after_crash"
 wait "$after_crash" || fail "the physics after the crash did not stop cleanly"
+
+# 5. Two launches at one instant: one runs, the other exits 1 naming the
+#    winner's physics and starts no emulator (it may pass the check before the
+#    winner's physics claims the bus: then its own physics refuses).
+for run in a b; do
+  "$source_dir/tools/launch.sh" --log-dir "$work/race-$run" >"$work/race-$run.out" 2>"$work/race-$run.err" </dev/null &
+  started+=($!)
+  eval "race_$run=\$!"
+done
+sleep 4
+losers=0
+for run in a b; do
+  pid_var=race_$run
+  if kill -0 "${!pid_var}" 2>/dev/null; then continue; fi
+  losers=$((losers + 1))
+  wait "${!pid_var}"
+  status=$?
+  echo "launch.sh $run lost the race -> exit $status: $(cat "$work/race-$run.err")"
+  [ "$status" = 1 ] || fail "the race's loser: exit $status, expected 1"
+  [ "$(wc -l <"$work/race-$run.err")" = 1 ] || fail "the race's loser: not one line on stderr"
+  grep -q "^launch: ubersim_physics: another ubersim_physics (pid [0-9]*)" "$work/race-$run.err" ||
+    fail "the race's loser does not name the winner"
+  grep -qE "^  (vision|radio) " "$work/race-$run.out" && fail "the race's loser started emulators: $(cat "$work/race-$run.out")"
+done
+[ "$losers" = 1 ] || fail "two launches at one instant: $losers exited, expected 1"
+for run in a b; do
+  pid_var=race_$run
+  kill -0 "${!pid_var}" 2>/dev/null || continue
+  grep -q "exited with status" "$work/race-$run.err" && fail "the race's winner lost a process: $(cat "$work/race-$run.err")"
+  kill -TERM "${!pid_var}"
+  wait "${!pid_var}"
+  status=$?
+  [ "$status" = 143 ] || fail "the race's winner: exit $status after SIGTERM, expected 143"
+done
 
 if [ "$failures" != 0 ]; then
   echo "$failures failure(s); outputs in $work"
