@@ -14,6 +14,11 @@ bin_dir="${UBERSIM_BUILD_DIR:-$root/build}/bin"
 usage() {
   cat <<USAGE
 usage: tools/launch.sh [options]
+  --ssl                one command for an SSL team (coming from grSim or the ER-Force simulator):
+                       physics, vision and radio emulators, the SSL bridge with tracked frames,
+                       grSim's protocol (UDP 20011), the simulation protocol (10300-10302), a
+                       referee on 224.5.23.1:10003 (the automatic one; --referee official: the
+                       game controller's) and the viewer; prints every port a team needs
   --scenario NAME      robots, ball and field (default division_b_6v6)
   --field NAME         field2002 | division_b | division_a: that field's default scenario;
                        any other config/fields/NAME.cfg (erforce_2014 ... erforce_2023b):
@@ -67,6 +72,15 @@ usage: tools/launch.sh [options]
                        10301 blue / 10302 yellow); with --sync an SSL team answers every detection
                        packet with one RobotControl
   --no-tracked         with --ssl-bridge: send no tracked frames
+  --lan                with --ssl / --ssl-bridge: the command ports (grSim, simulation and robot
+                       control) listen on every interface, for an AI on another PC (anyone on
+                       the network may command the robots: docs/threat_model.md)
+  --vision-port P      with the bridge: SSL-Vision's port (default 10020; ssl-vision's own is 10006)
+  --vision-interface ADDR
+                       with the bridge: the address of the interface SSL-Vision leaves on
+  --vision-ttl N       with the bridge: SSL-Vision's multicast TTL (0: this host only)
+  --ssl-local-only     with the bridge: every SSL multicast stays on this host (TTL 0)
+  --ssl-port-offset N  with the bridge: every SSL port + N (to run beside another simulator)
   --quiet              less process log output
 USAGE
 }
@@ -80,11 +94,13 @@ usage_error() {
 # Options that take a value. A missing one (the end of the line, or the next
 # option in its place) is an error here, not an unbound $2 below.
 options_with_values=" --scenario --field --profile --speed --sync-clients --game-length --cpu --seed
-  --game-controller --duration --lcm-url --channel-prefix --demo --demo-mode --log --log-dir --viewer-port "
+  --game-controller --duration --lcm-url --channel-prefix --demo --demo-mode --log --log-dir --viewer-port
+  --vision-port --vision-interface --vision-ttl --ssl-port-offset "
 
 scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" truth_every_step=0 seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
 referee=none game_length="" tracked=1 game_controller=""
+ssl_mode=0 lan=0 vision_port="" vision_interface="" vision_ttl="" ssl_local_only=0 ssl_port_offset=0 referee_given=0
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port="" open_viewer=0 ssl_bridge=0
 while [ $# -gt 0 ]; do
   if [[ $options_with_values == *[[:space:]]"$1"[[:space:]]* ]] && { [ $# -lt 2 ] || [[ $2 == --* ]]; }; then
@@ -100,6 +116,7 @@ while [ $# -gt 0 ]; do
     --sync-strict) sync=1; sync_strict=1; shift ;;
     --sync-clients) sync_clients=$2; shift 2 ;;
     --referee)
+      referee_given=1
       case "${2:-}" in builtin|official) referee=$2; shift 2 ;; *) referee=builtin; shift ;; esac ;;
     --no-tracked) tracked=0; shift ;;
     --game-length) game_length=$2; shift 2 ;;
@@ -122,10 +139,24 @@ while [ $# -gt 0 ]; do
     --viewer-port) viewer_port=$2; shift 2 ;;
     --open-viewer) viewer=1; open_viewer=1; shift ;;
     --ssl-bridge) ssl_bridge=1; shift ;;
+    --ssl) ssl_mode=1; shift ;;
+    --lan) lan=1; shift ;;
+    --vision-port) vision_port=$2; shift 2 ;;
+    --vision-interface) vision_interface=$2; shift 2 ;;
+    --vision-ttl) vision_ttl=$2; shift 2 ;;
+    --ssl-local-only) ssl_local_only=1; shift ;;
+    --ssl-port-offset) ssl_port_offset=$2; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     *) usage_error "unknown option '$1' (tools/launch.sh --help lists the options)" ;;
   esac
 done
+
+# --ssl: the one command for an SSL team: the bridge with tracked frames, a
+# referee (the automatic one unless --referee says otherwise) and the viewer.
+if [ "$ssl_mode" = 1 ]; then
+  ssl_bridge=1 viewer=1
+  [ "$referee_given" = 1 ] || referee=builtin
+fi
 
 # The official game controller in CI mode (--referee official --sync): ubersim_gc_link drives it
 # with sim time as its clock. In real time it reaches ubersim only through the SSL bridge.
@@ -168,6 +199,34 @@ check_whole() {
     [ ${#2} -le 9 ] && (( 10#$2 >= $3 && 10#$2 <= $4 )) || usage_error "$1: $2 is not in [$3, $4]"
   fi
 }
+# check_ipv4 OPTION VALUE: a dotted IPv4 address.
+check_ipv4() {
+  local IFS=. part
+  [[ $2 =~ ^[0-9]{1,3}(\.[0-9]{1,3}){3}$ ]] || usage_error "$1: '$2' is not an IPv4 address (a.b.c.d)"
+  for part in $2; do (( 10#$part <= 255 )) || usage_error "$1: '$2' is not an IPv4 address (a.b.c.d)"; done
+}
+# The bridge's options: values, and only with the bridge, and not contradicting each other.
+check_ssl_options() {
+  [ -z "$vision_port" ] || check_whole --vision-port "$vision_port" 1 65535
+  [ -z "$vision_ttl" ] || check_whole --vision-ttl "$vision_ttl" 0 255
+  [ -z "$vision_interface" ] || check_ipv4 --vision-interface "$vision_interface"
+  check_whole --ssl-port-offset "$ssl_port_offset" 0 30000
+  local option
+  if [ "$ssl_bridge" = 0 ]; then
+    for option in lan:--lan vision_port:--vision-port vision_interface:--vision-interface \
+      vision_ttl:--vision-ttl ssl_local_only:--ssl-local-only; do
+      local name=${option%%:*}
+      local value=${!name}
+      [ -z "$value" ] || [ "$value" = 0 ] || usage_error "${option#*:}: only with --ssl or --ssl-bridge (the SSL bridge)"
+    done
+    [ "$((10#$ssl_port_offset))" = 0 ] || usage_error "--ssl-port-offset: only with --ssl or --ssl-bridge (the SSL bridge)"
+  fi
+  if [ "$ssl_local_only" = 1 ]; then
+    [ -z "$vision_interface" ] || usage_error "--vision-interface: not with --ssl-local-only (it keeps SSL-Vision on this host)"
+    [ -z "$vision_ttl" ] || usage_error "--vision-ttl: not with --ssl-local-only (it sends with TTL 0)"
+    [ "$lan" = 0 ] || usage_error "--lan: not with --ssl-local-only (an AI on another PC would hear no vision)"
+  fi
+}
 # config_path KIND NAME: the file a program reads for NAME, as it resolves it
 # (common/src/config_paths.cpp): a path if NAME has a '/' or ends in .cfg,
 # else <config folder>/KIND/NAME.cfg.
@@ -205,11 +264,62 @@ case "$demo_mode" in play|positions|figure8) ;; *) usage_error "--demo-mode: '$d
 [ -z "$log_file" ] || [ -d "$(dirname "$log_file")" ] ||
   usage_error "--log: no folder '$(dirname "$log_file")' to write '$log_file' into"
 [ -z "$scenario" ] || check_config --scenario scenarios scenario "$scenario"
+check_ssl_options
 [ -z "$field" ] || check_config --field fields field "$field"
 # ER-Force's realism presets by their short names: rc2021 is config/{vision,radio}/erforce_rc2021.cfg.
 [ -e "$config_dir/vision/$profile.cfg" ] || [ ! -e "$config_dir/vision/erforce_$profile.cfg" ] || profile=erforce_$profile
 [ "$vision" = 0 ] || check_config --profile vision "vision profile" "$profile"
 [ "$radio" = 0 ] || check_config --profile radio "radio profile" "$profile"
+
+# The SSL ports, from the bridge's defaults (ssl_bridge/include/ubersim/ssl_bridge/bridge.hpp and
+# docs/ssl_bridge.md) shifted by --ssl-port-offset; --vision-port as given.
+set_ssl_ports() {
+  local offset=$((10#$ssl_port_offset))
+  ssl_listen=127.0.0.1
+  [ "$lan" = 1 ] && ssl_listen=0.0.0.0
+  ssl_control_port=$((10300 + offset)) ssl_blue_port=$((10301 + offset)) ssl_yellow_port=$((10302 + offset))
+  ssl_grsim_port=$((20011 + offset)) ssl_grsim_blue_status=$((30011 + offset)) ssl_grsim_yellow_status=$((30012 + offset))
+  ssl_tracked_port=$((10010 + offset)) ssl_referee_port=$((10003 + offset))
+  ssl_vision_port=${vision_port:-$((10020 + offset))}
+}
+set_ssl_ports
+# Every port a team's software needs, in one block (the bridge's, from set_ssl_ports).
+print_ssl_ports() {
+  local host=$ssl_listen referee_note multicast_note=""
+  if [ "$lan" = 1 ]; then
+    host=$(hostname -I 2>/dev/null | awk '{ print $1 }')
+    host=${host:-"<this PC's address>"}
+  fi
+  case "$referee" in
+    builtin) referee_note="ubersim's automatic referee" ;;
+    official) referee_note="the official game controller's"
+      [ "$gc_ci" = 1 ] && referee_note="the official game controller (CI mode), sent by the bridge"
+      [ "$gc_ci" = 0 ] && [ "$ssl_referee_port" != 10003 ] && referee_note+=" (set its publish address to this port)" ;;
+    *) referee_note="nobody referees (--referee starts ubersim's automatic referee)" ;;
+  esac
+  [ "$ssl_local_only" = 1 ] && multicast_note=", this host only (TTL 0)"
+  [ -n "$vision_interface" ] && multicast_note+=", sent on $vision_interface"
+  [ -n "$vision_ttl" ] && multicast_note+=", TTL $vision_ttl"
+  echo "ports for your team's software (SSL protocols):"
+  local vision_hint="; an AI on ssl-vision's default port 10006: add --vision-port 10006"
+  [ "$ssl_vision_port" != 10006 ] || vision_hint=""
+  echo "  vision               224.5.23.2:$ssl_vision_port (SSL-Vision multicast$multicast_note)$vision_hint"
+  if [ "$tracked" = 1 ]; then
+    echo "  tracked              224.5.23.2:$ssl_tracked_port (TrackerWrapperPacket multicast)"
+  else
+    echo "  tracked              none (--no-tracked)"
+  fi
+  echo "  referee              224.5.23.1:$ssl_referee_port (Referee multicast), $referee_note"
+  echo "  grSim commands       $host:$ssl_grsim_port (grSim_Packet); robot status to the sender's address on port $ssl_grsim_blue_status (blue) / $ssl_grsim_yellow_status (yellow)"
+  echo "  simulation control   $host:$ssl_control_port (SSL simulation protocol)"
+  echo "  robot control        $host:$ssl_blue_port (blue) / $host:$ssl_yellow_port (yellow)"
+  [ "$viewer" = 1 ] && echo "  viewer               $viewer_url"
+  if [ "$lan" = 1 ]; then
+    echo "  the command ports listen on every interface of this PC (--lan): anyone on your network can command the robots"
+  else
+    echo "  the command ports listen on this host only; --lan opens them to an AI on another PC"
+  fi
+}
 
 field_override=""
 if [ -n "$scenario" ] && [ -n "$field" ]; then
@@ -251,6 +361,61 @@ if [ "$cpu" != all ]; then
     usage_error "--cpu: '$cpu' is not a CPU this script may use, nor all"
   placement=(taskset -c "$cpu")
 fi
+
+# A second simulator on this bus or on these ports stops here, before anything
+# starts: physics itself tells whether another physics holds the bus (its
+# claim, docs/physics.md "One physics per bus"), and the bridge's UDP ports
+# must be free (docs/failures.md).
+check_no_other_simulator() {
+  local line
+  if ! line=$("$bin_dir/ubersim_physics" --check-bus --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} 2>&1 >/dev/null); then
+    line=${line##*$'\n'}
+    # Beside another run with the bridge, its SSL ports must differ too.
+    [ "$ssl_bridge" = 0 ] || line+="; with the SSL bridge also --ssl-port-offset N"
+    echo "launch: $line" >&2
+    exit 1
+  fi
+  [ "$ssl_bridge" = 0 ] && return 0
+  local port what holder
+  for port in "$ssl_control_port:simulation control" "$ssl_blue_port:blue robot control" \
+    "$ssl_yellow_port:yellow robot control" "$ssl_grsim_port:grSim commands"; do
+    what=${port#*:} port=${port%%:*}
+    holder=$(udp_port_holder "$ssl_listen" "$port")
+    [ -z "$holder" ] && continue
+    echo "launch: UDP $ssl_listen:$port ($what) is taken by $holder: another simulator runs" \
+      "(grSim, the ER-Force simulator, ubersim's SSL bridge?); stop it, or run beside it with" \
+      "--ssl-port-offset N (and another --lcm-url port or --channel-prefix)" >&2
+    exit 1
+  done
+}
+# udp_port_holder ADDRESS PORT: who holds UDP PORT where a bind on ADDRESS would
+# meet it ("" if nobody, or if ss is not installed: the bridge then says it).
+udp_port_holder() {
+  command -v ss >/dev/null 2>&1 || return 0
+  ss -Hulnp 2>/dev/null | awk -v want="$1" -v port="$2" '
+    {
+      n = split($4, parts, ":")
+      if (parts[n] != port) next
+      address = substr($4, 1, length($4) - length(port) - 1)
+      if (want != "0.0.0.0" && address != want && address != "0.0.0.0" && address != "*" && address != "[::]") next
+      holder = "- another program"
+      if (match($0, /users:\(\("[^"]*",pid=[0-9]+/)) {
+        split(substr($0, RSTART + 9, RLENGTH - 9), who, "\",pid=")
+        holder = who[2] " " who[1]
+      }
+      print holder
+      exit
+    }' | {
+    # ss gives the name the kernel keeps (15 characters); the program's own is in its command line.
+    local pid name program
+    read -r pid name || return 0
+    [ "$pid" = - ] && { echo "$name"; return 0; }
+    program=$(tr '\0' '\n' <"/proc/$pid/cmdline" 2>/dev/null | head -n 1)
+    [ -z "$program" ] || name=${program##*/}
+    echo "$name (pid $pid)"
+  }
+}
+check_no_other_simulator
 
 # The viewer's port: the one asked for, or the first free one from 8080 (a
 # second demo, or anything else on 8080, must not stop the demo from starting).
@@ -339,6 +504,19 @@ referee_args=(auto --events "$log_dir/events.jsonl")
 [ -n "$game_length" ] && referee_args+=(--game-length "$game_length")
 [ "$tracked" = 1 ] && bridge_args+=(--tracked)
 [ "$referee" = official ] && [ "$gc_ci" = 0 ] && bridge_args+=(--official-referee)
+# The bridge's addresses and ports (set_ssl_ports); the defaults are left to it.
+ssl_bridge_port_args() {
+  bridge_args+=(--listen-address "$ssl_listen")
+  if [ -n "$vision_port" ] || [ "$ssl_vision_port" != 10020 ]; then bridge_args+=(--vision-port "$ssl_vision_port"); fi
+  [ -z "$vision_interface" ] || bridge_args+=(--vision-interface "$vision_interface")
+  [ -z "$vision_ttl" ] || bridge_args+=(--vision-ttl "$vision_ttl")
+  [ "$ssl_local_only" = 0 ] || bridge_args+=(--local-only)
+  [ "$((10#$ssl_port_offset))" = 0 ] && return 0
+  bridge_args+=(--control-port "$ssl_control_port" --blue-port "$ssl_blue_port" --yellow-port "$ssl_yellow_port"
+    --tracked-port "$ssl_tracked_port" --referee-port "$ssl_referee_port" --grsim-port "$ssl_grsim_port"
+    --grsim-blue-status-port "$ssl_grsim_blue_status" --grsim-yellow-status-port "$ssl_grsim_yellow_status")
+}
+ssl_bridge_port_args
 if [ "$referee" = builtin ] && [ "$sync" = 1 ]; then
   # Physics steps only past states the referee judged (docs/autoref.md).
   physics_args+=(--sync-referee)
@@ -351,6 +529,33 @@ if [ "$gc_ci" = 1 ]; then
   [ -n "$game_length" ] && referee_args+=(--game-length "$game_length")
 fi
 start physics "${placement[@]}" "$bin_dir/ubersim_physics" "${common[@]}" "${physics_args[@]}" "${seed_args[@]}"
+# wait_for_bus_claim PID: the rest starts once physics holds its bus (it claims
+# it first thing), at most 2 s. Two launches at one instant both pass
+# check_no_other_simulator; the loser's physics exits at once, and its
+# emulators must never run on the winner's bus: the loser stops here.
+wait_for_bus_claim() {
+  [[ $lcm_url == udpm://* ]] || return 0
+  for _ in $(seq 60); do
+    if ! kill -0 "$1" 2>/dev/null; then
+      wait "$1"
+      local status=$? refused
+      refused=$(grep -m 1 '^ubersim_physics: another ubersim_physics' "$log_dir/physics.log")
+      if [ -n "$refused" ]; then
+        echo "launch: $refused" >&2  # the same one line as check_no_other_simulator's
+      else
+        echo "launch: physics exited with status $status at start (see $log_dir/physics.log)" >&2
+        why_failed physics "$status"
+      fi
+      [ "${names[0]}" != logger ] || { kill -TERM "${pids[0]}"; wait "${pids[0]}"; }
+      exit 1
+    fi
+    # (Not a pipe into grep: with pipefail the check's exit 1 would hide grep's match.)
+    [[ $("$bin_dir/ubersim_physics" --check-bus --lcm-url "$lcm_url" ${prefix:+--channel-prefix "$prefix"} 2>&1) == *"(pid $1)"* ]] &&
+      return 0
+    sleep 0.02
+  done
+}
+wait_for_bus_claim "${pids[-1]}"
 [ "$vision" = 1 ] && start vision "${placement[@]}" "$bin_dir/ubersim_vision" "${common[@]}" --profile "$profile" "${seed_args[@]}"
 [ "$radio" = 1 ] && start radio "${placement[@]}" "$bin_dir/ubersim_radio" "${common[@]}" --profile "$profile" "${seed_args[@]}" "${radio_args[@]}"
 # Sync mode: the radio emulator drops a client that stops answering, and logs
@@ -403,12 +608,8 @@ echo "channels: ${prefix}VISION ${prefix}VISION_GEOMETRY ${prefix}RADIO_YELLOW $
 echo "watch:    tools/lcm-spy.sh -l '$lcm_url'      control: build/bin/ubersim_referee --help"
 [ "$referee" = builtin ] && echo "referee:  automatic, on ${prefix}REFEREE; event log $log_dir/events.jsonl"
 [ "$gc_ci" = 1 ] && echo "referee:  the official game controller in CI mode (sim time), on ${prefix}REFEREE; its log $log_dir/gc/gc.log; event log $log_dir/events.jsonl"
-[ "$referee" = official ] && [ "$gc_ci" = 0 ] && echo "referee:  the official game controller's Referee on 224.5.23.1:10003, forwarded to ${prefix}REFEREE"
-if [ "$ssl_bridge" = 1 ]; then
-  tracked_note=", tracked frames 224.5.23.2:10010"
-  [ "$tracked" = 1 ] || tracked_note=""
-  echo "ssl:      SSL-Vision 224.5.23.2:10020${tracked_note}, simulation control 127.0.0.1:10300, robot control 10301 (blue) / 10302 (yellow)"
-fi
+[ "$referee" = official ] && [ "$gc_ci" = 0 ] && echo "referee:  the official game controller's Referee on 224.5.23.1:$ssl_referee_port, forwarded to ${prefix}REFEREE"
+[ "$ssl_bridge" = 1 ] && print_ssl_ports
 [ "$vision" = 0 ] && echo "vision:   not started: a real vision server must publish ${prefix}VISION"
 [ "$radio" = 0 ] && echo "radio:    not started: a real radio server must listen on ${prefix}RADIO_YELLOW / ${prefix}RADIO_BLUE"
 echo "Ctrl-C stops everything."

@@ -8,6 +8,7 @@
 #include "ubersim/config.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/physics/physics_server.hpp"
+#include "ubersim/physics/single_instance.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/process_main.hpp"
 
@@ -65,9 +66,17 @@ int run(int argc, char** argv) {
   app.add_option("--duration", duration, "exit after this many seconds of sim time (0 = never)")
       ->capture_default_str()
       ->check(ubersim::at_least(0));
+  bool check_bus = false;
+  app.add_flag("--check-bus", check_bus,
+               "only check that no other physics runs on this bus (LCM port and channel "
+               "prefix): exit 0 if none does, else 1 with the line naming it");
   if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
 
   ubersim::setup_logging("physics", common.verbosity());
+  // Before anything else: a second physics on this bus stops here, naming the
+  // first, before it loads a world or publishes (docs/physics.md, "One physics per bus").
+  const auto claim = ubersim::physics::BusClaim::claim(common.lcm_url, common.channel_prefix);
+  if (check_bus) return 0;
   ubersim::physics::WorldSetup setup =
       ubersim::physics::load_world_setup(common.config_root(), scenario, physics_config);
   if (!field.empty()) {

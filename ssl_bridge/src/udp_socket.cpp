@@ -42,8 +42,18 @@ sockaddr_in make_address(const std::string& ip, int port) {
 UdpSocket UdpSocket::bound(const std::string& ip, int port) {
   const sockaddr_in address = make_address(ip, port);
   const int fd = open_socket();
-  // No SO_REUSEADDR: a second bridge on the same ports must fail, not share them.
+  // No SO_REUSEADDR nor SO_REUSEPORT: with them Linux lets a second bridge
+  // (or grSim) bind the same port and splits the datagrams between the two
+  // without a word. Without them the second bind fails, and says why.
   if (::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
+    if (errno == EADDRINUSE) {
+      ::close(fd);
+      throw std::runtime_error(
+          "UDP " + ip + ":" + std::to_string(port) +
+          " is already in use by another program (a second simulator: another ubersim SSL "
+          "bridge, grSim or the ER-Force simulator?); stop it, or run beside it on other ports "
+          "(ubersim_ssl_bridge --help names them; tools/launch.sh --ssl-port-offset N)");
+    }
     fail(fd, "bind " + ip + ":" + std::to_string(port));
   }
   return UdpSocket(fd);

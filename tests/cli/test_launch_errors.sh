@@ -52,6 +52,18 @@ expect_usage_error "--game-length: 0 is not greater than 0" -- --game-length 0 -
 expect_usage_error "--duration: 'soon' is not a number" -- --duration soon --log-dir "$work/logs"
 expect_usage_error "--scenario needs a value" -- --log-dir "$work/logs" --scenario
 expect_usage_error "--scenario needs a value" -- --scenario --speed 2 --log-dir "$work/logs"
+# The SSL bridge's options: values, only with the bridge, not contradicting each other.
+expect_usage_error "--vision-port: 0 is not in [1, 65535]" -- --ssl --vision-port 0 --log-dir "$work/logs"
+expect_usage_error "--vision-ttl: 256 is not in [0, 255]" -- --ssl --vision-ttl 256 --log-dir "$work/logs"
+expect_usage_error "--vision-interface: '10.0.0' is not an IPv4 address" -- --ssl --vision-interface 10.0.0 --log-dir "$work/logs"
+expect_usage_error "--vision-interface: '10.0.0.256' is not an IPv4 address" -- --ssl-bridge --vision-interface 10.0.0.256 --log-dir "$work/logs"
+expect_usage_error "--ssl-port-offset: 40000 is not in [0, 30000]" -- --ssl --ssl-port-offset 40000 --log-dir "$work/logs"
+expect_usage_error "--vision-port: only with --ssl or --ssl-bridge" -- --vision-port 10006 --log-dir "$work/logs"
+expect_usage_error "--lan: only with --ssl or --ssl-bridge" -- --lan --log-dir "$work/logs"
+expect_usage_error "--ssl-port-offset: only with --ssl or --ssl-bridge" -- --ssl-port-offset 5 --log-dir "$work/logs"
+expect_usage_error "--lan: not with --ssl-local-only" -- --ssl --lan --ssl-local-only --log-dir "$work/logs"
+expect_usage_error "--vision-ttl: not with --ssl-local-only" -- --ssl --ssl-local-only --vision-ttl 1 --log-dir "$work/logs"
+expect_usage_error "--vision-port needs a value" -- --ssl --log-dir "$work/logs" --vision-port
 # No TMPDIR and no --log-dir: the default log folder would go to /tmp.
 before=$(ls -d /tmp/ubersim-* 2>/dev/null)
 expect_usage_error "--speed: -5 is not at least 0" -u TMPDIR -- --speed -5
