@@ -9,6 +9,7 @@ import json
 import math
 import os
 import re
+import shutil
 import signal
 import subprocess
 import sys
@@ -78,34 +79,64 @@ class Processes:
         return False
 
     def stop(self, name, seconds=5.0):
-        """SIGINT to the group, then SIGKILL after SECONDS; the exit code."""
+        """SIGINT to the group, then SIGKILL after SECONDS; the exit code.
+
+        Descendants that left the group (NeonFC runs under script(1), in a session of its own)
+        and outlive the child are killed too.
+        """
         child = self.children[name]
+        others = descendants(child.pid)
         if child.poll() is None:
             try:
                 os.killpg(child.pid, signal.SIGINT)
             except ProcessLookupError:
                 pass
         try:
-            return child.wait(seconds)
+            code = child.wait(seconds)
         except subprocess.TimeoutExpired:
             os.killpg(child.pid, signal.SIGKILL)
-            return child.wait()
+            code = child.wait()
+        for pid in others:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        return code
 
     def stop_all(self):
         for name in reversed(list(self.children)):
             self.stop(name)
 
 
-class Ubersim:
-    """tools/launch.sh with the SSL bridge and the automatic referee, and its ground truth."""
+def descendants(pid):
+    """Every process below PID now, from /proc."""
+    parents = {}
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/stat", encoding="utf-8") as f:
+                    parents[int(entry)] = int(f.read().rsplit(")", 1)[1].split()[1])
+            except (OSError, IndexError, ValueError):
+                pass
+    found, frontier = [], [pid]
+    while frontier:
+        below = [p for p, parent in parents.items() if parent in frontier]
+        found += below
+        frontier = below
+    return found
 
-    def __init__(self, processes, source_dir, build_dir, extra_args=()):
+
+class Ubersim:
+    """tools/launch.sh with the SSL bridge (and the automatic referee), and its ground truth."""
+
+    def __init__(self, processes, source_dir, build_dir, referee=True):
         self.processes = processes
         self.build_dir = build_dir
         self.log_dir = os.path.join(processes.folder, "ubersim")
         env = dict(os.environ, UBERSIM_BUILD_DIR=build_dir)
         processes.start("launch", [os.path.join(source_dir, "tools", "launch.sh"), "--ssl-bridge",
-                                   "--referee", "--log-dir", self.log_dir, *extra_args], env=env)
+                                   *(["--referee"] if referee else []), "--log-dir",
+                                   self.log_dir], env=env)
         if not processes.wait_for_line("launch", "Ctrl-C stops everything", 60):
             raise AssertionError("ubersim did not start:\n" + processes.log("launch"))
 
@@ -203,6 +234,14 @@ def game_summary(events):
     if result:
         lines.append("referee result: " + json.dumps(result))
     return "\n".join(lines)
+
+
+def remove_unless_kept(folder):
+    """A passed run's logs go, unless UBERSIM_INTEROP_KEEP_LOGS=1."""
+    if os.environ.get("UBERSIM_INTEROP_KEEP_LOGS") == "1":
+        print(f"logs kept in {folder}")
+    else:
+        shutil.rmtree(folder, ignore_errors=True)
 
 
 def new_folder(prefix):

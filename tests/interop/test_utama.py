@@ -22,7 +22,6 @@ its own (tests/run_isolated.sh).
 Usage: test_utama.py SOURCE_DIR BUILD_DIR
 """
 import os
-import shutil
 import sys
 import time
 
@@ -87,7 +86,7 @@ def main():
     if failures:
         print("FAIL:\n  " + "\n  ".join(failures) + f"\n(logs in {folder})")
         return 1
-    shutil.rmtree(folder, ignore_errors=True)
+    run.remove_unless_kept(folder)
     print("PASS")
     return 0
 
