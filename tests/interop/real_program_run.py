@@ -220,6 +220,35 @@ def distance_in_play(states, events, team):
     return moved
 
 
+def speeds_by_command(states, events, team):
+    """{referee command: mean speed (m/s) of TEAM's robots between samples under it}, so a run
+    shows whether the team obeys STOP (at most 1.5 m/s) and HALT (still)."""
+    changes = [e["t"] for e in events if "command" in e]
+    totals = {}
+    for before, after in zip(states, states[1:]):
+        dt = after["t"] - before["t"]
+        if dt <= 0 or any(before["t"] < t <= after["t"] for t in changes):
+            continue
+        command = command_at(events, before["t"]) or "none"
+        for robot_id, (x, y) in after[team].items():
+            if robot_id in before[team]:
+                x0, y0 = before[team][robot_id]
+                distance, time_sum = totals.get(command, (0.0, 0.0))
+                totals[command] = (distance + math.hypot(x - x0, y - y0), time_sum + dt)
+    return {command: d / t for command, (d, t) in totals.items() if t > 0}
+
+
+def print_team_motion(states, events, team):
+    """Distances in play per robot and mean speeds per referee command; the distances."""
+    moved = distance_in_play(states, events, team)
+    print(f"{team}: m moved in play per robot "
+          + (", ".join(f"{i}: {d:.1f}" for i, d in sorted(moved.items())) or "none"))
+    speeds = speeds_by_command(states, events, team)
+    print(f"{team}: mean robot speed by referee command "
+          + (", ".join(f"{c} {v:.2f} m/s" for c, v in sorted(speeds.items())) or "none"))
+    return moved
+
+
 def game_summary(events):
     """Goals, fouls, commands and the last result line of the referee's event log, as text."""
     goals = [e for e in events if e.get("event") in ("GOAL", "POSSIBLE_GOAL")]

@@ -91,9 +91,7 @@ def main():
         processes.stop_all()
     print(run.game_summary(events))
     for team in COLOURS:
-        moved = run.distance_in_play(states, events, team)
-        print(f"{team}: m moved in play per robot "
-              + (", ".join(f"{i}: {d:.1f}" for i, d in sorted(moved.items())) or "none"))
+        moved = run.print_team_motion(states, events, team)
         if states and sum(1 for d in moved.values() if d >= MIN_DISTANCE) < MIN_ROBOTS_MOVED:
             failures.append(f"{team}: fewer than {MIN_ROBOTS_MOVED} robots moved {MIN_DISTANCE} m "
                             "in play (does the bridge serve grSim's protocol on UDP 20011?)")

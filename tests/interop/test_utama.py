@@ -70,9 +70,7 @@ def main():
     print(run.game_summary(events))
     played = states[-1]["t"] - states[0]["t"] if len(states) > 1 else 0.0
     for team in ("yellow", "blue"):
-        moved = run.distance_in_play(states, events, team)
-        print(f"{team}: m moved in play per robot "
-              + ", ".join(f"{i}: {d:.1f}" for i, d in sorted(moved.items())))
+        moved = run.print_team_motion(states, events, team)
         if sum(1 for d in moved.values() if d >= MIN_DISTANCE) < MIN_ROBOTS_MOVED and states:
             failures.append(f"{team}: fewer than {MIN_ROBOTS_MOVED} robots moved {MIN_DISTANCE} m "
                             "in play")
