@@ -95,7 +95,8 @@ def short(command):
     parts = [f"{k}={command[k]:.2f}" if isinstance(command.get(k), float) else f"{k}={command[k]}"
              for k in keys if k in command]
     if command.get("wheelsspeed"):
-        parts.append("wheels=" + ",".join(f"{command.get(f'wheel{i}', 0):.1f}" for i in range(1, 5)))
+        wheels = (command.get(f"wheel{i}", 0.0) for i in range(1, 5))
+        parts.append("wheels=" + ",".join(f"{w:.1f}" for w in wheels))
     return " ".join(parts)
 
 

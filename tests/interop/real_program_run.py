@@ -48,7 +48,7 @@ def seconds_to_play(default):
 
 
 class Processes:
-    """Children in process groups of their own, logging to FOLDER/NAME.log, all stopped at the end."""
+    """Children in process groups of their own, logging to FOLDER/NAME.log, stopped at the end."""
 
     def __init__(self, folder):
         self.folder = folder
@@ -158,8 +158,9 @@ class Ubersim:
 
     def radio_received(self):
         """{team: packets the radio emulator received} from its summary at stop."""
-        return {team: int(n) for team, n in
-                re.findall(r"\] (yellow|blue) \(profile [^)]*\): received (\d+)", self.log("radio.log"))}
+        found = re.findall(r"\] (yellow|blue) \(profile [^)]*\): received (\d+)",
+                           self.log("radio.log"))
+        return {team: int(n) for team, n in found}
 
 
 def parse_state(text):
@@ -247,6 +248,20 @@ def print_team_motion(states, events, team):
     print(f"{team}: mean robot speed by referee command "
           + (", ".join(f"{c} {v:.2f} m/s" for c, v in sorted(speeds.items())) or "none"))
     return moved
+
+
+def print_ball_motion(states):
+    """How far the ball went and its longest stillness (under 0.1 m in all that time)."""
+    balls = [(s["t"], s["ball"]) for s in states if s["ball"]]
+    travelled = sum(math.dist(a, b) for (_, a), (_, b) in zip(balls, balls[1:]))
+    longest, since = 0.0, 0
+    for i, (t, (x, y)) in enumerate(balls):
+        x0, y0 = balls[since][1]
+        if math.hypot(x - x0, y - y0) >= 0.1:
+            since = i
+        longest = max(longest, t - balls[since][0])
+    print(f"ball: {travelled:.1f} m travelled between samples; longest still {longest:.0f} s"
+          + (f"; last at ({balls[-1][1][0]:.2f}, {balls[-1][1][1]:.2f})" if balls else ""))
 
 
 def game_summary(events):

@@ -88,7 +88,7 @@ for colour in yellow blue; do
   config=$out/neonfc/config_$colour.toml
   cp "$out/neonfc/NeonFC-SSL/config.toml" "$config"
   set_value "$config" Game host '"127.0.0.1"'
-  # Yellow defends the negative half (left) in ubersim's referee by default; "side" is NeonFC's own goal.
+  # "side" is NeonFC's own goal: ubersim's referee has yellow defend the negative half (left).
   if [ $colour = yellow ]; then ports=(43211 43210 left); else ports=(43221 43220 right); fi
   set_value "$config" Game input_port "${ports[0]}"
   set_value "$config" Game output_port "${ports[1]}"
@@ -116,7 +116,10 @@ chmod +x "$out/bin/neonfc"
 echo "== Utama-Core: SSL-Vision on ubersim's port"
 settings=$out/utama/Utama-Core/utama_core/config/settings.py
 sed -i 's/^VISION_PORT = 10006$/VISION_PORT = 10020/' "$settings"
-grep -q '^VISION_PORT = 10020$' "$settings" || { echo "$settings: VISION_PORT not set" >&2; exit 1; }
+if ! grep -q '^VISION_PORT = 10020$' "$settings"; then
+  echo "$settings: VISION_PORT not set" >&2
+  exit 1
+fi
 echo "  $settings: VISION_PORT = 10020"
 # Utama-Core asks for numpy 2 and calls numpy.atan2, numpy 2's name for arctan2; Debian 12's
 # numpy 1.24 has only arctan2. A sitecustomize beside py_trees (outside Utama-Core's tree) adds

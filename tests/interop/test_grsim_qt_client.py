@@ -2,15 +2,17 @@
 """grSim's own Qt sample client (RoboCup-SSL/grSim clients/qt) moves a robot on ubersim.
 
 Starts ubersim as `tools/launch.sh --ssl-bridge` (grSim's command port 127.0.0.1:20011 on the
-bridge; no referee, whose placements would move the robot), the client under Xvfb, and drives its window with xdotool as a user would, with
-the keyboard only (the dialog's focus chain starts at "Simulator Address"; Shift+Tab from there
-reaches its last button, "Connect"): Id 0, Yellow (its default), Velocity X 1 m/s, Connect, Send.
-The client then sends a grSim_Packet every 20 ms. It asserts that yellow robot 0 covers 0.5 m
+bridge; no referee, whose placements would move the robot), the client under Xvfb, and drives
+its window with xdotool as a user would, with the keyboard only (the dialog's focus chain
+starts at "Simulator Address"; Shift+Tab from there reaches its last button, "Connect"): Id 0,
+Yellow (its default), Velocity X 1 m/s, Connect, Send. The client then sends a grSim_Packet
+every 20 ms. It asserts that yellow robot 0 covers 0.5 m
 or more in the 3 s after Send (ground truth, `ubersim_referee state`), then presses Reset (the
-client sends zeros once and stops) and prints how far the robot went.
+client sends zeros once and stops sending) and asserts that the robot, from 1 s later on, stays
+within 0.05 m for 1 s.
 
-grSim's sample client has no ball placement (grSim_Replacement is sent only by grSim's own
-window and by teams' software); docs/real_programs.md gives the manual recipe.
+grSim's sample client has no ball placement (grSim_Replacement comes from grSim's own window
+and from teams' software); docs/real_programs.md says how to place the ball on ubersim.
 
 Needs UBERSIM_GRSIM_QT_CLIENT (setup_real_programs.sh's OUT/bin/grsim-qt-client), Xvfb and
 xdotool. Without them exits 77 (skipped) and says why. Run in a network namespace of its own
@@ -30,6 +32,7 @@ import real_program_run as run  # noqa: E402
 
 WINDOW = "grSim Sample Client"
 MIN_DISTANCE = 0.5  # m in 3 s at 1 m/s commanded
+MAX_DRIFT_STOPPED = 0.05  # m in 1 s, from 1 s after the zero command on
 
 
 def start_xvfb(processes):
@@ -109,14 +112,21 @@ def main():
         time.sleep(3.0)
         end = robot_position(ubersim)
         reset_client(display, window)
-        if start is None or end is None:
+        time.sleep(1.0)
+        stopped = robot_position(ubersim)
+        time.sleep(1.0)
+        still = robot_position(ubersim)
+        if None in (start, end, stopped, still):
             raise AssertionError("yellow robot 0 is not on the field")
-        moved = math.hypot(end[0] - start[0], end[1] - start[1])
+        moved = math.dist(start, end)
         print(f"yellow 0 moved {moved:.2f} m in 3 s: ({start[0]:.2f}, {start[1]:.2f}) -> "
-              f"({end[0]:.2f}, {end[1]:.2f})")
+              f"({end[0]:.2f}, {end[1]:.2f}); after Reset {math.dist(stopped, still):.3f} m in 1 s")
         if moved < MIN_DISTANCE:
             failures.append(f"yellow 0 moved {moved:.2f} m, expected {MIN_DISTANCE} m or more "
                             "(does the bridge serve grSim's protocol on UDP 20011?)")
+        if math.dist(stopped, still) > MAX_DRIFT_STOPPED:
+            failures.append(f"yellow 0 moved {math.dist(stopped, still):.3f} m in the second "
+                            f"after Reset's zero command, more than {MAX_DRIFT_STOPPED} m")
     except AssertionError as error:
         failures.append(str(error))
     finally:

@@ -24,6 +24,7 @@ Usage: test_neonfc.py SOURCE_DIR BUILD_DIR
 """
 import os
 import sys
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import real_program_run as run  # noqa: E402
@@ -46,6 +47,7 @@ def configs(neonfc):
 
 
 def start_teams(processes, neonfc, config_of):
+    launched = time.monotonic()
     for colour in COLOURS:
         cwd = os.path.join(processes.folder, f"neonfc_{colour}")
         os.makedirs(os.path.join(cwd, "logs"))
@@ -54,6 +56,8 @@ def start_teams(processes, neonfc, config_of):
         if not processes.wait_for_line(f"neonfc_{colour}", STARTED, 90):
             raise AssertionError(f"NeonFC {colour} did not start its layers in 90 s:\n"
                                  + processes.log(f"neonfc_{colour}")[-3000:])
+    print(f"NeonFC started both colours' layers {time.monotonic() - launched:.1f} s after "
+          "their start")
 
 
 def main():
@@ -90,6 +94,7 @@ def main():
     finally:
         processes.stop_all()
     print(run.game_summary(events))
+    run.print_ball_motion(states)
     for team in COLOURS:
         moved = run.print_team_motion(states, events, team)
         if states and sum(1 for d in moved.values() if d >= MIN_DISTANCE) < MIN_ROBOTS_MOVED:

@@ -46,11 +46,13 @@ def main():
     try:
         ubersim = run.Ubersim(processes, source_dir, build_dir)
         runner = os.path.join(source_dir, "tests", "interop", "utama_both_teams.py")
+        launched = time.monotonic()
         processes.start("utama", [utama, runner, "--seconds", str(seconds + 30)])
         if not processes.wait_for_line("utama", "utama: running", 90):
             raise AssertionError("Utama-Core did not get past its start checks in 90 s:\n"
                                  + processes.log("utama")[-3000:])
         started = time.monotonic()
+        print(f"Utama-Core saw the field and both teams {started - launched:.1f} s after its start")
 
         def still_running():
             if processes.children["utama"].poll() is not None:
@@ -68,6 +70,7 @@ def main():
     finally:
         processes.stop_all()
     print(run.game_summary(events))
+    run.print_ball_motion(states)
     played = states[-1]["t"] - states[0]["t"] if len(states) > 1 else 0.0
     for team in ("yellow", "blue"):
         moved = run.print_team_motion(states, events, team)
