@@ -5,8 +5,14 @@
 // Usage: ssl_multicast_listener GROUP PORT JOIN_ADDRESS SECONDS
 // Prints "joined" once it listens, then one line of counts:
 //   detections=N geometry=N tracked=N referee=N duplicates=N undecodable=N
+//   cameras=N assembled=N complete=N
 // (duplicates: a detection of one camera and frame number, a tracked frame
-// number, or a referee message heard a second time).
+// number, or a referee message heard a second time; cameras: camera ids
+// heard; assembled, complete: frames put together by frame number as some
+// SSL programs do (the detections of the newest number are collected, a
+// higher number finishes the frame, a lower one is dropped; the first frame
+// heard is not counted), and of them those with a detection of every camera
+// heard).
 #include <arpa/inet.h>
 #include <messages_robocup_ssl_wrapper.pb.h>
 #include <poll.h>
@@ -16,11 +22,13 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace {
 
@@ -32,7 +40,29 @@ struct Counts {
   int duplicates = 0;
   int undecodable = 0;
   std::set<std::pair<std::uint64_t, std::uint64_t>> seen;  // (kind+camera, frame)
+  std::set<std::uint32_t> cameras;
+  // Assembly by frame number: the frame being collected and its cameras.
+  std::int64_t current = -1;
+  bool started = false;  // a frame was finished (and not counted) before this one
+  std::set<std::uint32_t> current_cameras;
+  std::vector<std::size_t> assembled_sizes;  // cameras of each finished frame
 };
+
+void assemble(Counts& counts, const SSL_DetectionFrame& detection) {
+  counts.cameras.insert(detection.camera_id());
+  const auto number = static_cast<std::int64_t>(detection.frame_number());
+  if (number < counts.current) return;
+  if (number > counts.current) {
+    // The first frame is not counted: it may have begun before the join.
+    if (counts.current >= 0 && counts.started) {
+      counts.assembled_sizes.push_back(counts.current_cameras.size());
+    }
+    counts.started = counts.current >= 0;
+    counts.current = number;
+    counts.current_cameras.clear();
+  }
+  counts.current_cameras.insert(detection.camera_id());
+}
 
 void note(Counts& counts, std::uint64_t kind, std::uint64_t number) {
   if (!counts.seen.insert({kind, number}).second) ++counts.duplicates;
@@ -63,6 +93,7 @@ void count(Counts& counts, const std::string& bytes) {
     if (vision.has_detection()) {
       ++counts.detections;
       note(counts, 100 + vision.detection().camera_id(), vision.detection().frame_number());
+      assemble(counts, vision.detection());
     }
     if (vision.has_geometry()) ++counts.geometry;
     return;
@@ -114,8 +145,12 @@ int main(int argc, char** argv) {
     if (size > 0) count(counts, buffer.substr(0, static_cast<std::size_t>(size)));
   }
   ::close(fd);
-  std::printf("detections=%d geometry=%d tracked=%d referee=%d duplicates=%d undecodable=%d\n",
-              counts.detections, counts.geometry, counts.tracked, counts.referee, counts.duplicates,
-              counts.undecodable);
+  std::size_t complete = 0;
+  for (const std::size_t size : counts.assembled_sizes) complete += size == counts.cameras.size();
+  std::printf(
+      "detections=%d geometry=%d tracked=%d referee=%d duplicates=%d undecodable=%d cameras=%zu "
+      "assembled=%zu complete=%zu\n",
+      counts.detections, counts.geometry, counts.tracked, counts.referee, counts.duplicates,
+      counts.undecodable, counts.cameras.size(), counts.assembled_sizes.size(), complete);
   return 0;
 }

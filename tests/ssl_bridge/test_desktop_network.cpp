@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -234,5 +235,45 @@ TEST_F(DesktopNetwork, LocalOnlyIsNotHeardOnTheDefaultInterface) {
   EXPECT_EQ(v["geometry"], 0) << vision.log();
   EXPECT_EQ(t["tracked"], 0) << tracked.log();
 }
+
+#if defined(UBERSIM_PHYSICS_EXE) && defined(UBERSIM_VISION_EXE)
+// The real physics and vision emulator behind the bridge, with a vision
+// profile: what a program on the desktop joined on 0.0.0.0 hears.
+class DesktopSimulation : public DesktopNetwork {
+ protected:
+  Heard listen_to_simulation(const std::string& profile) {
+    const std::string logs = ::testing::TempDir() + profile;
+    ChildProcess physics({UBERSIM_PHYSICS_EXE, "--scenario", "division_a_11v11"},
+                         logs + "_physics.log");
+    ChildProcess vision({UBERSIM_VISION_EXE, "--profile", profile, "--seed", "3"},
+                        logs + "_vision.log");
+    start_bridge({});
+    ChildProcess& listener = listen(kVision, 10020, "0.0.0.0");
+    const Heard heard = result(listener);
+    EXPECT_EQ(vision.stop(10), 0) << vision.log();
+    EXPECT_EQ(physics.stop(10), 0) << physics.log();
+    EXPECT_EQ(bridge_->stop(10), 0) << bridge_->log();
+    bridge_.reset();
+    listeners_.clear();
+    return heard;
+  }
+};
+
+// grSim's cameras: every frame a program assembles by frame number holds all
+// four cameras; `modern`'s unsynchronised cameras, numbered per camera, do not.
+TEST_F(DesktopSimulation, GrsimFramesAssembledByNumberAreComplete) {
+  const Heard grsim = listen_to_simulation("grsim");
+  const Heard modern = listen_to_simulation("modern");
+  std::printf(
+      "assembled by frame number on the desktop: grsim %d of %d complete, modern %d of %d\n",
+      grsim["complete"], grsim["assembled"], modern["complete"], modern["assembled"]);
+  EXPECT_EQ(grsim["cameras"], 4);
+  EXPECT_GT(grsim["assembled"], 60);  // 60 Hz for the seconds physics ran
+  EXPECT_EQ(grsim["complete"], grsim["assembled"]);
+  EXPECT_EQ(grsim["duplicates"], 0);
+  EXPECT_EQ(modern["cameras"], 4);
+  EXPECT_LT(modern["complete"], modern["assembled"]);
+}
+#endif
 
 }  // namespace
