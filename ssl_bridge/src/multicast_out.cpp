@@ -54,6 +54,56 @@ std::string interface_name(const std::string& address) {
   return name;
 }
 
+std::string route_device(const std::string& group, const std::string& routes) {
+  in_addr parsed{};
+  if (::inet_pton(AF_INET, group.c_str(), &parsed) != 1) return {};
+  std::stringstream lines(routes);
+  std::string line;
+  std::getline(lines, line);  // the header
+  std::string best;
+  int best_prefix = -1;
+  long best_metric = 0;
+  while (std::getline(lines, line)) {
+    std::stringstream fields(line);
+    std::string device, destination, gateway, flags, refcnt, use, metric, mask;
+    if (!(fields >> device >> destination >> gateway >> flags >> refcnt >> use >> metric >> mask)) {
+      continue;
+    }
+    try {
+      const auto dest = static_cast<std::uint32_t>(std::stoul(destination, nullptr, 16));
+      const auto bits = static_cast<std::uint32_t>(std::stoul(mask, nullptr, 16));
+      const bool up = (std::stoul(flags, nullptr, 16) & 0x1U) != 0;  // RTF_UP
+      const int prefix = __builtin_popcount(bits);
+      const long cost = std::stol(metric);
+      if (!up || (parsed.s_addr & bits) != dest) continue;
+      if (prefix > best_prefix || (prefix == best_prefix && cost < best_metric)) {
+        best = device;
+        best_prefix = prefix;
+        best_metric = cost;
+      }
+    } catch (const std::exception&) {
+      continue;  // not a route line
+    }
+  }
+  return best;
+}
+
+std::string interface_address(const std::string& device) {
+  ifaddrs* list = nullptr;
+  if (::getifaddrs(&list) != 0) return {};
+  std::string address;
+  for (const ifaddrs* entry = list; entry != nullptr; entry = entry->ifa_next) {
+    if (entry->ifa_addr == nullptr || entry->ifa_addr->sa_family != AF_INET) continue;
+    if (device != entry->ifa_name) continue;
+    char text[INET_ADDRSTRLEN] = {};
+    const auto* ipv4 = reinterpret_cast<const sockaddr_in*>(entry->ifa_addr);
+    if (::inet_ntop(AF_INET, &ipv4->sin_addr, text, sizeof text) != nullptr) address = text;
+    break;
+  }
+  ::freeifaddrs(list);
+  return address;
+}
+
 std::optional<OutInterface> route_interface(const std::string& group, std::string& why) {
   // connect() on a UDP socket asks the routing table, as a join on 0.0.0.0
   // does; the source address it picks belongs to the interface of the route.
@@ -76,8 +126,20 @@ std::optional<OutInterface> route_interface(const std::string& group, std::strin
   }
   char text[INET_ADDRSTRLEN] = {};
   ::inet_ntop(AF_INET, &source.sin_addr, text, sizeof text);
-  OutInterface out{text, interface_name(text)};
-  return out;
+  if (source.sin_addr.s_addr != htonl(INADDR_ANY)) return OutInterface{text, interface_name(text)};
+  // A route to a device without naming a source (e.g. "224.0.0.0/4 dev lo":
+  // lo's 127.0.0.1 is host scope, never picked as the source of a link-scope
+  // route): the device is the routing table's, its address the device's.
+  std::ifstream file("/proc/net/route");
+  std::stringstream routes;
+  routes << file.rdbuf();
+  const std::string device = route_device(group, routes.str());
+  const std::string address = device.empty() ? std::string() : interface_address(device);
+  if (address.empty()) {
+    why = "the route to " + group + " names no interface with an IPv4 address";
+    return std::nullopt;
+  }
+  return OutInterface{address, device};
 }
 
 std::vector<OutInterface> resolve_interfaces(const std::string& list, const std::string& group,
@@ -97,13 +159,18 @@ std::vector<OutInterface> resolve_interfaces(const std::string& list, const std:
         continue;
       }
       out = *routed;
+      out.routed = true;
     } else {
       make_address(entry, 1);  // throws naming a bad address
       out = OutInterface{entry, interface_name(entry)};
     }
-    const bool seen = std::any_of(result.begin(), result.end(),
-                                  [&](const OutInterface& o) { return o.address == out.address; });
-    if (!seen) result.push_back(out);
+    const auto same = std::find_if(result.begin(), result.end(),
+                                   [&](const OutInterface& o) { return o.address == out.address; });
+    if (same == result.end()) {
+      result.push_back(out);
+    } else {
+      same->routed = same->routed || out.routed;
+    }
   }
   return result;
 }
@@ -218,9 +285,16 @@ std::string MulticastStream::describe() const {
       text += " (only while nobody on this host joined on the other interface)";
     }
   }
-  if (!other_than_lo) {
-    text += "; a program that joins on 0.0.0.0 hears it only where the kernel routes " +
-            settings_.group + " to lo";
+  const bool routed = std::any_of(interfaces_.begin(), interfaces_.end(),
+                                  [](const OutInterface& out) { return out.routed; });
+  if (!other_than_lo && routed) {
+    text += "; the kernel routes " + settings_.group +
+            " to lo: a program joining on 0.0.0.0 or on 127.0.0.1 hears it";
+  } else if (!other_than_lo) {
+    text +=
+        "; a program hears it when it joins on 127.0.0.1 (one joining on 0.0.0.0 joins "
+        "where the kernel routes " +
+        settings_.group + ")";
   } else {
     text += "; a program joining on 0.0.0.0 or on 127.0.0.1 hears it once";
   }

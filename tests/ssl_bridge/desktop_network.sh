@@ -4,10 +4,10 @@
 # this machine's own network:
 #   * a network namespace of its own (the "desktop"): lo up WITHOUT the
 #     MULTICAST flag (as on a desktop), and an ethernet-like interface eth0
-#     (one end of a veth pair, 192.0.2.10/24, a documentation address) that
+#     (one end of a veth pair, 198.51.100.10/24, a documentation address) that
 #     carries the default route;
 #   * a second namespace (the "other PC" on the same network) holding the
-#     veth pair's other end, 192.0.2.20/24, with its own default route there.
+#     veth pair's other end, 198.51.100.20/24, with its own default route there.
 # The command runs in the desktop namespace with LCM_DEFAULT_URL on ttl=0 and
 # UBERSIM_PEER_NETNS naming the other PC's namespace (for nsenter --net=;
 # UBERSIM_NSENTER is nsenter's path).
@@ -38,9 +38,9 @@ if ! error=$(ip link add eth0 type veth peer name peer0 2>&1); then
 fi
 ip link set lo up
 ip link set lo multicast off
-ip addr add 192.0.2.10/24 dev eth0
+ip addr add 198.51.100.10/24 dev eth0
 ip link set eth0 up
-ip route add default via 192.0.2.1 dev eth0
+ip route add default via 198.51.100.1 dev eth0
 
 # The other PC: a namespace of its own, held by a sleeping process.
 unshare -n sleep 100000 &
@@ -52,9 +52,9 @@ done
 ip link set peer0 netns "$peer"
 nsenter --net=/proc/$peer/ns/net sh -c "
   ip link set lo up
-  ip addr add 192.0.2.20/24 dev peer0
+  ip addr add 198.51.100.20/24 dev peer0
   ip link set peer0 up
-  ip route add default via 192.0.2.1 dev peer0"
+  ip route add default via 198.51.100.1 dev peer0"
 
 export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
 export UBERSIM_PEER_NETNS=/proc/$peer/ns/net

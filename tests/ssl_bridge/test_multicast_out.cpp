@@ -40,6 +40,22 @@ TEST(SslMulticastOut, AnUnreadableTableMeansNoMemberships) {
   EXPECT_FALSE(memberships.joined("garbage", "224.5.23.2"));
 }
 
+// /proc/net/route of a desktop with a multicast route to lo as well.
+constexpr const char* kRoutes =
+    "Iface\tDestination\tGateway \tFlags\tRefCnt\tUse\tMetric\tMask\t\tMTU\tWindow\tIRTT\n"
+    "eth0\t00000000\t010200C0\t0003\t0\t0\t100\t00000000\t0\t0\t0\n"
+    "eth0\t000200C0\t00000000\t0001\t0\t0\t0\t00FFFFFF\t0\t0\t0\n"
+    "lo\t000000E0\t00000000\t0001\t0\t0\t0\t000000F0\t0\t0\t0\n";
+
+TEST(SslMulticastOut, TheLongestPrefixRouteNamesTheDevice) {
+  EXPECT_EQ(route_device("224.5.23.2", kRoutes), "lo");   // 224.0.0.0/4 beats the default
+  EXPECT_EQ(route_device("192.0.2.7", kRoutes), "eth0");  // 192.0.2.0/24
+  EXPECT_EQ(route_device("8.8.8.8", kRoutes), "eth0");    // the default route
+  EXPECT_EQ(route_device("224.5.23.2", "Iface\tDestination\n"), "");  // no route
+  EXPECT_EQ(route_device("not an address", kRoutes), "");
+  EXPECT_EQ(interface_address("no-such-device0"), "");
+}
+
 TEST(SslMulticastOut, InterfaceListsAreAddressesWithoutRepeats) {
   std::vector<std::string> warnings;
   const auto interfaces = resolve_interfaces(" 127.0.0.1 ,127.0.0.1,,", "224.5.23.2", warnings);

@@ -47,6 +47,7 @@ struct StreamSettings {
 struct OutInterface {
   std::string address;  // IPv4 address of the interface
   std::string device;   // its name (e.g. eth0, lo), "?" when no interface has that address
+  bool routed = false;  // the interface the kernel routes the group to ("default")
   bool loopback() const { return device == "lo" || address.rfind("127.", 0) == 0; }
 };
 
@@ -54,6 +55,11 @@ struct OutInterface {
 // joins, and where a sender without IP_MULTICAST_IF sends. nullopt when there
 // is no route to the group (then `why` says so).
 std::optional<OutInterface> route_interface(const std::string& group, std::string& why);
+// The device of the longest-prefix route to `group` in a /proc/net/route
+// table ("" when none matches).
+std::string route_device(const std::string& group, const std::string& routes);
+// The first IPv4 address of `device` ("" when it has none).
+std::string interface_address(const std::string& device);
 // The name of the interface holding `address` ("?" when none does).
 std::string interface_name(const std::string& address);
 // "default,127.0.0.1" -> the interfaces, "default" resolved, duplicates merged.
