@@ -38,10 +38,7 @@ int8_t team_code(Team team) {
   return team == Team::Yellow ? int8_t{team_t::YELLOW} : int8_t{team_t::BLUE};
 }
 
-}  // namespace
-
-namespace {
-
+// One stream's settings; --local-only overrides the interfaces and TTL.
 StreamSettings stream(const BridgeOptions& options, const std::string& name,
                       const std::string& group, int port, int ttl, const std::string& interfaces) {
   StreamSettings s;
