@@ -5,6 +5,8 @@
 #     when this user may create one (root, or unprivileged user namespaces);
 #   * otherwise on a UDP port of its own, derived from the test name.
 # Either way LCM_DEFAULT_URL is set with ttl=0, so nothing leaves the host.
+# Inside the namespace the only interface is lo, so the SSL bridge's default
+# (the interface the kernel routes the group to, and lo) is lo alone.
 # Usage: run_isolated.sh TEST_NAME COMMAND [ARGS...]
 set -euo pipefail
 name=$1
@@ -28,5 +30,8 @@ if [ "${UBERSIM_NO_NETNS:-0}" != 1 ] && namespace_ok; then
     exec "$@"' isolated "$@"
 fi
 # No namespace: stay on our own port. Multicast needs some route; the
-# default route serves, and ttl=0 keeps packets on this host.
+# default route serves, and ttl=0 keeps packets on this host. The SSL bridge
+# would send on the default interface: UBERSIM_SSL_LOCAL_ONLY keeps it on lo
+# with TTL 0 (as its --local-only).
+export UBERSIM_SSL_LOCAL_ONLY=1
 exec "$@"

@@ -38,20 +38,46 @@ int8_t team_code(Team team) {
   return team == Team::Yellow ? int8_t{team_t::YELLOW} : int8_t{team_t::BLUE};
 }
 
+// One stream's settings; --local-only overrides the interfaces and TTL.
+StreamSettings stream(const BridgeOptions& options, const std::string& name,
+                      const std::string& group, int port, int ttl, const std::string& interfaces) {
+  StreamSettings s;
+  s.name = name;
+  s.group = group;
+  s.port = port;
+  s.ttl = options.local_only ? 0 : ttl;
+  s.interfaces = options.local_only ? "127.0.0.1" : interfaces;
+  if (s.interfaces.empty()) s.interfaces = options.vision_interface;
+  return s;
+}
+
 }  // namespace
+
+StreamSettings vision_stream(const BridgeOptions& options) {
+  return stream(options, "vision", options.vision_address, options.vision_port, options.vision_ttl,
+                options.vision_interface);
+}
+
+StreamSettings tracked_stream(const BridgeOptions& options) {
+  return stream(options, "tracked frames", options.tracked_address, options.tracked_port,
+                options.tracked_ttl, options.tracked_interface);
+}
+
+StreamSettings referee_stream(const BridgeOptions& options) {
+  return stream(options, "referee messages", options.referee_address, options.referee_port,
+                options.referee_ttl, options.referee_interface);
+}
 
 SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
                      TruthDemandAnnouncer& truth_demand, BridgeOptions options)
     : bus_(bus),
       channels_(channels),
       options_(std::move(options)),
-      vision_destination_(make_address(options_.vision_address, options_.vision_port)),
-      vision_socket_(UdpSocket::multicast_sender(options_.vision_ttl, options_.vision_interface)),
+      vision_out_(vision_stream(options_)),
       control_socket_(UdpSocket::bound(options_.listen_address, options_.control_port)),
       blue_socket_(UdpSocket::bound(options_.listen_address, options_.blue_port)),
       yellow_socket_(UdpSocket::bound(options_.listen_address, options_.yellow_port)),
-      referee_socket_(UdpSocket::multicast_sender(options_.referee_ttl, options_.vision_interface)),
-      referee_destination_(make_address(options_.referee_address, options_.referee_port)),
+      referee_out_(referee_stream(options_)),
       referee_source_("ubersim-" + random_uuid()),
       referee_translator_(referee_source_),
       sync_{{SyncAnswers(options_.sync_timeout), SyncAnswers(options_.sync_timeout)}},
@@ -75,9 +101,7 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
     settings.ball_model = options_.geometry.ball_model;
     settings.uuid = random_uuid();
     tracked_.emplace(settings);
-    tracked_socket_.emplace(
-        UdpSocket::multicast_sender(options_.tracked_ttl, options_.vision_interface));
-    tracked_destination_ = make_address(options_.tracked_address, options_.tracked_port);
+    tracked_out_.emplace(tracked_stream(options_));
     truth_demand_.periodic(options_.tracked_rate);
   }
   ubersim::subscribe(
@@ -85,8 +109,16 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
   ubersim::subscribe(bus_, channels_, topics::kSimControlAck,
                      [this](const sim_control_ack_t& a) { on_ack(a); });
   try {
+    // Joined where the referee stream goes: a game controller on this host
+    // or the network sends on its default interface.
+    std::vector<std::string> addresses;
+    for (const OutInterface& out : referee_out_.interfaces()) addresses.push_back(out.address);
+    std::vector<std::string> failed;
     referee_listener_.emplace(UdpSocket::multicast_receiver(
-        options_.referee_address, options_.referee_port, options_.vision_interface));
+        options_.referee_address, options_.referee_port, addresses, failed));
+    for (const std::string& failure : failed) {
+      spdlog::warn("referee group: {}: a game controller sending there goes unnoticed", failure);
+    }
   } catch (const std::exception& e) {
     if (options_.official_referee) throw;  // the official referee is what was asked for
     spdlog::warn("cannot listen on the referee group ({}): a game controller there goes unnoticed",
@@ -98,8 +130,6 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
   } else {
     ubersim::subscribe(bus_, channels_, topics::kReferee,
                        [this](const referee_t& r) { on_referee(r); });
-    spdlog::info("referee messages from {} to {}:{} (ttl {})", channels_.referee(),
-                 options_.referee_address, options_.referee_port, options_.referee_ttl);
   }
   for (Team team : kTeams) {
     ubersim::subscribe(bus_, channels_, topics::kRadioFeedback.of(team),
@@ -110,7 +140,7 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
 void SslBridge::send_vision(const SSL_WrapperPacket& packet) {
   std::string bytes;
   packet.SerializeToString(&bytes);
-  if (vision_socket_.send_to(bytes, vision_destination_)) {
+  if (vision_out_.send(bytes)) {
     ++counters_["vision packets sent"];
   } else {
     bad_input_.warn("vision_send", "could not send a vision packet");
@@ -158,7 +188,7 @@ void SslBridge::on_state(const sim_state_t& state) {
   for (const TrackerWrapperPacket& packet : packets) {
     std::string bytes;
     packet.SerializeToString(&bytes);
-    if (tracked_socket_->send_to(bytes, tracked_destination_)) {
+    if (tracked_out_->send(bytes)) {
       ++counters_["tracked packets sent"];
     } else {
       bad_input_.warn("tracked_send", "could not send a tracked packet");
@@ -177,7 +207,7 @@ void SslBridge::on_referee(const referee_t& referee) {
   std::string bytes;
   referee_translator_.translate(referee, static_cast<std::uint64_t>(now_us))
       .SerializeToString(&bytes);
-  if (referee_socket_.send_to(bytes, referee_destination_)) {
+  if (referee_out_.send(bytes)) {
     ++counters_["referee packets sent"];
   } else {
     bad_input_.warn("referee_send", "could not send a referee packet");
@@ -328,7 +358,7 @@ void SslBridge::handle_control_datagram(const std::vector<uint8_t>& bytes,
                    translation.cameras->num_cameras);
     }
     if (translation.vision_port) {
-      vision_destination_.sin_port = htons(static_cast<uint16_t>(*translation.vision_port));
+      vision_out_.set_port(*translation.vision_port);
       spdlog::info("vision now sent to port {}", *translation.vision_port);
     }
     for (sim_control_t& request : translation.requests) {
@@ -435,17 +465,27 @@ void SslBridge::sync_leave() {
   }
 }
 
-void SslBridge::start() {
-  spdlog::info(
-      "vision to {}:{} (ttl {}, via {}); simulation control {}:{}; robot control blue "
-      "{}:{}, yellow {}:{}",
-      options_.vision_address, options_.vision_port, options_.vision_ttl, options_.vision_interface,
-      options_.listen_address, options_.control_port, options_.listen_address, options_.blue_port,
-      options_.listen_address, options_.yellow_port);
-  if (tracked_) {
-    spdlog::info("tracked frames to {}:{} (ttl {}, {} Hz)", options_.tracked_address,
-                 options_.tracked_port, options_.tracked_ttl, options_.tracked_rate);
+void SslBridge::log_destinations() const {
+  std::vector<const MulticastStream*> streams{&vision_out_};
+  if (tracked_out_) streams.push_back(&*tracked_out_);
+  if (!options_.official_referee) streams.push_back(&referee_out_);
+  for (const MulticastStream* stream : streams) {
+    for (const std::string& warning : stream->warnings()) spdlog::warn("{}", warning);
+    spdlog::info("{}", stream->describe());
   }
+  if (tracked_) spdlog::info("tracked frames at {} Hz of sim time", options_.tracked_rate);
+  if (!options_.official_referee)
+    spdlog::info("referee messages come from {}", channels_.referee());
+  if (options_.local_only) {
+    spdlog::info("--local-only: SSL multicast stays on this host (lo, ttl 0)");
+  }
+}
+
+void SslBridge::start() {
+  log_destinations();
+  spdlog::info("simulation control {}:{}; robot control blue {}:{}, yellow {}:{}",
+               options_.listen_address, options_.control_port, options_.listen_address,
+               options_.blue_port, options_.listen_address, options_.yellow_port);
   bus_.watch(control_socket_.fd(), [this] {
     drain(control_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
       handle_control_datagram(bytes, from);
@@ -494,6 +534,13 @@ void SslBridge::log_summary() const {
               " answers=" + std::to_string(s.answers) + " extra=" + std::to_string(s.extra) +
               " timeouts=" + std::to_string(s.timeouts + s.overflows);
     }
+  }
+  const std::uint64_t skipped = vision_out_.loopback_copies_skipped() +
+                                (tracked_out_ ? tracked_out_->loopback_copies_skipped() : 0) +
+                                referee_out_.loopback_copies_skipped();
+  if (skipped > 0) {
+    text += " lo copies not sent (a listener joined on the default interface hears those)=" +
+            std::to_string(skipped);
   }
   spdlog::info("summary:{}; LCM messages dropped as malformed={}", text.empty() ? " nothing" : text,
                bus_.malformed_count());

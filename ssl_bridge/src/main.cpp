@@ -5,6 +5,8 @@
 // RADIO_<TEAM>, feedback from RADIO_FEEDBACK_<TEAM>). See docs/ssl_bridge.md.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
@@ -59,17 +61,24 @@ int parse_and_run(int argc, char** argv) {
   auto& b = options.bridge;
   CLI::App app{"ubersim SSL protocol bridge: SSL-Vision out, SSL simulation protocol in"};
   ubersim::add_common_options(app, options.common);
+  auto* local_only = app.add_flag(
+      "--local-only", b.local_only,
+      "keep vision, tracked frames and referee messages on this host: sent on lo (127.0.0.1) "
+      "with TTL 0 only (also when UBERSIM_SSL_LOCAL_ONLY=1)");
   app.add_option("--vision-address", b.vision_address, "SSL-Vision multicast group (or address)")
       ->capture_default_str();
   app.add_option("--vision-port", b.vision_port, "SSL-Vision port")
       ->capture_default_str()
       ->check(ubersim::in_range(1, 65535));
-  app.add_option("--vision-ttl", b.vision_ttl, "multicast TTL (0: this host only)")
-      ->capture_default_str()
-      ->check(ubersim::in_range(0, 255));
-  app.add_option("--vision-interface", b.vision_interface,
-                 "address of the interface vision packets leave on")
-      ->capture_default_str();
+  local_only->excludes(
+      app.add_option("--vision-ttl", b.vision_ttl, "multicast TTL (0: this host only)")
+          ->capture_default_str()
+          ->check(ubersim::in_range(0, 255)));
+  local_only->excludes(
+      app.add_option("--vision-interface", b.vision_interface,
+                     "comma-separated addresses of the interfaces vision packets leave on; "
+                     "'default': the interface the kernel routes the group to")
+          ->capture_default_str());
   app.add_option("--listen-address", b.listen_address,
                  "address the simulation and robot control ports are bound to")
       ->capture_default_str();
@@ -90,8 +99,13 @@ int parse_and_run(int argc, char** argv) {
                  "where REFEREE goes as SSL Referee messages (multicast group)")
       ->capture_default_str();
   app.add_option("--referee-port", b.referee_port, "referee messages port")->capture_default_str();
-  app.add_option("--referee-ttl", b.referee_ttl, "referee multicast TTL (0: this host only)")
-      ->capture_default_str();
+  local_only->excludes(
+      app.add_option("--referee-ttl", b.referee_ttl, "referee multicast TTL (0: this host only)")
+          ->capture_default_str()
+          ->check(ubersim::in_range(0, 255)));
+  local_only->excludes(app.add_option("--referee-interface", b.referee_interface,
+                                      "interfaces referee messages leave on (and are listened "
+                                      "for on); default: --vision-interface's"));
   app.add_flag("--official-referee", b.official_referee,
                "the official ssl-game-controller referees: its Referee messages on the referee "
                "address go to REFEREE, and ubersim sends none there");
@@ -102,9 +116,13 @@ int parse_and_run(int argc, char** argv) {
   app.add_option("--tracked-port", b.tracked_port, "tracked frames port")
       ->capture_default_str()
       ->check(ubersim::in_range(1, 65535));
-  app.add_option("--tracked-ttl", b.tracked_ttl, "tracked frames multicast TTL (0: this host only)")
-      ->capture_default_str()
-      ->check(ubersim::in_range(0, 255));
+  local_only->excludes(app.add_option("--tracked-ttl", b.tracked_ttl,
+                                      "tracked frames multicast TTL (0: this host only)")
+                           ->capture_default_str()
+                           ->check(ubersim::in_range(0, 255)));
+  local_only->excludes(app.add_option("--tracked-interface", b.tracked_interface,
+                                      "interfaces tracked frames leave on; default: "
+                                      "--vision-interface's"));
   app.add_option("--tracked-rate", b.tracked_rate, "tracked frames per second of sim time")
       ->capture_default_str()
       ->check(ubersim::in_range(1.0, 1000.0));
@@ -125,6 +143,13 @@ int parse_and_run(int argc, char** argv) {
   if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
 
   ubersim::setup_logging("ssl_bridge", options.common.verbosity());
+  // Set by tests/run_isolated.sh when it has no network namespace to offer:
+  // then nothing may leave this host, whatever the command line says.
+  const char* keep_local = std::getenv("UBERSIM_SSL_LOCAL_ONLY");
+  if (keep_local != nullptr && std::string(keep_local) == "1" && !b.local_only) {
+    spdlog::info("UBERSIM_SSL_LOCAL_ONLY=1: SSL multicast stays on this host (as --local-only)");
+    b.local_only = true;
+  }
   return run(options);
 }
 

@@ -76,9 +76,9 @@ UdpSocket UdpSocket::multicast_sender(int ttl, const std::string& interface_ip) 
 }
 
 UdpSocket UdpSocket::multicast_receiver(const std::string& group, int port,
-                                        const std::string& interface_ip) {
+                                        const std::vector<std::string>& interface_ips,
+                                        std::vector<std::string>& failed_joins) {
   const sockaddr_in address = make_address(group, port);
-  const in_addr interface_address = make_address(interface_ip, 1).sin_addr;
   const int fd = open_socket();
   const int yes = 1;
   if (::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes) != 0) fail(fd, "SO_REUSEADDR");
@@ -87,14 +87,19 @@ UdpSocket UdpSocket::multicast_receiver(const std::string& group, int port,
   if (::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
     fail(fd, "bind " + group + ":" + std::to_string(port));
   }
-  if (IN_MULTICAST(ntohl(address.sin_addr.s_addr))) {
+  if (!IN_MULTICAST(ntohl(address.sin_addr.s_addr))) return UdpSocket(fd);
+  std::size_t joined = 0;
+  for (const std::string& interface_ip : interface_ips) {
     ip_mreq membership{};
     membership.imr_multiaddr = address.sin_addr;
-    membership.imr_interface = interface_address;
-    if (::setsockopt(fd, IPPROTO_IP, IP_ADD_MEMBERSHIP, &membership, sizeof membership) != 0) {
-      fail(fd, "join " + group + " on " + interface_ip);
+    membership.imr_interface = make_address(interface_ip, 1).sin_addr;
+    if (::setsockopt(fd, IPPROTO_IP, IP_ADD_MEMBERSHIP, &membership, sizeof membership) == 0) {
+      ++joined;
+    } else {
+      failed_joins.push_back("join " + group + " on " + interface_ip + ": " + std::strerror(errno));
     }
   }
+  if (joined == 0) fail(fd, "join " + group + " on no interface");
   return UdpSocket(fd);
 }
 

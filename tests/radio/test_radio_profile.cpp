@@ -38,6 +38,15 @@ TEST(RadioProfile, IdealHasNoLimitDelayOrLoss) {
   EXPECT_EQ(p.feedback.packet_loss + p.feedback.robot_loss, 0);
 }
 
+// The radio half of `--profile grsim`: grSim applies commands at once and
+// stops robots after 1 s without a command.
+TEST(RadioProfile, GrsimHasNoDelayOrLossAndStopsAfterOneSecond) {
+  const auto p = load_radio_profile(UBERSIM_SOURCE_CONFIG_DIR, "grsim");
+  EXPECT_EQ(p.command.latency, 0);
+  EXPECT_EQ(p.command.packet_loss + p.command.robot_loss, 0);
+  EXPECT_EQ(p.command_timeout, 1.0);
+}
+
 TEST(RadioProfile, EveryKeyIsRead) {
   const auto p = radio_test::profile(50, 0.02, 0.001, 0.1, 0.05);
   EXPECT_EQ(p.max_packet_rate, 50);

@@ -131,7 +131,7 @@ TEST(VisionProfile, ShippedModernHasFourUnsynchronisedCameras) {
 TEST(VisionProfile, EveryShippedKeyStatesItsUnit) {
   // A key line must end in a comment ("# m", "# unitless ..."): the unit is documentation.
   const std::regex key_line(R"(^\s*([A-Z][A-Z0-9_]*)\s*=([^#]*)(#.*)?$)");
-  for (const char* name : {"cmdragons02", "modern"}) {
+  for (const char* name : {"cmdragons02", "modern", "grsim", "grsim_div_b"}) {
     std::ifstream in(kConfigDir + "/vision/" + name + ".cfg");
     ASSERT_TRUE(in) << name;
     std::string line;

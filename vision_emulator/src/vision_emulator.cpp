@@ -194,6 +194,16 @@ void VisionEmulator::check_step_fits(const sim_state_t& state) {
   }
 }
 
+// Missed instants skip numbers, as they do for a camera counting alone.
+void VisionEmulator::share_frame_number(std::vector<DueCapture>& due) {
+  if (due.empty()) return;
+  std::int64_t missed = 0;
+  for (const DueCapture& item : due) missed = std::max(missed, item.capture.missed_instants);
+  const std::int64_t number = next_shared_frame_number_ + missed;
+  for (DueCapture& item : due) item.capture.frame_number = number;
+  next_shared_frame_number_ = number + 1;
+}
+
 VisionEmulator::Output VisionEmulator::on_sim_state(const sim_state_t& state) {
   Output outcome;
   outcome.problem = find_sim_state_problem(state);
@@ -222,18 +232,20 @@ VisionEmulator::Output VisionEmulator::on_sim_state(const sim_state_t& state) {
   ++stats_.states_used;
   check_step_fits(state);
 
-  bool have_snapshot = false;
+  std::vector<DueCapture> due;
   for (Camera& camera : cameras_) {
-    const auto capture = camera.schedule.on_state(state.sim_time);
-    if (!capture) continue;
-    if (!have_snapshot) {
-      snapshot(state);
-      have_snapshot = true;
+    if (const auto capture = camera.schedule.on_state(state.sim_time)) {
+      due.push_back(DueCapture{&camera, *capture});
     }
-    stats_.capture_instants_missed += static_cast<std::uint64_t>(capture->missed_instants);
+  }
+  if (!due.empty()) snapshot(state);
+  if (profile_.shared_frame_numbers) share_frame_number(due);
+  for (const DueCapture& item : due) {
+    Camera& camera = *item.camera;
+    stats_.capture_instants_missed += static_cast<std::uint64_t>(item.capture.missed_instants);
     ++stats_.frames_captured;
     camera.pending.push(release_time(camera, state.sim_time),
-                        camera.detector.capture(world_, capture->frame_number));
+                        camera.detector.capture(world_, item.capture.frame_number));
   }
 
   // Everything due is published at this step, camera by camera in id order

@@ -157,6 +157,12 @@ VisionProfile load_vision_profile(const ConfigFile& config, const std::string& n
       camera_real_in(config, "OBJECT_POSITION_OFFSET", 0.0, 0.0, kMaxCameraOffset);
   p.ball_area_sigma = camera_real_in(config, "BALL_AREA_SIGMA", 0.0, 0.0, kMaxBallAreaSigma);
 
+  const std::string numbering = config.string("FRAME_NUMBERS", "per_camera");
+  if (numbering != "per_camera" && numbering != "shared") {
+    config.fail("FRAME_NUMBERS", "expected per_camera or shared, got '" + numbering + "'");
+  }
+  p.shared_frame_numbers = numbering == "shared";
+
   const std::int64_t count = config.integer_in("CAMERA_COUNT", 1, 64);
   for (int index = 0; index < count; ++index) {
     p.cameras.push_back(load_camera(config, index, p, frame_rate));

@@ -15,6 +15,7 @@
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/ssl_bridge/latest_state.hpp"
+#include "ubersim/ssl_bridge/multicast_out.hpp"
 #include "ubersim/ssl_bridge/official_referee.hpp"
 #include "ubersim/ssl_bridge/referee_translation.hpp"
 #include "ubersim/ssl_bridge/robot_control_translation.hpp"
@@ -29,11 +30,16 @@
 namespace ubersim::ssl {
 
 struct BridgeOptions {
+  // Where the multicast streams go (multicast_out.hpp): each on the interfaces
+  // listed (addresses, or "default": where the kernel routes the group) with
+  // its TTL. local_only: every stream on lo (127.0.0.1) with TTL 0, whatever
+  // the interface and TTL settings say.
+  bool local_only = false;
   std::string vision_address = "224.5.23.2";  // multicast group (or a unicast address)
   int vision_port = 10020;
-  int vision_ttl = 0;                          // 0: never leaves the host
-  std::string vision_interface = "127.0.0.1";  // address of the interface it is sent on
-  std::string listen_address = "127.0.0.1";    // control and robot control sockets
+  int vision_ttl = 1;  // grSim's and ssl-vision's; 0: never leaves the host
+  std::string vision_interface = "default,127.0.0.1";
+  std::string listen_address = "127.0.0.1";  // control and robot control sockets
   int control_port = 10300;
   int blue_port = 10301;
   int yellow_port = 10302;
@@ -45,8 +51,9 @@ struct BridgeOptions {
   bool tracked = false;
   std::string tracked_address = "224.5.23.2";
   int tracked_port = 10010;
-  int tracked_ttl = 0;
-  double tracked_rate = 60;  // Hz of sim time
+  int tracked_ttl = 1;
+  std::string tracked_interface;  // empty: vision_interface
+  double tracked_rate = 60;       // Hz of sim time
   // Referee messages (from REFEREE, the automatic referee), where the SSL game
   // controller sends them. With official_referee the direction turns: the
   // official game controller's messages there go to REFEREE, and nothing of
@@ -54,7 +61,8 @@ struct BridgeOptions {
   // ubersim's messages (one referee per group), with an error in the log.
   std::string referee_address = "224.5.23.1";
   int referee_port = 10003;
-  int referee_ttl = 0;
+  int referee_ttl = 1;
+  std::string referee_interface;  // empty: vision_interface; also where the bridge listens
   bool official_referee = false;
   // What robot specs start from (the --robot-type file); unset: specs are refused.
   std::optional<BaseRobotType> base_robot_type;
@@ -64,6 +72,11 @@ struct BridgeOptions {
   bool sync = false;
   double sync_timeout = 1.0;  // s of wall time a team may take to answer a frame
 };
+
+// The settings of the vision, tracked frames and referee streams.
+StreamSettings vision_stream(const BridgeOptions& options);
+StreamSettings tracked_stream(const BridgeOptions& options);
+StreamSettings referee_stream(const BridgeOptions& options);
 
 // Driven by the program's process host (main.cpp): the host's loop reads the
 // bus and the bridge's sockets (watched on the bus), tick() runs after every
@@ -103,6 +116,9 @@ class SslBridge {
   void handle_control_datagram(const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void handle_robot_datagram(Team team, const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void send_vision(const SSL_WrapperPacket& packet);
+  // Where each multicast stream goes (start()): the first place to look when
+  // a team's program hears nothing.
+  void log_destinations() const;
   // Sync mode: registration and goodbye on SYNC_CLIENT (sync_clients_), and
   // the team's frame bookkeeping; sync_datagram() says what a robot control
   // datagram answers (nullopt: it answers no frame and goes nowhere).
@@ -118,8 +134,7 @@ class SslBridge {
   MessageBus& bus_;
   ChannelNames channels_;
   BridgeOptions options_;
-  sockaddr_in vision_destination_{};
-  UdpSocket vision_socket_;
+  MulticastStream vision_out_;
   UdpSocket control_socket_;
   UdpSocket blue_socket_;
   UdpSocket yellow_socket_;
@@ -127,16 +142,14 @@ class SslBridge {
   std::map<Team, radio_feedback_t> feedback_;
   std::map<std::string, double> type_radius_;      // m, robot type name -> radius
   std::optional<field_geometry_t> current_field_;  // from the latest VISION_GEOMETRY
-  UdpSocket referee_socket_;
-  sockaddr_in referee_destination_{};
+  MulticastStream referee_out_;
   std::string referee_source_;  // our source_identifier, to tell our packets from others'
   RefereeTranslator referee_translator_;
   std::optional<UdpSocket> referee_listener_;
   OfficialRefereeTracker official_referee_;
   bool foreign_referee_heard_ = false;
   std::optional<TrackedFrames> tracked_;
-  std::optional<UdpSocket> tracked_socket_;
-  sockaddr_in tracked_destination_{};
+  std::optional<MulticastStream> tracked_out_;
   std::map<int64_t, std::shared_ptr<PendingResponse>> pending_by_request_;
   int64_t next_request_id_ = 1;
   std::array<int64_t, 2> radio_sequence_{};  // per team: each RADIO_<TEAM> on its own

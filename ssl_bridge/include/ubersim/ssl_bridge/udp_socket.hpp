@@ -18,10 +18,13 @@ class UdpSocket {
   // For sending to a multicast group: TTL, loopback delivery, and the
   // interface (by its address) the datagrams leave on.
   static UdpSocket multicast_sender(int ttl, const std::string& interface_ip);
-  // For receiving what is sent to a multicast group and port, on the interface
-  // with that address. Shared (SO_REUSEADDR): the teams' programs listen there too.
+  // For receiving what is sent to a multicast group and port, joined on the
+  // interfaces with these addresses. Shared (SO_REUSEADDR): the teams'
+  // programs listen there too. A join that fails is named in failed_joins;
+  // throws when none succeeds.
   static UdpSocket multicast_receiver(const std::string& group, int port,
-                                      const std::string& interface_ip);
+                                      const std::vector<std::string>& interface_ips,
+                                      std::vector<std::string>& failed_joins);
 
   UdpSocket(UdpSocket&& other) noexcept;
   UdpSocket& operator=(UdpSocket&& other) noexcept;

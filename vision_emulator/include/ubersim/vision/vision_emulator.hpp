@@ -141,6 +141,12 @@ class VisionEmulator {
   void update_regions();
   Camera make_camera(const CameraProfile& c) const;
   void check_step_fits(const sim_state_t& state);
+  struct DueCapture {
+    Camera* camera;
+    CaptureSchedule::Capture capture;
+  };
+  // FRAME_NUMBERS = shared: one number for the captures of one step.
+  void share_frame_number(std::vector<DueCapture>& due);
 
   VisionProfile profile_;
   RobotSizes robot_sizes_;
@@ -150,6 +156,7 @@ class VisionEmulator {
   double ball_radius_;
   WorldSnapshot world_;
   bool step_checked_ = false;
+  std::int64_t next_shared_frame_number_ = 0;
   VisionStats stats_;
 };
 

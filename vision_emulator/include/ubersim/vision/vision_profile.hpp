@@ -92,6 +92,12 @@ struct VisionProfile {
   double object_position_offset = 0;  // m
   double ball_area_sigma = 0;         // px^2, Gaussian noise on a ball's reported area
 
+  // FRAME_NUMBERS = shared: the frames the cameras capture at one simulation
+  // step carry one frame number (a counter of such steps), as grSim numbers
+  // its cameras' frames; per_camera (the default): each camera counts its own
+  // frames, as SSL-Vision does.
+  bool shared_frame_numbers = false;
+
   std::vector<CameraProfile> cameras;
 };
 
