@@ -37,6 +37,12 @@ std::string config_dir_or_default(const std::optional<std::string>& given) {
   return default_config_dir().string();
 }
 
+// NumPy's bool_ (older NumPy gives it an __index__): a truth value, not a team.
+bool is_numpy_bool(const py::handle& value) {
+  return py::hasattr(value, "dtype") &&
+         py::str(value.attr("dtype").attr("kind")).cast<std::string>() == "b";
+}
+
 // The one reading of a team in the module: exactly "yellow", "blue", 0 or 1
 // (a Python or NumPy integer). Anything else (e.g. "Blue", "y", 1.0, True) is
 // a ValueError, never a guess.
@@ -46,7 +52,7 @@ Team team_from(const py::handle& value) {
     if (text == "yellow") return Team::Yellow;
     if (text == "blue") return Team::Blue;
   } else if (!py::isinstance<py::bool_>(value) && !py::isinstance<py::float_>(value) &&
-             PyIndex_Check(value.ptr()) != 0) {
+             !is_numpy_bool(value) && PyIndex_Check(value.ptr()) != 0) {
     const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
     if (!index) {
       PyErr_Clear();  // e.g. NumPy's bool_: not a team either
@@ -564,7 +570,7 @@ PYBIND11_MODULE(_ubersim, m) {
   m.def("default_config_dir", [] { return config_dir_or_default(std::nullopt); });
   m.def(
       "_team_code", [](const py::handle& team) { return static_cast<int>(team_from(team)); },
-      "team"_a, "0 for 'yellow' or 0, 1 for 'blue' or 1; anything else raises ValueError.");
+      py::arg("team"), "0 for 'yellow' or 0, 1 for 'blue' or 1; anything else raises ValueError.");
   m.def("_ode_random_is_per_thread", &ode_random_is_per_thread);
   bind_sim(m);
   bind_vector_sim(m);
