@@ -191,7 +191,7 @@ struct Consumers {
     if (out.referee) {
       check(*out.referee);
       // The bridge forwards what the referee publishes.
-      check(referee_packets.translate(*out.referee, 1'700'000'000'000'000));
+      check(referee_packets.translate(*out.referee));
     }
     if (out.placement) check(*out.placement);
     if (to_viewer) viewer.on_sim_state(state, tick());
@@ -283,7 +283,7 @@ void run(const ubersim::fuzz::ChannelInput<ConsumerChannel>& input) {
     case ConsumerChannel::Count: {
       ubersim::referee_t referee;
       if (decode(referee)) {
-        check(c.referee_packets.translate(referee, 1'700'000'000'000'000));
+        check(c.referee_packets.translate(referee));
       }
       break;
     }

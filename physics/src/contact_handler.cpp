@@ -78,6 +78,29 @@ bool tangent_direction(const double* v, const double* normal, double minimum, do
   return true;
 }
 
+// 1/s: a standing wheel's contact moves back towards its anchor at this rate
+// times its distance from it (a 50 ms time constant).
+constexpr double kGripGain = 20.0;
+
+// A standing wheel's static grip: the contact's two friction rows ask for the
+// velocity that takes the wheel centre back to its anchor, as a tyre's
+// deflection under static friction does, instead of for none. Without it
+// the tangential error QuickStep's few iterations leave every step is never
+// taken back, and a robot told to stand creeps (0.6 mm/s and 0.2 deg/s for
+// omni4_ssl). The rows keep their force bounds (the wheel's friction), so a
+// robot pushed harder still slides. The contact's body 1 is the wheel.
+void hold_grip(const WheelGrip& grip, const dReal* centre, dContact& c) {
+  const double* n = c.geom.normal;
+  const double* t1 = c.fdir1;
+  const double t2[3] = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
+                        n[0] * t1[1] - n[1] * t1[0]};  // ODE's second direction: n x t1
+  const double off[3] = {centre[0] - grip.anchor[0], centre[1] - grip.anchor[1],
+                         centre[2] - grip.anchor[2]};
+  c.surface.mode |= dContactMotion1 | dContactMotion2;
+  c.surface.motion1 = -kGripGain * (off[0] * t1[0] + off[1] * t1[1] + off[2] * t1[2]);
+  c.surface.motion2 = -kGripGain * (off[0] * t2[0] + off[1] * t2[1] + off[2] * t2[2]);
+}
+
 }  // namespace
 
 void ContactHandler::touch_support(dGeomID support, dGeomID ground) {
@@ -183,6 +206,9 @@ void ContactHandler::surface_for(dGeomID a, dGeomID b, const GeomTag& ta, const 
     s.mode |= dContactSoftERP | dContactSoftCFM;
     s.soft_erp = spring_per_step / denominator;
     s.soft_cfm = 1.0 / denominator;
+    if (w.grip != nullptr && w.grip->active) {
+      hold_grip(*w.grip, dGeomGetPosition(ta.kind == GeomKind::Wheel ? a : b), c);
+    }
   } else if (is(GeomKind::Ground, GeomKind::Chassis)) {
     s.mode = dContactApprox1;
     s.mu = physics_.chassis_ground_friction;

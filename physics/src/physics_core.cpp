@@ -296,7 +296,8 @@ const PhysicsCore::Output& PhysicsCore::on_control(const sim_control_t& request,
       // The status reply: what this process dropped, per kind and channel.
       acknowledge(request, true,
                   "pong; malformed messages dropped: " + dropped_input +
-                      "; other warnings (rejected contents, pacing): " + log_.counts());
+                      "; other warnings (rejected contents, pacing): " + log_.counts() + "; " +
+                      command_summary(world_.counters()));
       return out_;
     case sim_control_t::DEFINE_ROBOT_TYPE:
       on_define_robot_type(request);

@@ -146,6 +146,7 @@ void PhysicsServer::log_stop(Clock::time_point start) {
                  stats_.sync_run_seconds);
   }
   log_waits();
+  spdlog::info("{}", command_summary(world.counters()));
   if (stepping_clock_.seconds() > 0) {
     spdlog::info("stepping took {:.3f} s of CPU ({:.2f} % of one core over the run)",
                  stepping_clock_.seconds(), 100 * stepping_clock_.seconds() / stats_.wall_seconds);

@@ -196,6 +196,15 @@ void World::command(Team team, int id, const robot_command_t& command, double ti
   apply_command(team, id, command, std::isfinite(timeout) ? std::max(0.0, timeout) : 0.0);
 }
 
+std::string command_summary(const WorldCounters& c) {
+  return "commands: " + std::to_string(c.commands_applied) + " applied, " +
+         c.commands_clamped.text() + " of them at a robot type's limit, " +
+         std::to_string(c.commands_dropped) +
+         " dropped (not finite, unknown mode, wrong wheel count), " +
+         std::to_string(c.commands_unknown_robot) + " for robots not on the field, " +
+         std::to_string(c.packets_dropped) + " packets dropped (bad team or time)";
+}
+
 void World::apply_command(Team team, int id, const robot_command_t& raw, double timeout) {
   Robot* r = robot(team, id);
   if (r == nullptr) {
@@ -212,7 +221,7 @@ void World::apply_command(Team team, int id, const robot_command_t& raw, double 
     return;
   }
   if (check.clamped) {
-    ++counters_.commands_clamped;
+    counters_.commands_clamped.add(check);
     log_.warn("robot:" + robot_name(team, id),
               "command for " + robot_name(team, id) + ": " + check.problem);
   }

@@ -37,12 +37,29 @@ std::string config_dir_or_default(const std::optional<std::string>& given) {
   return default_config_dir().string();
 }
 
+// NumPy's bool_ (older NumPy gives it an __index__): a truth value, not a team.
+bool is_numpy_bool(const py::handle& value) {
+  return py::hasattr(value, "dtype") &&
+         py::str(value.attr("dtype").attr("kind")).cast<std::string>() == "b";
+}
+
+// The one reading of a team in the module: exactly "yellow", "blue", 0 or 1
+// (a Python or NumPy integer). Anything else (e.g. "Blue", "y", 1.0, True) is
+// a ValueError, never a guess.
 Team team_from(const py::handle& value) {
-  Team team = Team::Yellow;
-  if (py::isinstance<py::str>(value) && parse_team(value.cast<std::string>(), team)) return team;
-  if (py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value)) {
-    const long code = value.cast<long>();
-    if (code == 0 || code == 1) return static_cast<Team>(code);
+  if (py::isinstance<py::str>(value)) {
+    const auto text = value.cast<std::string>();
+    if (text == "yellow") return Team::Yellow;
+    if (text == "blue") return Team::Blue;
+  } else if (!py::isinstance<py::bool_>(value) && !py::isinstance<py::float_>(value) &&
+             !is_numpy_bool(value) && PyIndex_Check(value.ptr()) != 0) {
+    const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+    if (!index) {
+      PyErr_Clear();  // e.g. NumPy's bool_: not a team either
+    } else {
+      const long code = index.cast<long>();
+      if (code == 0 || code == 1) return static_cast<Team>(code);
+    }
   }
   throw py::value_error("team must be 'yellow', 'blue', 0 or 1, got " +
                         py::repr(value).cast<std::string>());
@@ -117,10 +134,10 @@ void put_robots(sim_control_t& request, const py::handle& robots, const std::str
     const double* r = rows.data() + i * 5;
     for (int k = 0; k < 5; ++k) finite(r[k], "every robots value");
     robot_placement_t p{};
-    p.team = static_cast<std::int8_t>(team_from(py::int_(static_cast<long>(r[0]))));
     if (r[0] != std::floor(r[0]) || r[1] != std::floor(r[1])) {
       throw py::value_error("robots row " + std::to_string(i) + ": team and id must be whole");
     }
+    p.team = static_cast<std::int8_t>(team_from(py::int_(static_cast<long>(r[0]))));
     p.robot_id = static_cast<std::int32_t>(r[1]);
     p.robot_type = type;
     p.present = true;
@@ -170,7 +187,7 @@ py::dict counters_dict(const InProcessSim& sim) {
   const physics::WorldCounters& w = sim.world().counters();
   d["commands_applied"] = w.commands_applied;
   d["commands_dropped"] = w.commands_dropped;
-  d["commands_clamped"] = w.commands_clamped;
+  d["commands_clamped"] = w.commands_clamped.commands;
   d["bodies_reset"] = w.bodies_reset;
   d["robots_set_upright"] = w.robots_set_upright;
   d["kicks"] = w.kicks;
@@ -551,6 +568,9 @@ PYBIND11_MODULE(_ubersim, m) {
   m.attr("FEEDBACK_COLUMNS") = column_names(kFeedbackColumns);
   m.def("_set_package_config_dir", [](const std::string& dir) { g_package_config_dir = dir; });
   m.def("default_config_dir", [] { return config_dir_or_default(std::nullopt); });
+  m.def(
+      "_team_code", [](const py::handle& team) { return static_cast<int>(team_from(team)); },
+      py::arg("team"), "0 for 'yellow' or 0, 1 for 'blue' or 1; anything else raises ValueError.");
   m.def("_ode_random_is_per_thread", &ode_random_is_per_thread);
   bind_sim(m);
   bind_vector_sim(m);

@@ -125,3 +125,25 @@ print("survived", errors)
                             timeout=120)
     assert result.returncode == 0, result.stderr
     assert result.stdout.startswith("survived"), result.stdout
+
+
+@pytest.mark.parametrize("team", ["Blue", "YELLOW", "y", "b", "0", "1", "", 2, -1, 1.0, 0.0,
+                                  True, False, None, np.bool_(True), np.float64(1.0)])
+def test_a_team_is_exactly_yellow_blue_0_or_1(sim, team):
+    """Anything but "yellow", "blue", 0 or 1 raises wherever a team is taken."""
+    with pytest.raises(ValueError, match="team must be 'yellow', 'blue', 0 or 1"):
+        ubersim.command(team, 0, vx=1.0)
+    with pytest.raises(ValueError, match="team must be 'yellow', 'blue', 0 or 1"):
+        sim.place_robot(team, 0, 0.5, 0.5)
+    with pytest.raises(ValueError, match="team must be 'yellow', 'blue', 0 or 1"):
+        sim.remove_robot(team, 0)
+    if team is not None:  # a situation's team may be None: the default kicker
+        with pytest.raises(ValueError, match="team must be 'yellow', 'blue', 0 or 1"):
+            sim.kickoff(team)
+
+
+@pytest.mark.parametrize("team, code", [("yellow", 0), ("blue", 1), (0, 0), (1, 1),
+                                        (np.int64(1), 1), (ubersim.BLUE, 1)])
+def test_the_four_teams_name_the_team_they_say(team, code):
+    assert ubersim.command(team, 3)[0] == code
+    assert ubersim._ubersim._team_code(team) == code

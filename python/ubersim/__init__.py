@@ -63,7 +63,7 @@ def command(team, robot_id, vx=0.0, vy=0.0, omega=0.0, kick_speed=0.0, chip_spee
     import numpy
 
     row = numpy.zeros(len(COMMAND_COLUMNS))
-    row[0] = team if isinstance(team, (int, float)) else (BLUE if team == "blue" else YELLOW)
+    row[0] = _ubersim._team_code(team)  # "yellow", "blue", 0 or 1; anything else raises
     row[1] = robot_id
     row[2] = mode if mode is not None else (MODE_WHEEL_SPEEDS if wheels is not None else
                                             MODE_LOCAL_VELOCITY)

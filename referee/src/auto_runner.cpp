@@ -97,10 +97,12 @@ class Runner {
       if (ack.request_id >= kRequestBase && !ack.ok)
         spdlog::warn("physics refused a placement: {}", ack.message);
     });
-    spdlog::info("automatic referee: field {}, game {} s in {} half(s), publishing on {}{}",
-                 field_.name, options_.game.game_length, options_.game.halves,
-                 channel_name(channels, topics::kReferee),
-                 options_.sync ? " after every state (sync)" : "");
+    spdlog::info(
+        "automatic referee: field {}, game {} s in {} half(s), yellow '{}' against blue "
+        "'{}', publishing on {}{}",
+        field_.name, options_.game.game_length, options_.game.halves, options_.game.yellow_name,
+        options_.game.blue_name, channel_name(channels, topics::kReferee),
+        options_.sync ? " after every state (sync)" : "");
   }
 
   void write(const std::string& line) {

@@ -1,10 +1,21 @@
 #include "ubersim/referee/autoref_config.hpp"
 
 #include <cstdint>
+#include <string>
 
 #include "ubersim/config_paths.hpp"
 
 namespace ubersim::referee {
+
+std::string team_name_problem(const std::string& name) {
+  constexpr std::size_t kMaxLength = 64;  // bytes; a team's name, not a message
+  if (name.empty() || name.size() > kMaxLength) return "expected a name of 1..64 bytes";
+  for (const char c : name) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) return "expected a name without control characters";
+  }
+  return {};
+}
 
 GameConfig load_game_config(const ConfigFile& file) {
   constexpr double kDay = 86400.0;          // s: a longer game is a unit mistake
@@ -26,6 +37,14 @@ GameConfig load_game_config(const ConfigFile& file) {
   c.keeper_blue = static_cast<int>(file.integer_in("KEEPER_BLUE", 0, kMaxRobotId));
   if (!parse_team(file.string("FIRST_KICKOFF"), c.first_kickoff))
     file.fail("FIRST_KICKOFF", "expected yellow or blue");
+  c.yellow_name = file.string("YELLOW_NAME", c.yellow_name);
+  c.blue_name = file.string("BLUE_NAME", c.blue_name);
+  for (const char* key : {"YELLOW_NAME", "BLUE_NAME"}) {
+    if (!file.has(key)) continue;
+    if (const std::string problem = team_name_problem(file.string(key)); !problem.empty()) {
+      file.fail(key, problem + " (quote a name with spaces: \"TIGERs Mannheim\")");
+    }
+  }
   file.require_all_used();
   return c;
 }

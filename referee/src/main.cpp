@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/angles.hpp"
@@ -46,6 +47,7 @@ struct Options {
   // auto
   std::string game = "division_b";
   double game_length = 0;
+  std::optional<std::string> yellow_name, blue_name;  // override YELLOW_NAME / BLUE_NAME
   std::string events_file;
   bool keep_running = false;
   bool start_physics = false;
@@ -59,6 +61,8 @@ int run_auto(const Options& o) {
   a.common = o.common;
   a.game = load_game_config(o.common.config_root(), o.game);
   if (o.game_length > 0) a.game.game_length = o.game_length;
+  if (o.yellow_name) a.game.yellow_name = *o.yellow_name;
+  if (o.blue_name) a.game.blue_name = *o.blue_name;
   a.sides.yellow_defends = o.yellow_defends == "positive" ? 1 : -1;
   a.events_file = o.events_file;
   a.timeout_s = o.timeout_s;
@@ -441,6 +445,16 @@ void add_auto_command(CLI::App& app, Options& o) {
       ->capture_default_str();
   automatic->add_option("--game-length", o.game_length, "s of sim time (overrides GAME_LENGTH)")
       ->check(ubersim::greater_than(0));
+  const CLI::Validator team_name(
+      [](const std::string& name) { return ubersim::referee::team_name_problem(name); }, "NAME");
+  automatic
+      ->add_option("--yellow-name", o.yellow_name,
+                   "the yellow team's name on REFEREE (overrides YELLOW_NAME; default Yellow)")
+      ->check(team_name);
+  automatic
+      ->add_option("--blue-name", o.blue_name,
+                   "the blue team's name on REFEREE (overrides BLUE_NAME; default Blue)")
+      ->check(team_name);
   automatic->add_option("--events", o.events_file, "write the event log (JSON lines) here");
   automatic->add_flag("--keep-running", o.keep_running, "do not exit when the game is over");
   automatic->add_flag("--start", o.start_physics,

@@ -70,6 +70,8 @@ referee_t to_message(const RefereeState& state, const GameConfig& config, FieldS
   m.blue_fouls = state.blue.fouls;
   m.yellow_goalkeeper = config.keeper_yellow;
   m.blue_goalkeeper = config.keeper_blue;
+  m.yellow_name = config.yellow_name;
+  m.blue_name = config.blue_name;
   m.game_over = state.game_over;
   for (const auto& e : state.events) m.events.push_back(to_message(e));
   m.num_events = static_cast<int32_t>(m.events.size());

@@ -201,12 +201,8 @@ void SslBridge::on_referee(const referee_t& referee) {
     ++counters_["referee packets held back (another game controller sends)"];
     return;
   }
-  const auto now_us = std::chrono::duration_cast<std::chrono::microseconds>(
-                          std::chrono::system_clock::now().time_since_epoch())
-                          .count();
   std::string bytes;
-  referee_translator_.translate(referee, static_cast<std::uint64_t>(now_us))
-      .SerializeToString(&bytes);
+  referee_translator_.translate(referee).SerializeToString(&bytes);
   if (referee_out_.send(bytes)) {
     ++counters_["referee packets sent"];
   } else {

@@ -43,8 +43,9 @@ bool restart_waits_for_kick(int command) {
          command == referee_t::DIRECT_FREE_BLUE;
 }
 
-void fill_team_info(const Referee::TeamInfo& info, int32_t& score, int32_t& fouls,
-                    int32_t& goalkeeper) {
+void fill_team_info(const Referee::TeamInfo& info, std::string& name, int32_t& score,
+                    int32_t& fouls, int32_t& goalkeeper) {
+  name = info.name();
   score = static_cast<int32_t>(info.score());
   fouls = static_cast<int32_t>(info.foul_counter());
   goalkeeper = static_cast<int32_t>(info.goalkeeper());
@@ -123,8 +124,9 @@ referee_t OfficialRefereeTracker::translate(const Referee& in, const sim_state_t
     out.designated_position[1] = place.y() / kMillimetres;
   }
   out.blue_on_positive_half = in.blue_team_on_positive_half();
-  fill_team_info(in.yellow(), out.yellow_score, out.yellow_fouls, out.yellow_goalkeeper);
-  fill_team_info(in.blue(), out.blue_score, out.blue_fouls, out.blue_goalkeeper);
+  fill_team_info(in.yellow(), out.yellow_name, out.yellow_score, out.yellow_fouls,
+                 out.yellow_goalkeeper);
+  fill_team_info(in.blue(), out.blue_name, out.blue_score, out.blue_fouls, out.blue_goalkeeper);
   out.game_over = in.stage() == Referee::POST_GAME;
   for (const GameEvent& event : in.game_events()) {
     out.events.push_back(from_ssl_game_event(event, now));

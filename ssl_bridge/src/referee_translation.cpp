@@ -11,7 +11,11 @@ constexpr double kMicroseconds = 1e6;
 constexpr std::uint32_t kTimeouts = 4;
 constexpr std::uint32_t kTimeoutTime = 300'000'000;  // µs
 
+constexpr double kLatestTime = 1e9;  // s: beyond is no sim time (a hostile bus)
+
+// A duration (may be negative: a stage in overtime); what is not finite or beyond 1e9 s is 0.
 std::int64_t micros(double seconds) {
+  if (!std::isfinite(seconds) || std::abs(seconds) > kLatestTime) return 0;
   return std::llround(seconds * kMicroseconds);
 }
 
@@ -19,9 +23,9 @@ std::int64_t micros(double seconds) {
   return team == team_t::BLUE ? ::BLUE : ::YELLOW;
 }
 
-void fill_team(Referee::TeamInfo& info, std::int32_t score, std::int32_t fouls,
-               std::int32_t goalkeeper) {
-  info.set_name("");
+void fill_team(Referee::TeamInfo& info, const std::string& name, std::int32_t score,
+               std::int32_t fouls, std::int32_t goalkeeper) {
+  info.set_name(name);
   info.set_score(static_cast<std::uint32_t>(std::max(0, score)));
   info.set_red_cards(0);
   info.set_yellow_cards(0);
@@ -41,11 +45,16 @@ void locate(Payload* payload, const referee_event_t& e) {
 
 }  // namespace
 
-GameEvent to_ssl_game_event(const referee_event_t& e, std::uint64_t now_us) {
+std::uint64_t sim_time_us(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0 || seconds > kLatestTime) return 0;
+  return static_cast<std::uint64_t>(std::llround(seconds * kMicroseconds));
+}
+
+GameEvent to_ssl_game_event(const referee_event_t& e) {
   GameEvent g;
   g.set_type(static_cast<GameEvent::Type>(e.type));
   g.add_origin("ubersim_referee auto");
-  g.set_created_timestamp(now_us);
+  g.set_created_timestamp(sim_time_us(e.sim_time));
   const ::Team team = ssl_team(e.team);
   switch (e.type) {
     case referee_event_t::GOAL: {
@@ -110,27 +119,24 @@ GameEvent to_ssl_game_event(const referee_event_t& e, std::uint64_t now_us) {
   return g;
 }
 
-Referee RefereeTranslator::translate(const referee_t& r, std::uint64_t now_us) {
-  if (r.command_counter != last_counter_) {
-    last_counter_ = r.command_counter;
-    command_timestamp_us_ = now_us;
-  }
+Referee RefereeTranslator::translate(const referee_t& r) const {
   Referee m;
   m.set_source_identifier(source_identifier_);
   m.set_match_type(FRIENDLY);
-  m.set_packet_timestamp(now_us);
+  m.set_packet_timestamp(sim_time_us(r.sim_time));
   m.set_stage(static_cast<Referee::Stage>(r.stage));
   m.set_stage_time_left(micros(r.stage_time_left));
   m.set_command(static_cast<Referee::Command>(r.command));
   m.set_command_counter(static_cast<std::uint32_t>(r.command_counter));
-  m.set_command_timestamp(command_timestamp_us_);
-  fill_team(*m.mutable_yellow(), r.yellow_score, r.yellow_fouls, r.yellow_goalkeeper);
-  fill_team(*m.mutable_blue(), r.blue_score, r.blue_fouls, r.blue_goalkeeper);
+  m.set_command_timestamp(sim_time_us(r.command_time));
+  fill_team(*m.mutable_yellow(), r.yellow_name, r.yellow_score, r.yellow_fouls,
+            r.yellow_goalkeeper);
+  fill_team(*m.mutable_blue(), r.blue_name, r.blue_score, r.blue_fouls, r.blue_goalkeeper);
   // The protocol has a designated position only with a BALL_PLACEMENT_*
   // command, which this referee never gives (it places the ball itself).
   m.set_blue_team_on_positive_half(r.blue_on_positive_half);
   if (r.has_next_command) m.set_next_command(static_cast<Referee::Command>(r.next_command));
-  for (const auto& e : r.events) *m.add_game_events() = to_ssl_game_event(e, now_us);
+  for (const auto& e : r.events) *m.add_game_events() = to_ssl_game_event(e);
   if (r.action_time_left > 0) m.set_current_action_time_remaining(micros(r.action_time_left));
   if (!r.events.empty()) m.set_status_message(r.events.back().description);
   return m;

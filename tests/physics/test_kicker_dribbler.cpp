@@ -61,7 +61,8 @@ TEST_P(KickerDribbler, OverLimitKickIsClampedToTheRobotsMaximum) {
   run_for(world, 3 * world.dt());
   const double max = robot_->type().kick_max_speed;
   EXPECT_NEAR(world.ball().velocity()[0], max, 0.05 * max);
-  EXPECT_EQ(world.counters().commands_clamped, 1u);
+  EXPECT_EQ(world.counters().commands_clamped.commands, 1u);
+  EXPECT_EQ(world.counters().commands_clamped.text(), "1 (kick speed 1)");  // summary and ping
 }
 
 TEST_P(KickerDribbler, ChipLandsAtTheBallisticDistance) {

@@ -85,6 +85,32 @@ TEST(PhysicsCore, HoldsAtTheStateTheRefereeEndedTheGameAt) {
   EXPECT_FALSE(core.below_referee_horizon()) << "a step past the game's end";
 }
 
+// A command beyond a robot type's limits is applied at the limit and counted where the user looks:
+// the PING answer (`ubersim_referee ping`) and the summary at stop name how many, and which limit.
+TEST(PhysicsCore, PingCountsTheCommandsAppliedAtARobotTypesLimit) {
+  CoreOptions options;
+  options.sync = true;
+  PhysicsCore core(load_world_setup(kConfigDir, "division_b_6v6", "default"), options);
+  robot_command_t kick = velocity_command(3, 0, 0, 0);
+  kick.kick_speed = 10.0;  // omni4_ssl kicks at most 6.5 m/s
+  sim_commands_t packet{};
+  packet.team = 1;
+  packet.t_apply = 0;
+  packet.commands = {kick, velocity_command(2, 9.0, 0, 0)};  // at most 3.5 m/s
+  packet.num_commands = 2;
+  core.on_commands(packet);
+  core.step();
+  sim_control_t ping{};
+  ping.action = sim_control_t::PING;
+  const auto& out = core.on_control(ping, "none");
+  ASSERT_TRUE(out.ack.has_value());
+  EXPECT_NE(out.ack->message.find("commands: 2 applied, 2 (speed 1, kick speed 1) of them at a "
+                                  "robot type's limit"),
+            std::string::npos)
+      << out.ack->message;
+  EXPECT_EQ(command_summary(core.world().counters()).rfind("commands: 2 applied", 0), 0u);
+}
+
 TEST(PhysicsServer, WaitForVisionHoldsTheFirstStateUntilTheVisionListens) {
   WorldSetup setup = load_world_setup(kConfigDir, "field2002_5v5", "default");
   ProcessHost host("memq://", ChannelNames(), "physics");

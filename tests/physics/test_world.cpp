@@ -137,7 +137,11 @@ TEST_P(WorldTest, BadCommandsLeaveTheWorldFinite) {
   run_for(world, 0.5);
   world.command(Team::Yellow, 0, huge_wheels);
   run_for(world, 0.5);
-  EXPECT_EQ(world.counters().commands_clamped, 2u);
+  const ClampCounts& clamped = world.counters().commands_clamped;
+  EXPECT_EQ(clamped.commands, 2u);
+  EXPECT_EQ(clamped.text(),
+            "2 (speed 1, angular speed 1, wheel speed 1, kick speed 1, chip speed 1, chip angle 1, "
+            "dribbler speed 1)");
   // Unknown robots: reported, not fatal.
   world.command(Team::Blue, 0, velocity_command(0, 1, 0, 0));
   world.command(Team::Yellow, 9, velocity_command(9, 1, 0, 0));

@@ -580,6 +580,34 @@ TEST(AutoRefereeConfig, IntegerOutOfRangeNamesFileLineAndRange) {
   EXPECT_NE(error.find("HALVES"), std::string::npos) << error;
 }
 
+TEST(AutoRefereeConfig, TeamNamesComeFromTheConfigWithYellowAndBlueWhenLeftOut) {
+  const GameConfig shipped = shipped_config();
+  EXPECT_EQ(shipped.yellow_name, "Yellow");
+  EXPECT_EQ(shipped.blue_name, "Blue");
+  const GameConfig left_out = load_game_config(ConfigFile::parse(game_config_text(), "game.cfg"));
+  EXPECT_EQ(left_out.yellow_name, "Yellow");
+  EXPECT_EQ(left_out.blue_name, "Blue");
+  const GameConfig named = load_game_config(ConfigFile::parse(
+      game_config_text("", "YELLOW_NAME = \"TIGERs Mannheim\"\nBLUE_NAME = ER-Force\n"),
+      "game.cfg"));
+  EXPECT_EQ(named.yellow_name, "TIGERs Mannheim");
+  EXPECT_EQ(named.blue_name, "ER-Force");
+  const auto m = to_message(RefereeState{}, named, FieldSides{}, 0.0);
+  EXPECT_EQ(m.yellow_name, "TIGERs Mannheim");
+  EXPECT_EQ(m.blue_name, "ER-Force");
+}
+
+TEST(AutoRefereeConfig, AnEmptyOrOverlongTeamNameIsAnErrorNamingFileAndLine) {
+  for (const std::string& line :
+       {std::string("YELLOW_NAME = \"\""), "BLUE_NAME = " + std::string(65, 'x'),
+        std::string("BLUE_NAME =")}) {
+    const std::string error = game_config_error(game_config_text("", line + "\n"));
+    EXPECT_NE(error.find("game.cfg:16"), std::string::npos) << line << ": " << error;
+  }
+  EXPECT_EQ(team_name_problem("Yellow"), "");
+  EXPECT_NE(team_name_problem("tab\there"), "");
+}
+
 TEST(AutoRefereeMessage, StateGoesOnTheWireWithSslNumberingAndIntoTheLog) {
   Game game;
   game.kick_off_and_play();

@@ -390,6 +390,10 @@ TEST_F(SslBridgeProcess, RefereeGoesOutAsTheGameControllersMessage) {
   r.command_counter = 5;
   r.yellow_score = 3;
   r.stage_time_left = 100.5;
+  r.sim_time = 12.5;
+  r.command_time = 11.0;
+  r.yellow_name = "Yellow";
+  r.blue_name = "Blue";
   ubersim::referee_event_t goal{};
   goal.type = ubersim::referee_event_t::GOAL;
   goal.has_team = true;
@@ -414,10 +418,11 @@ TEST_F(SslBridgeProcess, RefereeGoesOutAsTheGameControllersMessage) {
   EXPECT_EQ(seen->stage_time_left(), 100'500'000);
   ASSERT_EQ(seen->game_events_size(), 1);
   EXPECT_EQ(seen->game_events(0).goal().by_team(), ::BLUE);
-  const auto now_us = std::chrono::duration_cast<std::chrono::microseconds>(
-                          std::chrono::system_clock::now().time_since_epoch())
-                          .count();
-  EXPECT_NEAR(static_cast<double>(seen->packet_timestamp()), static_cast<double>(now_us), 5e6);
+  // One time base with vision's t_capture: sim time (docs/ssl_bridge.md, "Time stamps").
+  EXPECT_EQ(seen->packet_timestamp(), 12'500'000u);
+  EXPECT_EQ(seen->command_timestamp(), 11'000'000u);
+  EXPECT_EQ(seen->yellow().name(), "Yellow");
+  EXPECT_EQ(seen->blue().name(), "Blue");
 }
 
 TEST_F(SslBridgeProcess, ExitsZeroOnSigint) {

@@ -31,6 +31,7 @@ Referee official(Referee::Command command, std::uint32_t counter) {
     team->set_goalkeeper(0);
   }
   r.mutable_yellow()->set_score(2);
+  r.mutable_yellow()->set_name("ER-Force");
   r.mutable_blue()->set_goalkeeper(7);
   r.mutable_blue()->set_foul_counter(3);
   r.set_blue_team_on_positive_half(true);
@@ -73,6 +74,8 @@ TEST(OfficialReferee, EveryFieldInSiUnitsAndSimTime) {
   EXPECT_EQ(out.yellow_score, 2);
   EXPECT_EQ(out.blue_goalkeeper, 7);
   EXPECT_EQ(out.blue_fouls, 3);
+  EXPECT_EQ(out.yellow_name, "ER-Force");  // the game controller's names, as it sends them
+  EXPECT_EQ(out.blue_name, "TIGERs Mannheim");
   EXPECT_FALSE(out.game_over);
   in.set_stage(Referee::POST_GAME);
   EXPECT_TRUE(tracker.translate(in, &state).game_over);

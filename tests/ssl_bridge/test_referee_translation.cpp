@@ -3,6 +3,7 @@
 // event with its payload; the bytes parse back as the same message.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <ubersim/team_t.hpp>
 
@@ -27,7 +28,11 @@ referee_t sample() {
   r.blue_score = 1;
   r.yellow_fouls = 3;
   r.blue_goalkeeper = 5;
+  r.command_time = 38.5;
+  r.yellow_name = "Yellow";
+  r.blue_name = "TIGERs Mannheim";
   referee_event_t e{};
+  e.sim_time = 39.25;
   e.type = referee_event_t::BALL_LEFT_FIELD_TOUCH_LINE;
   e.has_team = true;
   e.team = team_t::YELLOW;
@@ -45,25 +50,28 @@ referee_t sample() {
 
 TEST(RefereeTranslation, StateBecomesTheGameControllersMessage) {
   ssl::RefereeTranslator translator("ubersim-test");
-  const Referee m = translator.translate(sample(), 1'000'000'000);
+  const Referee m = translator.translate(sample());
   EXPECT_EQ(m.source_identifier(), "ubersim-test");
-  EXPECT_EQ(m.packet_timestamp(), 1'000'000'000u);
+  EXPECT_EQ(m.packet_timestamp(), 40'000'000u);  // sim time, like vision's t_capture
   EXPECT_EQ(m.stage(), Referee::NORMAL_SECOND_HALF);
   EXPECT_EQ(m.stage_time_left(), 12'250'000);
   EXPECT_EQ(m.command(), Referee::STOP);
   EXPECT_EQ(m.command_counter(), 7u);
-  EXPECT_EQ(m.command_timestamp(), 1'000'000'000u);
+  EXPECT_EQ(m.command_timestamp(), 38'500'000u);
   EXPECT_EQ(m.next_command(), Referee::DIRECT_FREE_BLUE);
   EXPECT_TRUE(m.blue_team_on_positive_half());
   EXPECT_EQ(m.yellow().score(), 2u);
   EXPECT_EQ(m.blue().score(), 1u);
   EXPECT_EQ(m.yellow().foul_counter(), 3u);
   EXPECT_EQ(m.blue().goalkeeper(), 5u);
+  EXPECT_EQ(m.yellow().name(), "Yellow");  // an AI may find its colour by its name
+  EXPECT_EQ(m.blue().name(), "TIGERs Mannheim");
   EXPECT_FALSE(m.has_designated_position());  // only with BALL_PLACEMENT_*
   EXPECT_FALSE(m.has_current_action_time_remaining());
   ASSERT_EQ(m.game_events_size(), 1);
   const GameEvent& g = m.game_events(0);
   EXPECT_EQ(g.type(), GameEvent::BALL_LEFT_FIELD_TOUCH_LINE);
+  EXPECT_EQ(g.created_timestamp(), 39'250'000u);
   ASSERT_TRUE(g.has_ball_left_field_touch_line());
   EXPECT_EQ(g.ball_left_field_touch_line().by_team(), ::YELLOW);
   EXPECT_EQ(g.ball_left_field_touch_line().by_bot(), 4u);
@@ -78,18 +86,27 @@ TEST(RefereeTranslation, StateBecomesTheGameControllersMessage) {
   EXPECT_EQ(parsed.SerializeAsString(), bytes);
 }
 
-TEST(RefereeTranslation, CommandTimestampIsWhenTheCommandWasFirstSeen) {
-  ssl::RefereeTranslator translator("ubersim-test");
+TEST(RefereeTranslation, EveryTimestampIsSimTimeInMicroseconds) {
+  const ssl::RefereeTranslator translator("ubersim-test");
   auto r = sample();
-  EXPECT_EQ(translator.translate(r, 100).command_timestamp(), 100u);
-  EXPECT_EQ(translator.translate(r, 200).command_timestamp(), 100u);  // same command
   r.command = referee_t::DIRECT_FREE_BLUE;
   r.command_counter = 8;
+  r.command_time = 41.0;
+  r.sim_time = 42.000001;
   r.action_time_left = 9.5;
-  const Referee m = translator.translate(r, 300);
-  EXPECT_EQ(m.command_timestamp(), 300u);
+  const Referee m = translator.translate(r);
+  EXPECT_EQ(m.packet_timestamp(), 42'000'001u);
+  EXPECT_EQ(m.command_timestamp(), 41'000'000u);
   EXPECT_EQ(m.command(), Referee::DIRECT_FREE_BLUE);
   EXPECT_EQ(m.current_action_time_remaining(), 9'500'000);
+  // What is no time (a hostile bus) is 0, never a wrapped or undefined number.
+  for (const double bad : {-1.0, std::nan(""), 1e300, HUGE_VAL}) {
+    r.sim_time = bad;
+    r.command_time = bad;
+    const Referee odd = translator.translate(r);
+    EXPECT_EQ(odd.packet_timestamp(), 0u) << bad;
+    EXPECT_EQ(odd.command_timestamp(), 0u) << bad;
+  }
 }
 
 TEST(RefereeTranslation, EveryEventTypeCarriesItsPayload) {
@@ -124,7 +141,7 @@ TEST(RefereeTranslation, EveryEventTypeCarriesItsPayload) {
     e.team = team_t::BLUE;
     e.robot_id = 2;
     e.value = 7.0;  // robots on the field, or the ball speed (m/s)
-    const GameEvent g = ssl::to_ssl_game_event(e, 5);
+    const GameEvent g = ssl::to_ssl_game_event(e);
     EXPECT_EQ(static_cast<int>(g.type()), type);
     EXPECT_TRUE(check(g)) << type;
     EXPECT_TRUE(g.IsInitialized()) << type << ": " << g.InitializationErrorString();

@@ -20,10 +20,19 @@ inline constexpr unsigned long kChassis = 1u << 3;
 inline constexpr unsigned long kWheel = 1u << 4;  // wheels and casters
 }  // namespace collide_bits
 
+// A standing wheel's static grip on the floor (jointed model, drive_jointed.cpp):
+// while `active`, the wheel's floor contact takes the wheel back to `anchor`,
+// the centre it had when its robot stopped.
+struct WheelGrip {
+  bool active = false;
+  double anchor[3] = {0, 0, 0};  // m, world frame
+};
+
 struct GeomTag {
   GeomKind kind = GeomKind::Wall;
-  Robot* robot = nullptr;          // chassis, wheels, casters
-  dJointID wheel_hinge = nullptr;  // wheels of the jointed model: rolling direction
+  Robot* robot = nullptr;           // chassis, wheels, casters
+  dJointID wheel_hinge = nullptr;   // wheels of the jointed model: rolling direction
+  const WheelGrip* grip = nullptr;  // wheels of the jointed model
 };
 
 // Sets a geom's tag and its category/collide bits for its kind.

@@ -61,13 +61,18 @@ void put_on_field(WorldSetup& setup, const FieldConfig& field);
 struct WorldCounters {
   std::uint64_t commands_applied = 0;
   std::uint64_t commands_dropped = 0;  // non-finite, bad mode, bad wheel count
-  std::uint64_t commands_clamped = 0;  // beyond the robot's limits
+  ClampCounts commands_clamped;        // applied at the robot type's limits
   std::uint64_t commands_unknown_robot = 0;
   std::uint64_t packets_dropped = 0;  // bad team or time
   std::uint64_t bodies_reset = 0;     // non-finite or outside the walls
   std::uint64_t robots_set_upright = 0;
   std::uint64_t kicks = 0;
 };
+
+// The commands line of the terminal summary at stop and of the PING answer
+// (`ubersim_referee ping`): "commands: 1200 applied, 3 at a robot type's limit (kick speed 3),
+// ...".
+std::string command_summary(const WorldCounters& counters);
 
 struct PlaceOutcome {
   bool ok = false;

@@ -25,12 +25,21 @@ struct GameConfig {
   int keeper_yellow = 0;           // robot ids of the keepers
   int keeper_blue = 0;
   Team first_kickoff = Team::Yellow;
+  // TeamInfo.name on REFEREE (YELLOW_NAME / BLUE_NAME, --yellow-name / --blue-name). Not empty:
+  // an SSL AI that finds its colour by name finds none in an empty name.
+  std::string yellow_name = "Yellow";
+  std::string blue_name = "Blue";
 
   int keeper(Team team) const { return team == Team::Yellow ? keeper_yellow : keeper_blue; }
   double half_length() const { return halves == 2 ? game_length / 2 : game_length; }
 };
 
-// Reads every key (GAME_LENGTH, HALVES, ...); unknown keys are errors.
+// What is wrong with `name` as a team name (empty when nothing): 1..64 bytes, no control
+// characters.
+std::string team_name_problem(const std::string& name);
+
+// Reads every key (GAME_LENGTH, HALVES, ...; YELLOW_NAME and BLUE_NAME may be left out: Yellow,
+// Blue); unknown keys are errors.
 GameConfig load_game_config(const ConfigFile& file);
 GameConfig load_game_config(const std::string& config_dir, const std::string& name);
 
