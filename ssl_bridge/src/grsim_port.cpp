@@ -228,10 +228,9 @@ void GrsimPort::log_summary() const {
   std::string text;
   for (const auto& [name, count] : counters_) text += " " + name + "=" + std::to_string(count);
   for (Team team : kTeams) {
-    text += std::string(" grSim commands superseded ") + team_name(team) + "=" +
-            std::to_string(book_.superseded(team)) + " grSim stops (silent " +
-            std::to_string(options_.command_hold) + " s) " + team_name(team) + "=" +
-            std::to_string(book_.stops(team));
+    text += fmt::format(
+        " grSim commands superseded {0}={1} grSim stops (team silent {2} s) {0}={3}",
+        team_name(team), book_.superseded(team), options_.command_hold, book_.stops(team));
   }
   spdlog::info("grSim summary:{}", text);
 }

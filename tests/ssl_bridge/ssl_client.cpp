@@ -50,13 +50,29 @@ TestPorts TestPorts::from_environment() {
   ports.yellow = lcm_port + 3;
   ports.vision = lcm_port + 4;
   ports.referee = lcm_port + 5;
+  ports.grsim = lcm_port + 6;
+  ports.grsim_blue_status = lcm_port + 7;
+  ports.grsim_yellow_status = lcm_port + 8;
   return ports;
 }
 
 std::vector<std::string> TestPorts::bridge_options() const {
-  return {"--vision-port",  std::to_string(vision), "--control-port", std::to_string(control),
-          "--blue-port",    std::to_string(blue),   "--yellow-port",  std::to_string(yellow),
-          "--referee-port", std::to_string(referee)};
+  return {"--vision-port",
+          std::to_string(vision),
+          "--control-port",
+          std::to_string(control),
+          "--blue-port",
+          std::to_string(blue),
+          "--yellow-port",
+          std::to_string(yellow),
+          "--referee-port",
+          std::to_string(referee),
+          "--grsim-port",
+          std::to_string(grsim),
+          "--grsim-blue-status-port",
+          std::to_string(grsim_blue_status),
+          "--grsim-yellow-status-port",
+          std::to_string(grsim_yellow_status)};
 }
 
 VisionReceiver::VisionReceiver(const std::string& group, int port) {

@@ -23,7 +23,10 @@ struct TestPorts {
   int blue = 10301;
   int yellow = 10302;
   int referee = 10003;
-  static TestPorts from_environment();              // LCM port + 1 .. + 5
+  int grsim = 20011;
+  int grsim_blue_status = 30011;
+  int grsim_yellow_status = 30012;
+  static TestPorts from_environment();              // LCM port + 1 .. + 8
   std::vector<std::string> bridge_options() const;  // --vision-port ... for the bridge
 };
 
