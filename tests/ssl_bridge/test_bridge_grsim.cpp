@@ -377,7 +377,9 @@ TEST_F(GrsimBridge, FloodOfFiftyThousandPacketsPerSecondKeepsMemoryFlatAndTheNew
   EXPECT_LT(rss_after - rss_before, 4 * 1024) << "memory grows with the flood";
   EXPECT_LT(std::abs(rss_after - rss_middle), 2 * 1024) << "memory grows with the flood";
 
-  // Right after the flood: each robot's newest command is the one applied.
+  // After the flood (once the bridge read what the socket held): each robot's
+  // newest command, one robot per packet, is the one applied.
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
   grSim_Packet last;
   for (uint32_t id = 0; id < 11; ++id) {
     last.Clear();
