@@ -31,16 +31,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   settings.wheels = fixture.wheels;
   settings.spinner_speed = 1000;
   GrsimCommandBook book(std::chrono::seconds(1));
+  const std::chrono::steady_clock::time_point now{};
   const ubersim::Team team =
       packet.commands().isteamyellow() ? ubersim::Team::Yellow : ubersim::Team::Blue;
   for (const grSim_Robot_Command& in : packet.commands().robot_commands()) {
     if (in.id() >= kGrsimMaxRobots) continue;
     const auto id = static_cast<int32_t>(in.id());
     if (auto command = translate_grsim_robot_command(in, settings, book.last(team, id), errors)) {
-      book.put(team, *command);
+      book.put(team, *command, now);
     }
   }
-  const std::chrono::steady_clock::time_point now{};
   if (book.has_news(team)) ubersim::fuzz::encode_or_abort(book.packet(team, now));
   if (auto later = book.due(team, now + std::chrono::seconds(2), std::chrono::milliseconds(40))) {
     ubersim::fuzz::encode_or_abort(*later);  // the stop

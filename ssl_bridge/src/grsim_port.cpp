@@ -133,7 +133,7 @@ void GrsimPort::handle_commands(const grSim_Commands& commands, Clock::time_poin
     const std::optional<GrsimRobotCommand> command =
         translate_grsim_robot_command(in, options_.translation, book_.last(team, id), errors);
     if (command) {
-      book_.put(team, *command);
+      book_.put(team, *command, now);
       ++counters_[std::string("grSim robot commands ") + team_name(team)];
     }
   }

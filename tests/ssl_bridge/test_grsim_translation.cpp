@@ -150,9 +150,9 @@ TEST(GrsimCommandBook, EveryRobotsNewestCommandInOnePacketAndSupersededCounted) 
   GrsimCommandBook book(std::chrono::seconds(1));
   const Clock::time_point t0{};
   book.heard(Team::Blue, t0);
-  book.put(Team::Blue, command(1, 0.1));
-  book.put(Team::Blue, command(2, 0.2));
-  book.put(Team::Blue, command(1, 0.3));  // replaces one not yet sent
+  book.put(Team::Blue, command(1, 0.1), t0);
+  book.put(Team::Blue, command(2, 0.2), t0);
+  book.put(Team::Blue, command(1, 0.3), t0);  // replaces one not yet sent
   EXPECT_EQ(book.superseded(Team::Blue), 1u);
   ASSERT_TRUE(book.has_news(Team::Blue));
   radio_packet_t p = book.packet(Team::Blue, t0);
@@ -160,7 +160,7 @@ TEST(GrsimCommandBook, EveryRobotsNewestCommandInOnePacketAndSupersededCounted) 
   ASSERT_EQ(p.num_commands, 2);
   EXPECT_EQ(p.commands[0].vx, 0.3);
   EXPECT_EQ(p.commands[1].vx, 0.2);
-  book.put(Team::Blue, command(2, 0.4));  // robot 2's last one was sent: not superseded
+  book.put(Team::Blue, command(2, 0.4), t0);  // robot 2's last one was sent: not superseded
   EXPECT_EQ(book.superseded(Team::Blue), 1u);
   p = book.packet(Team::Blue, t0);
   EXPECT_EQ(p.num_commands, 2);  // robot 1 too, so a newer packet never loses it
@@ -172,7 +172,7 @@ TEST(GrsimCommandBook, SilentTeamRepeatsWithoutKicksThenStopsAfterTheHold) {
   const Clock::time_point t0{};
   const auto repeat = std::chrono::milliseconds(40);
   book.heard(Team::Yellow, t0);
-  book.put(Team::Yellow, command(5, 1.0, 4.0, 300));
+  book.put(Team::Yellow, command(5, 1.0, 4.0, 300), t0);
   EXPECT_EQ(book.packet(Team::Yellow, t0).commands[0].kick_speed, 4.0);
   EXPECT_EQ(book.next_due(Team::Yellow, repeat), t0 + repeat);
   EXPECT_FALSE(book.due(Team::Yellow, t0 + std::chrono::milliseconds(39), repeat));
@@ -191,11 +191,28 @@ TEST(GrsimCommandBook, SilentTeamRepeatsWithoutKicksThenStopsAfterTheHold) {
 
   GrsimCommandBook for_ever(Clock::duration::zero());
   for_ever.heard(Team::Blue, t0);
-  for_ever.put(Team::Blue, command(1, 1.0));
+  for_ever.put(Team::Blue, command(1, 1.0), t0);
   for_ever.packet(Team::Blue, t0);
   const auto late = for_ever.due(Team::Blue, t0 + std::chrono::hours(1), repeat);
   ASSERT_TRUE(late.has_value());
   EXPECT_EQ(late->commands[0].vx, 1.0);
+}
+
+TEST(GrsimCommandBook, AKickRidesOnlyInThePacketsOfItsWindow) {
+  GrsimCommandBook book(std::chrono::seconds(1));
+  const Clock::time_point t0{};
+  book.heard(Team::Blue, t0);
+  book.put(Team::Blue, command(5, 1.0, 4.0), t0);
+  EXPECT_EQ(book.packet(Team::Blue, t0).commands[0].kick_speed, 4.0);
+  book.put(Team::Blue, command(6, 1.0), t0 + std::chrono::milliseconds(30));
+  // Within the window: a newer packet replacing the first on the radio still kicks.
+  EXPECT_EQ(book.packet(Team::Blue, t0 + std::chrono::milliseconds(30)).commands[0].kick_speed,
+            4.0);
+  book.put(Team::Blue, command(6, 1.0), t0 + std::chrono::milliseconds(60));
+  const radio_packet_t later = book.packet(Team::Blue, t0 + std::chrono::milliseconds(60));
+  EXPECT_EQ(later.commands[0].robot_id, 5);
+  EXPECT_EQ(later.commands[0].kick_speed, 0.0);  // grSim kicks once
+  EXPECT_EQ(later.commands[0].vx, 1.0);
 }
 
 TEST(GrsimStatus, ChangesOnlyAndKicksFromTheKickerDischarging) {

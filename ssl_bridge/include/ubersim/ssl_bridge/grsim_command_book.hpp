@@ -7,6 +7,11 @@
 // newer radio packet replaces a waiting one on a rate-limited link, so each
 // packet must carry every robot).
 //
+// Kicks: grSim kicks once, when the packet arrives (if the ball touches). A
+// robot's kick rides in the packets published within kGrsimKickWindow of its
+// command's arrival, so the radio's newest-wins link transmits it at least
+// once (links of 20 Hz and faster), and not in later ones.
+//
 // Silence: grSim stops a team's robots when it has heard nothing from that
 // team for 1 s (src/mainwindow.cpp, MainWindow::update); `hold` is that time.
 // Until then the robots keep their last command (the book repeats it, without
@@ -25,6 +30,8 @@
 
 namespace ubersim::ssl {
 
+inline constexpr std::chrono::milliseconds kGrsimKickWindow{50};
+
 class GrsimCommandBook {
  public:
   using Clock = std::chrono::steady_clock;
@@ -34,8 +41,9 @@ class GrsimCommandBook {
 
   // The team spoke (any grSim command datagram): its robots are held from now.
   void heard(Team team, Clock::time_point now);
-  // A robot's newest command; one not yet sent that it replaces is superseded.
-  void put(Team team, const GrsimRobotCommand& command);
+  // A robot's newest command, arrived at `now`; one not yet sent that it
+  // replaces is superseded.
+  void put(Team team, const GrsimRobotCommand& command, Clock::time_point now);
   // The robot's last command (null: none), for wheels grSim is not given.
   const robot_command_t* last(Team team, int32_t robot_id) const;
   // The kick the robot's newest command asks for.
@@ -43,7 +51,8 @@ class GrsimCommandBook {
 
   // Something new to send for the team.
   bool has_news(Team team) const { return books_[index(team)].news; }
-  // Every robot's newest command, kicks included; marks them sent.
+  // Every robot's newest command, kicks asked within kGrsimKickWindow
+  // included; marks them sent.
   radio_packet_t packet(Team team, Clock::time_point now);
   // What is due for a silent team at `now`: the repeat (every `repeat`, no
   // kicks) while it is held, then the stop once. nullopt: nothing.
@@ -57,6 +66,7 @@ class GrsimCommandBook {
  private:
   struct Entry {
     GrsimRobotCommand command;
+    Clock::time_point arrived{};
     bool sent = false;
   };
   struct TeamBook {
@@ -68,7 +78,8 @@ class GrsimCommandBook {
     std::uint64_t stops = 0;
   };
   static std::size_t index(Team team) { return static_cast<std::size_t>(team); }
-  radio_packet_t all_robots(Team team, bool kicks) const;
+  // kicks_since: the kicks of commands that arrived from then on ride along.
+  radio_packet_t all_robots(Team team, std::optional<Clock::time_point> kicks_since) const;
 
   Clock::duration hold_;
   std::array<TeamBook, 2> books_{};
