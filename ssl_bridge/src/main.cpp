@@ -2,7 +2,8 @@
 // software written for grSim or the ER-Force simulator runs unchanged:
 // SSL-Vision wrapper packets out (from VISION / VISION_GEOMETRY), the SSL
 // simulation protocol in (simulation control -> SIM_CONTROL, robot control ->
-// RADIO_<TEAM>, feedback from RADIO_FEEDBACK_<TEAM>). See docs/ssl_bridge.md.
+// RADIO_<TEAM>, feedback from RADIO_FEEDBACK_<TEAM>), and grSim's own protocol
+// (grSim_Packet on 20011, Robots_Status back). See docs/ssl_bridge.md.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <optional>
