@@ -143,6 +143,33 @@ bool VisionReceiver::receive_until(const std::function<bool(const SSL_WrapperPac
   return false;
 }
 
+UdpEndpoint::UdpEndpoint(int port) : fd_(::socket(AF_INET, SOCK_DGRAM, 0)) {
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(port));
+  ::inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
+  if (fd_ < 0 || ::bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
+    if (fd_ >= 0) ::close(fd_);
+    throw std::runtime_error("cannot bind 127.0.0.1:" + std::to_string(port));
+  }
+}
+
+UdpEndpoint::~UdpEndpoint() {
+  ::close(fd_);
+}
+
+void UdpEndpoint::send(int port, const std::string& bytes) const {
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<uint16_t>(port));
+  ::inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
+  ::sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
+}
+
+std::optional<std::string> UdpEndpoint::receive(double timeout_s) const {
+  return receive_one(fd_, after(timeout_s));
+}
+
 UdpClient::UdpClient(int port) : port_(port) {
   fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
   if (fd_ < 0) throw std::runtime_error("socket");

@@ -65,6 +65,22 @@ class UdpClient {
   int port_;
 };
 
+// A UDP socket bound to 127.0.0.1:port (0: any free port), as a team's
+// software has one: it sends to the bridge's ports and receives what the
+// bridge sends to its address (grSim's robot status on 30011 / 30012).
+class UdpEndpoint {
+ public:
+  explicit UdpEndpoint(int port = 0);
+  ~UdpEndpoint();
+  UdpEndpoint(const UdpEndpoint&) = delete;
+  UdpEndpoint& operator=(const UdpEndpoint&) = delete;
+  void send(int port, const std::string& bytes) const;
+  std::optional<std::string> receive(double timeout_s) const;
+
+ private:
+  int fd_ = -1;
+};
+
 // One datagram to a multicast group on the loopback interface (TTL 0), as the
 // game controller sends its Referee messages.
 void send_to_group(const std::string& group, int port, const std::string& bytes);

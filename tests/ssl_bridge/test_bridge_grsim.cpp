@@ -45,44 +45,7 @@ long vm_rss_kb(pid_t pid) {
   return -1;
 }
 
-// A UDP socket bound to 127.0.0.1:port (0: any port), as a team's software has one.
-class UdpEndpoint {
- public:
-  explicit UdpEndpoint(int port = 0) {
-    fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_port = htons(static_cast<uint16_t>(port));
-    ::inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
-    if (fd_ < 0 || ::bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
-      throw std::runtime_error("cannot bind 127.0.0.1:" + std::to_string(port));
-    }
-  }
-  ~UdpEndpoint() { ::close(fd_); }
-  UdpEndpoint(const UdpEndpoint&) = delete;
-  UdpEndpoint& operator=(const UdpEndpoint&) = delete;
-
-  void send(int port, const std::string& bytes) const {
-    sockaddr_in to{};
-    to.sin_family = AF_INET;
-    to.sin_port = htons(static_cast<uint16_t>(port));
-    ::inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
-    ::sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
-  }
-  std::optional<std::string> receive(double timeout_s) const {
-    timeval tv{};
-    tv.tv_sec = static_cast<time_t>(timeout_s);
-    tv.tv_usec = static_cast<suseconds_t>((timeout_s - std::floor(timeout_s)) * 1e6);
-    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-    char buffer[65536];
-    const ssize_t n = ::recv(fd_, buffer, sizeof buffer, 0);
-    if (n < 0) return std::nullopt;
-    return std::string(buffer, static_cast<size_t>(n));
-  }
-
- private:
-  int fd_ = -1;
-};
+using ssl_test::UdpEndpoint;
 
 grSim_Robot_Command* add_robot(grSim_Packet& packet, bool yellow, uint32_t id) {
   grSim_Commands* commands = packet.mutable_commands();

@@ -5,6 +5,7 @@
 // (through the radio emulator), and the responses carry robot feedback.
 // ISOLATED: own network namespace, so the league's default ports are free.
 #include <grSim_Packet.pb.h>
+#include <grSim_Robotstatus.pb.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -222,7 +223,8 @@ std::optional<double> newest_x(ssl_test::VisionReceiver& vision, uint32_t id) {
 
 // grSim's own protocol end to end: a replacement places the robot, commands on
 // the grSim port drive it through the radio emulator, and a team that falls
-// silent keeps its last command for the hold (1 s), then its robot stops.
+// silent keeps its last command for the hold (1 s), then its robot stops; the
+// robot status from the real radio feedback reaches the sender's status port.
 TEST_F(SslBridgeSimulation, GrsimPacketsPlaceAndDriveARobotThatStopsAfterTheTeamFallsSilent) {
   ssl_test::UdpClient grsim(ports_.grsim);
   ASSERT_TRUE(vision_rx_.receive_until(
@@ -271,6 +273,39 @@ TEST_F(SslBridgeSimulation, GrsimPacketsPlaceAndDriveARobotThatStopsAfterTheTeam
   const std::optional<double> x_b = newest_x(vision_rx_, 2);
   ASSERT_TRUE(x_a.has_value() && x_b.has_value());
   EXPECT_LT(std::abs(*x_b - *x_a), 20.0) << "the robot still moves after the hold";
+
+  // The ball put at its kicker, the spinner on: grSim's robot status from the
+  // real radio feedback reaches the sender's blue status port.
+  ssl_test::UdpEndpoint team;
+  ssl_test::UdpEndpoint status(ports_.grsim_blue_status);
+  grSim_Packet at_kicker;
+  grSim_RobotReplacement* again = at_kicker.mutable_replacement()->add_robots();
+  again->set_x(0);
+  again->set_y(-2.0);
+  again->set_dir(0);
+  again->set_id(2);
+  again->set_yellowteam(false);
+  at_kicker.mutable_replacement()->mutable_ball()->set_x(0.075 + 0.0215 + 0.001);
+  at_kicker.mutable_replacement()->mutable_ball()->set_y(-2.0);
+  at_kicker.mutable_replacement()->mutable_ball()->set_vx(0);
+  at_kicker.mutable_replacement()->mutable_ball()->set_vy(0);
+  team.send(ports_.grsim, at_kicker.SerializeAsString());
+  grSim_Packet spin;
+  spin.ParseFromString(grsim_command(2, 0.0f));
+  spin.mutable_commands()->mutable_robot_commands(0)->set_spinner(true);
+  bool infrared = false;
+  const auto end = Clock::now() + std::chrono::seconds(5);
+  while (!infrared && Clock::now() < end) {
+    team.send(ports_.grsim, spin.SerializeAsString());
+    if (const auto bytes = status.receive(0.02)) {
+      Robots_Status robots;
+      ASSERT_TRUE(robots.ParseFromString(*bytes));
+      for (const Robot_Status& r : robots.robots_status()) {
+        infrared = infrared || (r.robot_id() == 2 && r.infrared());
+      }
+    }
+  }
+  EXPECT_TRUE(infrared) << bridge_->log() << radio_->log();
   EXPECT_EQ(bridge_->stop(10), 0);
   EXPECT_NE(bridge_->log().find("grSim stops (team silent 1 s) blue=1"), std::string::npos)
       << bridge_->log();
