@@ -3,6 +3,7 @@
 // the viewer's page send), so the fuzzers start from inputs that reach deep
 // into the code instead of from nothing. Run at build time; nothing of it is
 // committed. The config target's seeds are the shipped config/ files.
+#include <grSim_Packet.pb.h>
 #include <ssl_simulation_control.pb.h>
 #include <ssl_simulation_custom_erforce_realism.pb.h>
 #include <ssl_simulation_custom_erforce_robot_spec.pb.h>
@@ -202,6 +203,44 @@ void viewer_seeds(const fs::path& http_dir, const fs::path& control_dir) {
   }
 }
 
+// grSim's port: velocities with a kick and the spinner, wheels, a chip, and a
+// replacement of robots and the ball.
+void ssl_grsim_seeds(const fs::path& dir) {
+  grSim_Packet packet;
+  grSim_Commands* commands = packet.mutable_commands();
+  commands->set_timestamp(1.5);
+  commands->set_isteamyellow(true);
+  for (uint32_t id = 0; id < 3; ++id) {
+    grSim_Robot_Command* c = commands->add_robot_commands();
+    c->set_id(id);
+    c->set_kickspeedx(id == 0 ? 4.0f : 2.0f);
+    c->set_kickspeedz(id == 2 ? 3.0f : 0.0f);
+    c->set_veltangent(1.0f);
+    c->set_velnormal(-0.5f);
+    c->set_velangular(2.0f);
+    c->set_spinner(id == 0);
+    c->set_wheelsspeed(id == 1);
+    if (id == 1) {
+      c->set_wheel1(10);
+      c->set_wheel2(-10);
+      c->set_wheel3(10);
+      c->set_wheel4(-10);
+    }
+  }
+  write_message(dir, "commands", packet);
+  grSim_Packet replacement;
+  grSim_RobotReplacement* robot = replacement.mutable_replacement()->add_robots();
+  robot->set_x(1);
+  robot->set_y(-1);
+  robot->set_dir(90);
+  robot->set_id(4);
+  robot->set_yellowteam(false);
+  robot->set_turnon(false);
+  replacement.mutable_replacement()->mutable_ball()->set_x(0.5);
+  replacement.mutable_replacement()->mutable_ball()->set_vy(2);
+  write_message(dir, "replacement", replacement);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -213,6 +252,7 @@ int main(int argc, char** argv) {
     const fs::path dir = argv[1];
     ssl_control_seeds(dir / "fuzz_ssl_control");
     ssl_robot_control_seeds(dir / "fuzz_ssl_robot_control");
+    ssl_grsim_seeds(dir / "fuzz_ssl_grsim");
     viewer_seeds(dir / "fuzz_viewer_http", dir / "fuzz_viewer_control");
     ubersim::fuzz::write_lcm_seeds(dir / "fuzz_lcm_decode", dir / "fuzz_lcm_physics",
                                    dir / "fuzz_lcm_emulators", dir / "fuzz_lcm_consumers");

@@ -111,7 +111,7 @@ bool lengths_fit(const std::uint8_t*& p, const std::uint8_t* end,
 }  // namespace
 
 DecodedDatagram decode_datagram(const std::uint8_t* data, std::size_t size, Message& message,
-                                Errors& errors) {
+                                Errors& errors, bool missing_required_ok) {
   DecodedDatagram result;
   message.Clear();
   const std::string type = message.GetTypeName();
@@ -127,7 +127,8 @@ DecodedDatagram decode_datagram(const std::uint8_t* data, std::size_t size, Mess
   // claiming a 64 MB field reserved 50 MB (found by fuzz_ssl_robot_control).
   const std::uint8_t* walk = data;
   if (!lengths_fit(walk, data + size, message.GetDescriptor(), 0, 0) ||
-      !message.ParseFromArray(data, static_cast<int>(size))) {
+      !(missing_required_ok ? message.ParsePartialFromArray(data, static_cast<int>(size))
+                            : message.ParseFromArray(data, static_cast<int>(size)))) {
     message.Clear();
     add_error(errors, kErrorMalformed,
               "datagram does not decode as " + type + " (" + std::to_string(size) +

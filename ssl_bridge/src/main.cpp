@@ -2,10 +2,12 @@
 // software written for grSim or the ER-Force simulator runs unchanged:
 // SSL-Vision wrapper packets out (from VISION / VISION_GEOMETRY), the SSL
 // simulation protocol in (simulation control -> SIM_CONTROL, robot control ->
-// RADIO_<TEAM>, feedback from RADIO_FEEDBACK_<TEAM>). See docs/ssl_bridge.md.
+// RADIO_<TEAM>, feedback from RADIO_FEEDBACK_<TEAM>), and grSim's own protocol
+// (grSim_Packet on 20011, Robots_Status back). See docs/ssl_bridge.md.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 
 #include "ubersim/cli.hpp"
@@ -15,12 +17,14 @@
 #include "ubersim/process_main.hpp"
 #include "ubersim/robot_config.hpp"
 #include "ubersim/ssl_bridge/bridge.hpp"
+#include "ubersim/ssl_bridge/grsim_port.hpp"
 
 namespace {
 
 struct Options {
   ubersim::CommonOptions common;
   ubersim::ssl::BridgeOptions bridge;
+  ubersim::ssl::GrsimOptions grsim;
   std::string robot_type = "omni4_ssl";
   std::string ball = "ssl_golf_ball";
 };
@@ -49,9 +53,27 @@ int run(Options& options) {
   ssl::SslBridge bridge(host.bus(), host.channels(), host.truth_demand(), options.bridge);
   bridge.start();
   host.after_wake([&](ProcessHost::Clock::time_point now) { bridge.tick(now); });
+  std::optional<ssl::GrsimPort> grsim;
+  if (options.grsim.port > 0) {
+    options.grsim.listen_address = options.bridge.listen_address;
+    options.grsim.sim_control = options.bridge.sim_control;
+    options.grsim.translation.wheels = options.bridge.wheels;
+    options.grsim.translation.spinner_speed = robot.dribbler_max_speed;
+    grsim.emplace(host.bus(), host.channels(), options.grsim);
+    grsim->start();
+    // Wakes the loop when the grSim port has something due (a packet held
+    // for its interval, a repeat, a stop); the work is done in tick().
+    constexpr auto kIdle = std::chrono::hours(1);
+    ProcessHost::Timer& wake = host.every(kIdle, [](ProcessHost::Clock::time_point) {});
+    host.after_wake([&](ProcessHost::Clock::time_point now) {
+      grsim->tick(now);
+      wake.due_at(grsim->next_wake().value_or(now + kIdle));
+    });
+  }
   host.at_stop([&] {
     bridge.stop();
     bridge.log_summary();
+    if (grsim) grsim->log_summary();
   });
   return host.run(std::chrono::milliseconds(50));
 }
@@ -135,6 +157,24 @@ int parse_and_run(int argc, char** argv) {
                  "it is dropped")
       ->capture_default_str()
       ->check(ubersim::in_range(0.01, 600.0));
+  auto& g = options.grsim;
+  app.add_option("--grsim-port", g.port,
+                 "grSim's command port (grSim_Packet), on --listen-address; 0: off")
+      ->capture_default_str()
+      ->check(ubersim::in_range(0, 65535));
+  app.add_option("--grsim-blue-status-port", g.blue_status_port,
+                 "port the blue robots' grSim status goes to, at the sender's address")
+      ->capture_default_str()
+      ->check(ubersim::in_range(1, 65535));
+  app.add_option("--grsim-yellow-status-port", g.yellow_status_port,
+                 "port the yellow robots' grSim status goes to, at the sender's address")
+      ->capture_default_str()
+      ->check(ubersim::in_range(1, 65535));
+  app.add_option("--grsim-command-hold", g.command_hold,
+                 "s a team's robots keep their last grSim command while the team sends nothing "
+                 "(grSim: 1); 0: for ever")
+      ->capture_default_str()
+      ->check(ubersim::in_range(0.0, 3600.0));
   app.add_option("--robot-type", options.robot_type,
                  "robot config for robots added with present = true, and for wheel_velocity")
       ->capture_default_str();

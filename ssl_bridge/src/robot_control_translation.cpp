@@ -92,7 +92,9 @@ void translate_kick(const RobotCommand& in, robot_command_t& out, Errors& errors
     if (!std::isfinite(rpm)) {
       add_error(errors, kErrorInvalid, "non-finite dribbler_speed (" + robot + ": dribbler off)");
     } else {
-      out.dribbler_speed = rpm_to_rad_per_s(rpm);
+      // As in the ER-Force simulator (src/amun/simulator/simrobot.cpp): only a positive speed
+      // turns the dribbler; 0 or less leaves it off.
+      out.dribbler_speed = rpm > 0 ? rpm_to_rad_per_s(rpm) : 0.0;
     }
   }
 }

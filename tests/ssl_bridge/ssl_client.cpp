@@ -50,13 +50,29 @@ TestPorts TestPorts::from_environment() {
   ports.yellow = lcm_port + 3;
   ports.vision = lcm_port + 4;
   ports.referee = lcm_port + 5;
+  ports.grsim = lcm_port + 6;
+  ports.grsim_blue_status = lcm_port + 7;
+  ports.grsim_yellow_status = lcm_port + 8;
   return ports;
 }
 
 std::vector<std::string> TestPorts::bridge_options() const {
-  return {"--vision-port",  std::to_string(vision), "--control-port", std::to_string(control),
-          "--blue-port",    std::to_string(blue),   "--yellow-port",  std::to_string(yellow),
-          "--referee-port", std::to_string(referee)};
+  return {"--vision-port",
+          std::to_string(vision),
+          "--control-port",
+          std::to_string(control),
+          "--blue-port",
+          std::to_string(blue),
+          "--yellow-port",
+          std::to_string(yellow),
+          "--referee-port",
+          std::to_string(referee),
+          "--grsim-port",
+          std::to_string(grsim),
+          "--grsim-blue-status-port",
+          std::to_string(grsim_blue_status),
+          "--grsim-yellow-status-port",
+          std::to_string(grsim_yellow_status)};
 }
 
 VisionReceiver::VisionReceiver(const std::string& group, int port) {
@@ -125,6 +141,33 @@ bool VisionReceiver::receive_until(const std::function<bool(const SSL_WrapperPac
     if (packet && accept(*packet)) return true;
   }
   return false;
+}
+
+UdpEndpoint::UdpEndpoint(int port) : fd_(::socket(AF_INET, SOCK_DGRAM, 0)) {
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(port));
+  ::inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
+  if (fd_ < 0 || ::bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
+    if (fd_ >= 0) ::close(fd_);
+    throw std::runtime_error("cannot bind 127.0.0.1:" + std::to_string(port));
+  }
+}
+
+UdpEndpoint::~UdpEndpoint() {
+  ::close(fd_);
+}
+
+void UdpEndpoint::send(int port, const std::string& bytes) const {
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<uint16_t>(port));
+  ::inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
+  ::sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
+}
+
+std::optional<std::string> UdpEndpoint::receive(double timeout_s) const {
+  return receive_one(fd_, after(timeout_s));
 }
 
 UdpClient::UdpClient(int port) : port_(port) {

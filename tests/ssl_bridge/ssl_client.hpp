@@ -23,7 +23,10 @@ struct TestPorts {
   int blue = 10301;
   int yellow = 10302;
   int referee = 10003;
-  static TestPorts from_environment();              // LCM port + 1 .. + 5
+  int grsim = 20011;
+  int grsim_blue_status = 30011;
+  int grsim_yellow_status = 30012;
+  static TestPorts from_environment();              // LCM port + 1 .. + 8
   std::vector<std::string> bridge_options() const;  // --vision-port ... for the bridge
 };
 
@@ -60,6 +63,22 @@ class UdpClient {
  private:
   int fd_ = -1;
   int port_;
+};
+
+// A UDP socket bound to 127.0.0.1:port (0: any free port), as a team's
+// software has one: it sends to the bridge's ports and receives what the
+// bridge sends to its address (grSim's robot status on 30011 / 30012).
+class UdpEndpoint {
+ public:
+  explicit UdpEndpoint(int port = 0);
+  ~UdpEndpoint();
+  UdpEndpoint(const UdpEndpoint&) = delete;
+  UdpEndpoint& operator=(const UdpEndpoint&) = delete;
+  void send(int port, const std::string& bytes) const;
+  std::optional<std::string> receive(double timeout_s) const;
+
+ private:
+  int fd_ = -1;
 };
 
 // One datagram to a multicast group on the loopback interface (TTL 0), as the

@@ -4,6 +4,8 @@
 // teleports show up in the next vision frames, robot commands move robots
 // (through the radio emulator), and the responses carry robot feedback.
 // ISOLATED: own network namespace, so the league's default ports are free.
+#include <grSim_Packet.pb.h>
+#include <grSim_Robotstatus.pb.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -184,4 +186,128 @@ TEST_F(SslBridgeSimulation, TeleportDriveAndFeedbackThroughTheSslProtocols) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   EXPECT_TRUE(contact) << bridge_->log() << radio_->log();
+}
+
+namespace {
+
+std::string grsim_command(uint32_t id, float forward) {
+  grSim_Packet packet;
+  grSim_Commands* commands = packet.mutable_commands();
+  commands->set_timestamp(0);
+  commands->set_isteamyellow(false);
+  grSim_Robot_Command* robot = commands->add_robot_commands();
+  robot->set_id(id);
+  robot->set_kickspeedx(0);
+  robot->set_kickspeedz(0);
+  robot->set_veltangent(forward);
+  robot->set_velnormal(0);
+  robot->set_velangular(0);
+  robot->set_spinner(false);
+  robot->set_wheelsspeed(false);
+  return packet.SerializeAsString();
+}
+
+// The blue robot's x (mm) in the newest frame: reads what waits for 150 ms.
+std::optional<double> newest_x(ssl_test::VisionReceiver& vision, uint32_t id) {
+  std::optional<double> x;
+  const auto end = Clock::now() + std::chrono::milliseconds(150);
+  while (Clock::now() < end) {
+    const auto packet = vision.receive(0.05);
+    if (!packet) continue;
+    if (const SSL_DetectionRobot* r = find_blue(*packet, id)) x = r->x();
+  }
+  return x;
+}
+
+}  // namespace
+
+// grSim's own protocol end to end: a replacement places the robot, commands on
+// the grSim port drive it through the radio emulator, and a team that falls
+// silent keeps its last command for the hold (1 s), then its robot stops; the
+// robot status from the real radio feedback reaches the sender's status port.
+TEST_F(SslBridgeSimulation, GrsimPacketsPlaceAndDriveARobotThatStopsAfterTheTeamFallsSilent) {
+  ssl_test::UdpClient grsim(ports_.grsim);
+  ASSERT_TRUE(vision_rx_.receive_until(
+      [](const SSL_WrapperPacket& p) { return find_blue(p, 2) != nullptr; }, 20))
+      << physics_->log() << vision_->log() << bridge_->log();
+  grSim_Packet place;
+  grSim_RobotReplacement* robot = place.mutable_replacement()->add_robots();
+  robot->set_x(-1.5);
+  robot->set_y(2.0);
+  robot->set_dir(0);
+  robot->set_id(2);
+  robot->set_yellowteam(false);
+  double x0 = 0;
+  ASSERT_TRUE(vision_rx_.receive_until(
+      [&](const SSL_WrapperPacket& p) {
+        grsim.send(place.SerializeAsString());
+        const SSL_DetectionRobot* r = find_blue(p, 2);
+        if (r == nullptr || std::hypot(r->x() + 1500.0, r->y() - 2000.0) > 30.0) return false;
+        x0 = r->x();
+        return true;
+      },
+      5))
+      << bridge_->log();
+
+  // Driven at 1 m/s for 0.8 s, one packet every 10 ms.
+  const auto drive_end = Clock::now() + std::chrono::milliseconds(800);
+  while (Clock::now() < drive_end) {
+    grsim.send(grsim_command(2, 1.0f));
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  // Then one packet at 0.5 m/s and silence: it keeps going for the hold.
+  grsim.send(grsim_command(2, 0.5f));
+  const auto silent_from = Clock::now();
+  const std::optional<double> x_silent = newest_x(vision_rx_, 2);
+  ASSERT_TRUE(x_silent.has_value());
+  EXPECT_GT(*x_silent - x0, 200.0) << "the robot did not move on grSim commands";
+  std::this_thread::sleep_for(std::chrono::milliseconds(650) - (Clock::now() - silent_from));
+  const std::optional<double> x_held = newest_x(vision_rx_, 2);
+  ASSERT_TRUE(x_held.has_value());
+  // Beyond the radio's 0.25 s command timeout, still driving at ~0.5 m/s.
+  EXPECT_GT(*x_held - *x_silent, 150.0) << "the robot stopped before the hold";
+  // Well after the hold (1 s) it stands.
+  std::this_thread::sleep_for(std::chrono::milliseconds(1800) - (Clock::now() - silent_from));
+  const std::optional<double> x_a = newest_x(vision_rx_, 2);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const std::optional<double> x_b = newest_x(vision_rx_, 2);
+  ASSERT_TRUE(x_a.has_value() && x_b.has_value());
+  EXPECT_LT(std::abs(*x_b - *x_a), 20.0) << "the robot still moves after the hold";
+
+  // The ball put at its kicker, the spinner on: grSim's robot status from the
+  // real radio feedback reaches the sender's blue status port.
+  ssl_test::UdpEndpoint team;
+  ssl_test::UdpEndpoint status(ports_.grsim_blue_status);
+  grSim_Packet at_kicker;
+  grSim_RobotReplacement* again = at_kicker.mutable_replacement()->add_robots();
+  again->set_x(0);
+  again->set_y(-2.0);
+  again->set_dir(0);
+  again->set_id(2);
+  again->set_yellowteam(false);
+  at_kicker.mutable_replacement()->mutable_ball()->set_x(0.075 + 0.0215 + 0.001);
+  at_kicker.mutable_replacement()->mutable_ball()->set_y(-2.0);
+  at_kicker.mutable_replacement()->mutable_ball()->set_vx(0);
+  at_kicker.mutable_replacement()->mutable_ball()->set_vy(0);
+  team.send(ports_.grsim, at_kicker.SerializeAsString());
+  grSim_Packet spin;
+  spin.ParseFromString(grsim_command(2, 0.0f));
+  spin.mutable_commands()->mutable_robot_commands(0)->set_spinner(true);
+  bool infrared = false;
+  const auto end = Clock::now() + std::chrono::seconds(5);
+  while (!infrared && Clock::now() < end) {
+    team.send(ports_.grsim, spin.SerializeAsString());
+    if (const auto bytes = status.receive(0.02)) {
+      Robots_Status robots;
+      ASSERT_TRUE(robots.ParseFromString(*bytes));
+      for (const Robot_Status& r : robots.robots_status()) {
+        infrared = infrared || (r.robot_id() == 2 && r.infrared());
+      }
+    }
+  }
+  EXPECT_TRUE(infrared) << bridge_->log() << radio_->log();
+  EXPECT_EQ(bridge_->stop(10), 0);
+  EXPECT_NE(bridge_->log().find("grSim stops (team silent 1 s) blue=1"), std::string::npos)
+      << bridge_->log();
+  bridge_.reset();
 }

@@ -7,6 +7,8 @@
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/dynamic_message.h>
 #include <google/protobuf/util/message_differencer.h>
+#include <grSim_Packet.pb.h>
+#include <grSim_Robotstatus.pb.h>
 #include <gtest/gtest.h>
 #include <messages_robocup_ssl_wrapper.pb.h>
 #include <ssl_gc_ci.pb.h>
@@ -92,6 +94,8 @@ void link_all_files() {
   (void)RobotSpecErForce::descriptor();
   (void)CiInput::descriptor();  // and through it every file of the GC's CI port
   (void)Output::descriptor();
+  (void)grSim_Packet::descriptor();  // and grSim_Commands, grSim_Replacement
+  (void)Robots_Status::descriptor();
 }
 
 const char* label_name(const FieldDescriptor& field) {
@@ -129,6 +133,10 @@ const std::vector<std::string> kOurFiles = {
     "ssl_gc_engine_config.proto",
     "ssl_gc_api.proto",
     "ssl_gc_ci.proto",
+    "grSim_Packet.proto",
+    "grSim_Commands.proto",
+    "grSim_Replacement.proto",
+    "grSim_Robotstatus.proto",
 };
 
 TEST(SslProtocolDefinitions, EveryOfficialFieldExistsWithTheSameNameNumberLabelAndType) {

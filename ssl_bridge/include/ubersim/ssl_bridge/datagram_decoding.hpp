@@ -31,8 +31,11 @@ struct DecodedDatagram {
 
 // Decodes `size` bytes into `message` (cleared first). On failure an error with
 // code UBERSIM_MALFORMED or UBERSIM_TOO_LARGE is added; unknown fields add one
-// UBERSIM_UNKNOWN_FIELDS error and are removed from the message.
+// UBERSIM_UNKNOWN_FIELDS error and are removed from the message. With
+// `missing_required_ok` a message that lacks required fields is taken as far
+// as it goes (grSim's port: grSim reads every field with has_...()).
 DecodedDatagram decode_datagram(const std::uint8_t* data, std::size_t size,
-                                google::protobuf::Message& message, Errors& errors);
+                                google::protobuf::Message& message, Errors& errors,
+                                bool missing_required_ok = false);
 
 }  // namespace ubersim::ssl

@@ -1,0 +1,238 @@
+#include "ubersim/ssl_bridge/grsim_port.hpp"
+
+#include <arpa/inet.h>
+#include <sys/socket.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <stdexcept>
+#include <ubersim/team_t.hpp>
+
+#include "ubersim/ssl_bridge/datagram_decoding.hpp"
+#include "ubersim/topics.hpp"
+
+namespace ubersim::ssl {
+namespace {
+
+constexpr const char* kSender = "ubersim_ssl_bridge_grsim";
+// Asked of the kernel for the port's receive buffer, so a burst waits there
+// rather than being lost (the kernel caps it at net.core.rmem_max).
+constexpr int kReceiveBufferBytes = 4 << 20;
+
+UdpSocket open_port(const GrsimOptions& options) {
+  UdpSocket socket = UdpSocket::bound(options.listen_address, options.port);
+  const int one = 1;
+  // The kernel then counts the datagrams it dropped (a full buffer) with each read.
+  setsockopt(socket.fd(), SOL_SOCKET, SO_RXQ_OVFL, &one, sizeof one);
+  setsockopt(socket.fd(), SOL_SOCKET, SO_RCVBUF, &kReceiveBufferBytes, sizeof kReceiveBufferBytes);
+  return socket;
+}
+
+}  // namespace
+
+GrsimPort::GrsimPort(MessageBus& bus, const ChannelNames& channels, GrsimOptions options)
+    : bus_(bus),
+      channels_(channels),
+      options_(std::move(options)),
+      socket_(open_port(options_)),
+      buffer_(kMaxDatagramBytes + 1),
+      book_(std::chrono::duration_cast<Clock::duration>(
+          std::chrono::duration<double>(options_.command_hold))) {
+  ubersim::subscribe(
+      bus_, channels_, topics::kSimState,
+      [this](const sim_state_t& s) {
+        if (!state_.update(s)) ++counters_["states dropped (sim time not valid)"];
+      },
+      10);
+  ubersim::subscribe(bus_, channels_, topics::kSimControlAck,
+                     [this](const sim_control_ack_t& a) { on_ack(a); });
+  for (Team team : kTeams) {
+    ubersim::subscribe(
+        bus_, channels_, topics::kRadioFeedback.of(team), [this, team](const radio_feedback_t& f) {
+          status_.on_feedback(team, f, [this, team](int32_t id) { return book_.kick(team, id); });
+        });
+  }
+}
+
+void GrsimPort::start() {
+  spdlog::info(
+      "grSim protocol: grSim_Packet on {}:{}; robot status to the sender's address, ports {} "
+      "(blue) and {} (yellow); a team silent for {} s stops{}",
+      options_.listen_address, options_.port, options_.blue_status_port,
+      options_.yellow_status_port, options_.command_hold,
+      options_.command_hold > 0 ? "" : " never (--grsim-command-hold 0)");
+  bus_.watch(socket_.fd(), [this] { on_readable(); });
+}
+
+void GrsimPort::on_readable() {
+  const Clock::time_point now = Clock::now();
+  for (int i = 0; i < kGrsimDatagramsPerWakeup; ++i) {
+    sockaddr_in from{};
+    iovec io{buffer_.data(), buffer_.size()};
+    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(std::uint32_t))];
+    msghdr message{};
+    message.msg_name = &from;
+    message.msg_namelen = sizeof from;
+    message.msg_iov = &io;
+    message.msg_iovlen = 1;
+    message.msg_control = control;
+    message.msg_controllen = sizeof control;
+    const ssize_t size = recvmsg(socket_.fd(), &message, MSG_DONTWAIT);
+    if (size < 0) break;  // EAGAIN: drained
+    for (cmsghdr* c = CMSG_FIRSTHDR(&message); c != nullptr; c = CMSG_NXTHDR(&message, c)) {
+      if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) {
+        std::uint32_t drops = 0;
+        std::copy_n(reinterpret_cast<const char*>(CMSG_DATA(c)), sizeof drops,
+                    reinterpret_cast<char*>(&drops));
+        if (drops != kernel_drops_) {
+          counters_["grSim datagrams lost in a full socket buffer"] += drops - kernel_drops_;
+          bad_input_.warn("grsim_overflow",
+                          "grSim datagrams arrive faster than the bridge reads them: the "
+                          "kernel dropped some");
+          kernel_drops_ = drops;
+        }
+      }
+    }
+    handle_datagram(buffer_.data(), static_cast<std::size_t>(size), from, now);
+  }
+  flush(now);
+}
+
+void GrsimPort::handle_datagram(const std::uint8_t* data, std::size_t size, const sockaddr_in& from,
+                                Clock::time_point now) {
+  ++counters_["grSim datagrams"];
+  grSim_Packet packet;
+  Errors errors;
+  // grSim takes a packet with required fields missing as far as it goes.
+  if (size > kMaxDatagramBytes || !decode_datagram(data, size, packet, errors, true).ok) {
+    ++counters_["grSim datagrams dropped (malformed or too large)"];
+    bad_input_.warn("grsim_malformed",
+                    "dropped a datagram on the grSim port: " +
+                        (errors.empty() ? std::string() : errors.back().message()));
+    return;
+  }
+  if (!errors.empty()) count_errors(errors, "unknown fields");
+  if (packet.has_commands()) handle_commands(packet.commands(), now);
+  if (packet.has_replacement()) handle_replacement(packet.replacement());
+  // grSim answers each datagram with the robots whose status changed, to its sender.
+  if (status_.pending()) send_status(from);
+}
+
+void GrsimPort::handle_commands(const grSim_Commands& commands, Clock::time_point now) {
+  const Team team =
+      commands.has_isteamyellow() && commands.isteamyellow() ? Team::Yellow : Team::Blue;
+  book_.heard(team, now);
+  Errors errors;
+  for (const grSim_Robot_Command& in : commands.robot_commands()) {
+    if (!in.has_id() || in.id() >= kGrsimMaxRobots) {
+      ++counters_["grSim robot commands dropped (no id, or id beyond 15)"];
+      bad_input_.warn("grsim_id", "dropped a grSim robot command without an id below 16");
+      continue;
+    }
+    const auto id = static_cast<int32_t>(in.id());
+    const std::optional<GrsimRobotCommand> command =
+        translate_grsim_robot_command(in, options_.translation, book_.last(team, id), errors);
+    if (command) {
+      book_.put(team, *command, now);
+      ++counters_[std::string("grSim robot commands ") + team_name(team)];
+    }
+  }
+  if (!errors.empty()) count_errors(errors, "robot commands dropped");
+}
+
+void GrsimPort::handle_replacement(const grSim_Replacement& replacement) {
+  ++counters_["grSim replacements"];
+  Errors errors;
+  const SimulatorCommand command = grsim_replacement_command(replacement, state_.get(), errors);
+  SimControlTranslation translation =
+      translate_simulator_command(command, state_.get(), options_.sim_control);
+  errors.insert(errors.end(), translation.errors.begin(), translation.errors.end());
+  for (sim_control_t& request : translation.requests) {
+    request.request_id = next_request_id_++;
+    request.sender = kSender;
+    ubersim::publish(bus_, channels_, topics::kSimControl, request);
+    ++counters_["grSim SIM_CONTROL requests"];
+  }
+  if (!errors.empty()) count_errors(errors, "replacement parts not applied");
+}
+
+void GrsimPort::count_errors(const Errors& errors, const std::string& what) {
+  counters_["grSim " + what] += errors.size();
+  bad_input_.warn("grsim_" + what, "grSim port, " + what + ": " + errors.front().message());
+}
+
+void GrsimPort::on_ack(const sim_control_ack_t& ack) {
+  if (ack.sender != kSender || ack.ok) return;
+  ++counters_["grSim SIM_CONTROL requests refused by physics"];
+  bad_input_.warn("grsim_refused", "physics refused a grSim replacement: " + ack.message);
+}
+
+void GrsimPort::send_status(const sockaddr_in& sender) {
+  for (Team team : kTeams) {
+    const std::optional<Robots_Status> changes = status_.changes(team);
+    if (!changes) continue;
+    sockaddr_in to = sender;
+    to.sin_port = htons(static_cast<uint16_t>(team == Team::Blue ? options_.blue_status_port
+                                                                 : options_.yellow_status_port));
+    std::string bytes;
+    changes->SerializeToString(&bytes);
+    if (socket_.send_to(bytes, to)) {
+      ++counters_[std::string("grSim status packets ") + team_name(team)];
+    } else {
+      bad_input_.warn("grsim_status_send", "could not send a grSim robot status packet");
+    }
+  }
+}
+
+void GrsimPort::publish(Team team, radio_packet_t packet) {
+  const auto t = static_cast<std::size_t>(team);
+  packet.sequence = ++sequence_[t];
+  packet.t_sent = state_.sim_time();
+  ubersim::publish(bus_, channels_, topics::kRadio.of(team), packet);
+  ++counters_[std::string("grSim radio packets ") + team_name(team)];
+}
+
+void GrsimPort::flush(Clock::time_point now) {
+  for (Team team : kTeams) {
+    const auto t = static_cast<std::size_t>(team);
+    if (book_.has_news(team) && now - last_publish_[t] >= kGrsimPublishInterval) {
+      last_publish_[t] = now;
+      publish(team, book_.packet(team, now));
+    }
+  }
+}
+
+void GrsimPort::tick(Clock::time_point now) {
+  flush(now);
+  for (Team team : kTeams) {
+    if (std::optional<radio_packet_t> due = book_.due(team, now, kGrsimRepeatInterval)) {
+      publish(team, std::move(*due));
+    }
+  }
+}
+
+std::optional<GrsimPort::Clock::time_point> GrsimPort::next_wake() const {
+  std::optional<Clock::time_point> next;
+  auto sooner = [&next](Clock::time_point t) { next = next ? std::min(*next, t) : t; };
+  for (Team team : kTeams) {
+    const auto t = static_cast<std::size_t>(team);
+    if (book_.has_news(team)) sooner(last_publish_[t] + kGrsimPublishInterval);
+    if (const std::optional<Clock::time_point> due = book_.next_due(team, kGrsimRepeatInterval)) {
+      sooner(*due);
+    }
+  }
+  return next;
+}
+
+void GrsimPort::log_summary() const {
+  std::string text;
+  for (const auto& [name, count] : counters_) text += " " + name + "=" + std::to_string(count);
+  for (Team team : kTeams) {
+    text += fmt::format(
+        " grSim commands superseded {0}={1} grSim stops (team silent {2} s) {0}={3}",
+        team_name(team), book_.superseded(team), options_.command_hold, book_.stops(team));
+  }
+  spdlog::info("grSim summary:{}", text);
+}
+
+}  // namespace ubersim::ssl
