@@ -1,0 +1,193 @@
+// A team-like program for the time shim's tests (test_timeshim.cpp): each
+// mode does one thing the shim must handle and prints the sim times it saw,
+// one "label seconds" line each, so that a test can check them and compare
+// two runs.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <pthread.h>
+#include <sys/epoll.h>
+#include <sys/select.h>
+#include <sys/socket.h>
+#include <sys/syscall.h>
+#include <sys/time.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <functional>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+double monotonic_s() {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) * 1e-9;
+}
+
+void say(const char* label, double value) {
+  std::printf("%s %.9f\n", label, value);
+  std::fflush(stdout);
+}
+
+int sleeps() {
+  say("start", monotonic_s());
+  timespec second{1, 0};
+  nanosleep(&second, nullptr);
+  say("nanosleep", monotonic_s());
+  usleep(500000);
+  say("usleep", monotonic_s());
+  sleep(2);
+  say("sleep", monotonic_s());
+  timespec deadline{};
+  clock_gettime(CLOCK_MONOTONIC, &deadline);
+  deadline.tv_sec += 3;
+  clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr);
+  say("clock_nanosleep_abs", monotonic_s());
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  say("sleep_for", monotonic_s());
+  say("steady_clock",
+      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count());
+  timeval wall{};
+  gettimeofday(&wall, nullptr);
+  say("gettimeofday", static_cast<double>(wall.tv_sec) + static_cast<double>(wall.tv_usec) * 1e-6);
+  say("time", static_cast<double>(time(nullptr)));
+  say("system_clock",
+      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+  return 0;
+}
+
+int fd_timeouts() {
+  int fds[2];
+  if (pipe(fds) != 0) return 1;
+  say("start", monotonic_s());
+  fd_set readable;
+  FD_ZERO(&readable);
+  FD_SET(fds[0], &readable);
+  timeval timeout{0, 250000};
+  const int selected = select(fds[0] + 1, &readable, nullptr, nullptr, &timeout);
+  say("select", monotonic_s());
+  pollfd wanted{fds[0], POLLIN, 0};
+  const int polled = poll(&wanted, 1, 750);
+  say("poll", monotonic_s());
+  const int epoll = epoll_create1(0);
+  epoll_event event{};
+  event.events = EPOLLIN;
+  event.data.fd = fds[0];
+  epoll_ctl(epoll, EPOLL_CTL_ADD, fds[0], &event);
+  epoll_event got[1];
+  const int waited = epoll_wait(epoll, got, 1, 2000);
+  say("epoll_wait", monotonic_s());
+  // Readiness before the deadline: a thread writes after 100 ms of sim time.
+  std::thread writer([&] {
+    usleep(100000);
+    if (write(fds[1], "x", 1) != 1) std::perror("write");
+  });
+  const int ready = poll(&wanted, 1, 5000);
+  say("poll_ready", monotonic_s());
+  writer.join();
+  say("results", selected * 1000 + polled * 100 + waited * 10 + ready);
+  return 0;
+}
+
+int threads() {
+  std::map<int, std::vector<double>> seen;
+  std::vector<std::thread> workers;
+  for (int worker = 1; worker <= 3; ++worker) {
+    workers.emplace_back([worker, &seen] {
+      auto& mine = seen[worker];
+      for (int i = 0; i < 4; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(100 * worker));
+        mine.push_back(monotonic_s());
+      }
+    });
+  }
+  for (auto& worker : workers) worker.join();
+  for (const auto& [worker, times] : seen) {
+    for (double t : times) say(("thread" + std::to_string(worker)).c_str(), t);
+  }
+  say("end", monotonic_s());
+  return 0;
+}
+
+int forks() {
+  const pid_t child = fork();
+  if (child == 0) {
+    sleep(2);
+    say("child", monotonic_s());
+    _exit(0);
+  }
+  usleep(500000);
+  say("parent", monotonic_s());
+  int status = 0;
+  waitpid(child, &status, 0);
+  say("reaped", monotonic_s());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+// Every thread waits on a socket with no deadline: quiescent until a
+// datagram comes from outside the group.
+int socket_wait() {
+  const int sock = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (bind(sock, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0) return 1;
+  socklen_t length = sizeof(address);
+  getsockname(sock, reinterpret_cast<sockaddr*>(&address), &length);
+  std::printf("port %d\n", ntohs(address.sin_port));
+  std::fflush(stdout);
+  std::thread reader([sock] {
+    char buffer[64];
+    const ssize_t got = recv(sock, buffer, sizeof(buffer), 0);  // blocking, no shim call
+    say("received", static_cast<double>(got));
+  });
+  pollfd wanted{sock, POLLIN, 0};
+  poll(&wanted, 1, -1);
+  say("poll_woke", monotonic_s());
+  reader.join();
+  return 0;
+}
+
+// Reads the clock in a loop until 1 s of sim time passed: charged time must
+// get it there.
+int busy_clock() {
+  const double start = monotonic_s();
+  long reads = 0;
+  while (monotonic_s() - start < 1.0) ++reads;
+  say("reads", static_cast<double>(reads));
+  say("end", monotonic_s());
+  return 0;
+}
+
+// A sleep the shim cannot see (a raw syscall): must be reported by name.
+int raw_sleep() {
+  timespec request{3, 0};
+  syscall(SYS_nanosleep, &request, nullptr);
+  say("end", monotonic_s());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::map<std::string, std::function<int()>> modes = {
+      {"sleeps", sleeps},      {"fd_timeouts", fd_timeouts}, {"threads", threads},
+      {"forks", forks},        {"socket_wait", socket_wait}, {"busy_clock", busy_clock},
+      {"raw_sleep", raw_sleep}};
+  const auto mode = argc == 2 ? modes.find(argv[1]) : modes.end();
+  if (mode == modes.end()) {
+    std::fprintf(stderr,
+                 "usage: timeshim_probe "
+                 "sleeps|fd_timeouts|threads|forks|socket_wait|busy_clock|raw_sleep\n");
+    return 2;
+  }
+  return mode->second();
+}
