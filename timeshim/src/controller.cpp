@@ -191,12 +191,25 @@ void Controller::advance_to(std::int64_t sim_ns) {
 void Controller::wake_due() {
   Header& header = segment_->header();
   const std::int64_t now = header.sim_now_ns.load();
+  std::map<pid_t, ThreadSlot*> helpers;  // by process: wakes its condition variable waiters
+  for (auto& slot : header.threads) {
+    if (slot.claim.load() != 0 &&
+        slot.state.load() == static_cast<std::uint32_t>(ThreadState::Helper)) {
+      helpers[slot.pid.load()] = &slot;
+    }
+  }
   for (auto& slot : header.threads) {
     if (slot.claim.load() == 0 || slot.deadline_ns.load() > now) continue;
     const auto state = static_cast<ThreadState>(slot.state.load());
-    if (state == ThreadState::Sleeping) {
-      slot.wake_seq.fetch_add(1);
-      futex_wake_all(slot.wake_seq);
+    ThreadSlot* to_wake = &slot;
+    if (state == ThreadState::WaitingCond) {
+      const auto helper = helpers.find(slot.pid.load());
+      if (helper == helpers.end()) continue;  // not started yet: woken at the next look
+      to_wake = helper->second;
+    }
+    if (state == ThreadState::Sleeping || state == ThreadState::WaitingCond) {
+      to_wake->wake_seq.fetch_add(1);
+      futex_wake_all(to_wake->wake_seq);
     } else if (state == ThreadState::WaitingFd || state == ThreadState::WaitingSem) {
       ::syscall(SYS_tgkill, slot.pid.load(), slot.tid.load(), header.wake_signal);
     }

@@ -3,6 +3,7 @@
 
 #include <dirent.h>
 #include <elf.h>
+#include <fcntl.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
@@ -19,11 +20,22 @@ std::string task_path(pid_t pid, pid_t tid, const char* file) {
   return "/proc/" + std::to_string(pid) + "/task/" + std::to_string(tid) + "/" + file;
 }
 
+// POSIX reads, not ifstream: a file of a process that ends while it is read
+// fails with ESRCH, which libstdc++'s filebuf turns into an exception.
 std::optional<std::string> read_small_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return std::nullopt;
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return text;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  std::string text;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t got = ::read(fd, buffer, sizeof(buffer));
+    if (got <= 0) {
+      ::close(fd);
+      if (got < 0) return std::nullopt;
+      return text;
+    }
+    text.append(buffer, static_cast<std::size_t>(got));
+  }
 }
 
 struct DirCloser {
@@ -228,12 +240,8 @@ std::string exe_of(pid_t pid) {
 }
 
 bool maps_contain(pid_t pid, const std::string& needle) {
-  std::ifstream maps("/proc/" + std::to_string(pid) + "/maps");
-  std::string line;
-  while (std::getline(maps, line)) {
-    if (line.find(needle) != std::string::npos) return true;
-  }
-  return false;
+  const auto maps = read_small_file("/proc/" + std::to_string(pid) + "/maps");
+  return maps && maps->find(needle) != std::string::npos;
 }
 
 std::optional<bool> elf_is_dynamic(const std::string& path) {

@@ -164,6 +164,10 @@ Controller::Scan Controller::scan() {
       result.run_counts[tid] = sample->run_count;
       const auto slot = slots.find(tid);
       const bool sleeps = sample->state == 'S';
+      if (slot != slots.end() && slot->second.state == ThreadState::Helper) {
+        if (!sleeps) result.all_waiting = false;  // waking a waiter now
+        continue;
+      }
       if (sleeps && slot != slots.end() && is_shim_wait(slot->second.state)) {
         if (slot->second.deadline_ns <= now) {
           result.owed_wake = true;

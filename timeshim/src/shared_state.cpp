@@ -34,6 +34,8 @@ const char* shim_call_name(ShimCall call) {
       return "epoll_pwait";
     case ShimCall::SemTimedwait:
       return "sem_timedwait";
+    case ShimCall::CondTimedwait:
+      return "pthread_cond_timedwait";
     case ShimCall::ChargedYield:
       return "charged pause (a thread that does not block)";
   }

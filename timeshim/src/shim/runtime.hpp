@@ -34,6 +34,15 @@ std::int64_t read_clock();
 // A non-blocking intercepted call (a zero timeout): charged like a clock read.
 void charge_call();
 
+// This thread's slot (claimed at its first use).
+ThreadSlot& own_slot();
+// Says what this thread does now (and wakes the controller to look).
+void set_state(ThreadSlot& slot, ThreadState state, ShimCall call, std::int64_t deadline_ns);
+// After a block that began when the thread saw view_at_start and reached
+// sim time reached_ns (0: not known): the view does not go back, and the
+// charge is forgiven.
+void after_block(std::int64_t view_at_start, std::int64_t reached_ns, ShimCall call);
+
 // Sleeps until sim time reaches deadline_ns. Returns 0, or EINTR when a
 // signal of the program's own interrupted it (then sim time is before it).
 int sleep_until(std::int64_t deadline_ns, ShimCall call);

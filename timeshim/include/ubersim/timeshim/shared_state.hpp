@@ -24,11 +24,13 @@ inline constexpr std::int64_t kNoDeadline = std::numeric_limits<std::int64_t>::m
 
 // What a thread is doing, as the shim last said.
 enum class ThreadState : std::uint32_t {
-  Free = 0,        // slot unused
-  Running = 1,     // in the program's own code (or in a call the shim does not know)
-  Sleeping = 2,    // in a shim sleep until deadline_ns (woken by a futex on wake_seq)
-  WaitingFd = 3,   // in a shim wait for fd readiness, until deadline_ns (woken by kWakeSignal)
-  WaitingSem = 4,  // in a shim semaphore wait, until deadline_ns (woken by kWakeSignal)
+  Free = 0,         // slot unused
+  Running = 1,      // in the program's own code (or in a call the shim does not know)
+  Sleeping = 2,     // in a shim sleep until deadline_ns (woken by a futex on wake_seq)
+  WaitingFd = 3,    // in a shim wait for fd readiness, until deadline_ns (woken by kWakeSignal)
+  WaitingSem = 4,   // in a shim semaphore wait, until deadline_ns (woken by kWakeSignal)
+  WaitingCond = 5,  // in a shim condition variable wait, until deadline_ns (woken by the helper)
+  Helper = 6,       // the shim's helper thread of a process (it wakes WaitingCond threads)
 };
 
 // Which intercepted call a thread is blocked in, for the messages that name it.
@@ -45,6 +47,7 @@ enum class ShimCall : std::uint32_t {
   EpollWait,
   EpollPwait,
   SemTimedwait,
+  CondTimedwait,
   ChargedYield,  // the pause a thread that never blocks is given (charged calls)
 };
 
@@ -58,6 +61,10 @@ struct alignas(64) ThreadSlot {
   std::atomic<std::int64_t> deadline_ns{kNoDeadline};  // sim time the wait ends at
   std::atomic<std::uint32_t> call{0};                  // ShimCall
   std::atomic<std::uint32_t> claim{0};                 // 0 free, 1 taken (CAS to allocate)
+  // WaitingCond: the condition variable (an address in the thread's process)
+  // and the helper's pin on it (the waiter does not leave while it is set).
+  std::atomic<std::uint64_t> cond_addr{0};
+  std::atomic<std::uint32_t> pin{0};
 };
 
 struct Header {
@@ -90,7 +97,7 @@ static_assert(sizeof(std::atomic<std::uint32_t>) == sizeof(std::uint32_t));  // 
 // sleeps, counts as waiting for the controller).
 inline bool is_shim_wait(ThreadState state) {
   return state == ThreadState::Sleeping || state == ThreadState::WaitingFd ||
-         state == ThreadState::WaitingSem;
+         state == ThreadState::WaitingSem || state == ThreadState::WaitingCond;
 }
 
 // Futex calls on a shared mapping (not FUTEX_PRIVATE: several processes).
