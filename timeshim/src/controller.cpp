@@ -61,9 +61,9 @@ namespace {
 
 std::string choose_segment_dir(const std::string& wanted) {
   if (!wanted.empty()) return wanted;
-  if (::access("/dev/shm", W_OK) == 0) return "/dev/shm";
   const char* tmp = std::getenv("TMPDIR");
-  return tmp != nullptr && *tmp != '\0' ? tmp : "/tmp";
+  if (tmp != nullptr && *tmp != '\0') return tmp;
+  return ::access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
 }
 
 std::string find_in_path(const std::string& program) {
@@ -116,7 +116,21 @@ Controller::Controller(ControllerOptions options)
   header.magic = kMagic;  // last: a process that sees it sees the rest
 }
 
-Controller::~Controller() = default;
+// What is left of the processes it started goes with their time: nothing
+// could wake them any more.
+Controller::~Controller() {
+  std::vector<pid_t> pending;
+  for (pid_t root : roots_) {
+    if (exit_status_.count(root) == 0) pending.push_back(root);
+  }
+  while (!pending.empty()) {
+    const pid_t pid = pending.back();
+    pending.pop_back();
+    for (pid_t child : children_of(pid)) pending.push_back(child);
+    ::kill(pid, SIGKILL);
+  }
+  reap(true);
+}
 
 Header& Controller::header() {
   return segment_->header();

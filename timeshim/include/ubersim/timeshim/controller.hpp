@@ -32,7 +32,7 @@ namespace ubersim::timeshim {
 struct ControllerOptions {
   // The shim library; "" finds it next to the running program (../lib).
   std::string shim_library;
-  // Folder of the shared segment's file; "" uses /dev/shm, else $TMPDIR, else /tmp.
+  // Folder of the shared segment's file; "" uses $TMPDIR, else /dev/shm, else /tmp.
   std::string segment_dir;
   // CLOCK_REALTIME at sim time 0 (ns since 1970); the default is fixed so that
   // runs are alike: 2026-01-01T00:00:00Z.
