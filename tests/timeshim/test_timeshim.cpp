@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -40,9 +41,13 @@ using Seen = std::vector<std::pair<std::string, double>>;
 Seen parse(const std::string& output) {
   Seen seen;
   std::istringstream in(output);
-  std::string label;
-  double value = 0;
-  while (in >> label >> value) seen.emplace_back(label, value);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string label;
+    double value = 0;
+    if (fields >> label >> value) seen.emplace_back(label, value);
+  }
   return seen;
 }
 
@@ -179,19 +184,29 @@ TEST(Timeshim, QuiescentWhileEveryThreadWaitsOnASocket) {
   ASSERT_EQ(q.state, GroupState::Quiescent);
   EXPECT_EQ(q.next_deadline_ns, kNoDeadline);
   EXPECT_EQ(group.now_ns(), 0);
-  int port = 0;
-  for (int i = 0; i < 200 && port == 0; ++i) {
-    std::sscanf(read_file(output).c_str(), "port %d", &port);
-    if (port == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  // Quiescent means both threads sleep in their waits now.
+  const std::string tasks = "/proc/" + std::to_string(pid) + "/task";
+  int sleeping = 0;
+  for (const auto& task : std::filesystem::directory_iterator(tasks)) {
+    const std::string stat = read_file(task.path().string() + "/stat");
+    sleeping += stat.substr(stat.rfind(')') + 2, 1) == "S" ? 1 : 0;
   }
-  ASSERT_NE(port, 0) << read_file(output);
+  EXPECT_EQ(sleeping, 2);
+  int poll_port = 0, recv_port = 0;
+  for (int i = 0; i < 200 && recv_port == 0; ++i) {
+    std::sscanf(read_file(output).c_str(), "ports %d %d", &poll_port, &recv_port);
+    if (recv_port == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_NE(recv_port, 0) << read_file(output);
   // Input from outside the group wakes it.
   const int sender = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_port = htons(static_cast<std::uint16_t>(port));
-  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ASSERT_EQ(::sendto(sender, "hello", 5, 0, reinterpret_cast<sockaddr*>(&to), sizeof(to)), 5);
+  for (int port : {poll_port, recv_port}) {
+    sockaddr_in to{};
+    to.sin_family = AF_INET;
+    to.sin_port = htons(static_cast<std::uint16_t>(port));
+    to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(::sendto(sender, "hello", 5, 0, reinterpret_cast<sockaddr*>(&to), sizeof(to)), 5);
+  }
   ::close(sender);
   const GroupRun run = run_to_end(group, pid, output);
   EXPECT_EQ(run.exit_status, 0) << run.output;

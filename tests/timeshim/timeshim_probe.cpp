@@ -132,24 +132,35 @@ int forks() {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 
-// Every thread waits on a socket with no deadline: quiescent until a
-// datagram comes from outside the group.
-int socket_wait() {
+// A UDP socket on the loopback, its port written to *port.
+int bound_socket(int* port) {
   const int sock = socket(AF_INET, SOCK_DGRAM, 0);
   sockaddr_in address{};
   address.sin_family = AF_INET;
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (bind(sock, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0) return 1;
+  if (bind(sock, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0) return -1;
   socklen_t length = sizeof(address);
   getsockname(sock, reinterpret_cast<sockaddr*>(&address), &length);
-  std::printf("port %d\n", ntohs(address.sin_port));
+  *port = ntohs(address.sin_port);
+  return sock;
+}
+
+// Every thread waits on a socket of its own with no deadline: one in poll(),
+// one in a plain blocking recv(). Quiescent until datagrams come from outside
+// the group.
+int socket_wait() {
+  int poll_port = 0, recv_port = 0;
+  const int polled = bound_socket(&poll_port);
+  const int received = bound_socket(&recv_port);
+  if (polled < 0 || received < 0) return 1;
+  std::printf("ports %d %d\n", poll_port, recv_port);
   std::fflush(stdout);
-  std::thread reader([sock] {
+  std::thread reader([received] {
     char buffer[64];
-    const ssize_t got = recv(sock, buffer, sizeof(buffer), 0);  // blocking, no shim call
+    const ssize_t got = recv(received, buffer, sizeof(buffer), 0);  // no shim call
     say("received", static_cast<double>(got));
   });
-  pollfd wanted{sock, POLLIN, 0};
+  pollfd wanted{polled, POLLIN, 0};
   poll(&wanted, 1, -1);
   say("poll_woke", monotonic_s());
   reader.join();
