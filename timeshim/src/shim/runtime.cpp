@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -145,10 +146,10 @@ Header* attach(const char* path) {
   return header;
 }
 
-__attribute__((constructor)) void start_shim() {
+void start_shim() {
   const char* path = std::getenv(kSegmentEnv);
   if (path == nullptr || *path == '\0') return;
-  the_segment = attach(path);
+  Header* header = attach(path);
   pthread_key_create(&slot_key, release_slot);
   pthread_atfork(nullptr, nullptr, forget_slot_in_child);
   struct sigaction action {};
@@ -157,13 +158,29 @@ __attribute__((constructor)) void start_shim() {
   // the handler. The signal is blocked outside the shim's waits anyway.
   action.sa_flags = 0;
   sigemptyset(&action.sa_mask);
-  sigaction(the_segment->wake_signal, &action, nullptr);
+  sigaction(header->wake_signal, &action, nullptr);
+  the_segment = header;
   own_slot();
+}
+
+pthread_once_t started = PTHREAD_ONCE_INIT;
+std::atomic<bool> start_done{false};
+
+void start_once() {
+  start_shim();
+  start_done.store(true, std::memory_order_release);
+}
+
+// At load; or earlier, at the first intercepted call, when another library's
+// constructor reads the clock before this one ran.
+__attribute__((constructor)) void start_at_load() {
+  pthread_once(&started, start_once);
 }
 
 }  // namespace
 
 Header* segment() {
+  if (!start_done.load(std::memory_order_acquire)) pthread_once(&started, start_once);
   return the_segment;
 }
 
