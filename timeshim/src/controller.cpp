@@ -160,10 +160,12 @@ pid_t Controller::spawn(const std::vector<std::string>& argv, const std::string&
     }
   }
   std::vector<char*> envp;
+  envp.reserve(env_strings.size() + 1);
   for (auto& entry : env_strings) envp.push_back(entry.data());
   envp.push_back(nullptr);
   std::vector<std::string> arg_strings = argv;
   std::vector<char*> args;
+  args.reserve(arg_strings.size() + 1);
   for (auto& arg : arg_strings) args.push_back(arg.data());
   args.push_back(nullptr);
   int output = -1;

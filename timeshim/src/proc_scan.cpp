@@ -144,7 +144,6 @@ KernelWait classify_wait(const SyscallSample& call) {
     case SYS_ppoll:
       return timeout_absent(a[2]) ? KernelWait::ForOthers : KernelWait::Timed;
     case SYS_select:
-      return timeout_absent(a[4]) ? KernelWait::ForOthers : KernelWait::Timed;
     case SYS_pselect6:
       return timeout_absent(a[4]) ? KernelWait::ForOthers : KernelWait::Timed;
     case SYS_epoll_wait:

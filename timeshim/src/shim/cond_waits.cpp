@@ -33,6 +33,8 @@ void wake_due_waiters(Header& segment, pid_t pid) {
     // its condition variable; one that leaves later waits for the pin.
     slot.pin.store(1);
     if (slot.state.load() == static_cast<std::uint32_t>(ThreadState::WaitingCond)) {
+      // The address is this process's own (the waiter's slot has its pid).
+      // NOLINTNEXTLINE(performance-no-int-to-ptr)
       pthread_cond_broadcast(reinterpret_cast<pthread_cond_t*>(slot.cond_addr.load()));
     }
     slot.pin.store(0);
@@ -63,7 +65,7 @@ void ensure_helper() {
   pthread_attr_t attributes;
   pthread_attr_init(&attributes);
   pthread_attr_setdetachstate(&attributes, PTHREAD_CREATE_DETACHED);
-  pthread_attr_setstacksize(&attributes, 64 * 1024);
+  pthread_attr_setstacksize(&attributes, std::size_t{64} * 1024);
   pthread_t thread;
   if (pthread_create(&thread, &attributes, run_helper, nullptr) == 0) {
     pthread_setname_np(thread, "timeshim-helper");

@@ -145,11 +145,14 @@ __attribute__((visibility("default"))) int ppoll(pollfd* fds, nfds_t count, cons
   return poll_until(fds, count, deadline_ts(timeout), mask, ShimCall::Ppoll);
 }
 
-// The _FORTIFY_SOURCE entry points, which glibc would route past the shim.
+// The _FORTIFY_SOURCE entry points, which glibc would route past the shim
+// (glibc's names, so reserved identifiers).
+// NOLINTNEXTLINE(bugprone-reserved-identifier)
 __attribute__((visibility("default"))) int __poll_chk(pollfd* fds, nfds_t count, int timeout_ms,
                                                       unsigned long /*fds_length*/) {
   return poll(fds, count, timeout_ms);
 }
+// NOLINTNEXTLINE(bugprone-reserved-identifier)
 __attribute__((visibility("default"))) int __ppoll_chk(pollfd* fds, nfds_t count,
                                                        const timespec* timeout,
                                                        const sigset_t* mask,
