@@ -147,6 +147,16 @@ TEST(Timeshim, FdWaitTimeoutsEndAtTheirSimDeadline) {
   EXPECT_DOUBLE_EQ(value_of(run.seen, "results"), 1.0);
 }
 
+TEST(Timeshim, SocketReceiveTimeoutEndsInSimTime) {
+  TempDir dir;
+  const GroupRun run = run_probe(dir, "receive_timeout");
+  ASSERT_EQ(run.exit_status, 0) << run.output;
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "recv_timed_out"), 1.5);
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "read_timed_out"), 3.0);
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "timeout"), 1.5);
+  EXPECT_LT(run.wall_s, 1.5);
+}
+
 TEST(Timeshim, ThreadsEachWaitTheirOwnSimTime) {
   TempDir dir;
   const GroupRun run = run_probe(dir, "threads");

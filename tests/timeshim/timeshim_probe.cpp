@@ -14,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -167,6 +168,24 @@ int socket_wait() {
   return 0;
 }
 
+// A receive timeout set with SO_RCVTIMEO ends in sim time.
+int receive_timeout() {
+  int port = 0;
+  const int sock = bound_socket(&port);
+  const timeval timeout{1, 500000};
+  setsockopt(sock, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof(timeout));
+  char buffer[16];
+  const ssize_t got = recv(sock, buffer, sizeof(buffer), 0);
+  say("recv_timed_out", got < 0 && errno == EAGAIN ? monotonic_s() : -1.0);
+  const ssize_t read_got = read(sock, buffer, sizeof(buffer));
+  say("read_timed_out", read_got < 0 && errno == EAGAIN ? monotonic_s() : -1.0);
+  timeval seen{};
+  socklen_t length = sizeof(seen);
+  getsockopt(sock, SOL_SOCKET, SO_RCVTIMEO, &seen, &length);
+  say("timeout", static_cast<double>(seen.tv_sec) + static_cast<double>(seen.tv_usec) * 1e-6);
+  return 0;
+}
+
 // Reads the clock in a loop until 1 s of sim time passed: charged time must
 // get it there.
 int busy_clock() {
@@ -220,9 +239,11 @@ int sleep_cost() {
 int main(int argc, char** argv) {
   if (argc == 3 && std::string(argv[1]) == "exec_static") return exec_static(argv[2]);
   const std::map<std::string, std::function<int()>> modes = {
-      {"sleeps", sleeps},       {"fd_timeouts", fd_timeouts}, {"threads", threads},
-      {"forks", forks},         {"socket_wait", socket_wait}, {"busy_clock", busy_clock},
-      {"raw_sleep", raw_sleep}, {"clock_cost", clock_cost},   {"sleep_cost", sleep_cost}};
+      {"sleeps", sleeps},           {"fd_timeouts", fd_timeouts},
+      {"threads", threads},         {"forks", forks},
+      {"socket_wait", socket_wait}, {"busy_clock", busy_clock},
+      {"raw_sleep", raw_sleep},     {"clock_cost", clock_cost},
+      {"sleep_cost", sleep_cost},   {"receive_timeout", receive_timeout}};
   const auto mode = argc == 2 ? modes.find(argv[1]) : modes.end();
   if (mode == modes.end()) {
     std::fprintf(stderr,

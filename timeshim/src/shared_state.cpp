@@ -36,6 +36,8 @@ const char* shim_call_name(ShimCall call) {
       return "sem_timedwait";
     case ShimCall::CondTimedwait:
       return "pthread_cond_timedwait";
+    case ShimCall::SocketReceive:
+      return "a socket receive with SO_RCVTIMEO";
     case ShimCall::ChargedYield:
       return "charged pause (a thread that does not block)";
   }

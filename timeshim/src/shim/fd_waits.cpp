@@ -2,6 +2,8 @@
 // intercepts"): the timeout becomes a sim-time deadline; the call waits, with
 // no wall-time limit, for readiness or for the controller's wake signal once
 // sim time passed the deadline.
+#include "fd_waits.hpp"
+
 #include <poll.h>
 #include <sys/epoll.h>
 #include <sys/select.h>
@@ -47,24 +49,6 @@ std::int64_t deadline_ms(int timeout_ms) {
 std::int64_t deadline_ts(const timespec* timeout) {
   if (timeout == nullptr) return kNoDeadline;
   return shim::deadline_after(shim::view_now(), shim::to_ns(*timeout));
-}
-
-int poll_until(pollfd* fds, nfds_t count, std::int64_t deadline, const sigset_t* app_mask,
-               ShimCall call) {
-  // Ready now (or an error): no wait, and no state change to tell anyone.
-  const int ready = real_ppoll(fds, count, &kZero, app_mask);
-  if (ready != 0 || deadline <= shim::view_now()) {
-    shim::charge_call();
-    return ready;
-  }
-  bool timed_out = false;
-  const int result = shim::wait_until(
-      deadline, call, ThreadState::WaitingFd, app_mask, &timed_out,
-      [fds, count](const sigset_t* mask) { return real_ppoll(fds, count, nullptr, mask); });
-  if (timed_out) {
-    for (nfds_t i = 0; i < count; ++i) fds[i].revents = 0;
-  }
-  return result;
 }
 
 // The three fd sets of a select, kept to start each try from the caller's.
@@ -128,6 +112,30 @@ int epoll_until(int epoll, epoll_event* events, int count, std::int64_t deadline
 }
 
 }  // namespace
+
+namespace ubersim::timeshim::shim {
+
+int poll_until(pollfd* fds, nfds_t count, std::int64_t deadline, const sigset_t* app_mask,
+               ShimCall call) {
+  // Ready now (or an error): no wait, and no state change to tell anyone.
+  const int ready = real_ppoll(fds, count, &kZero, app_mask);
+  if (ready != 0 || deadline <= shim::view_now()) {
+    shim::charge_call();
+    return ready;
+  }
+  bool timed_out = false;
+  const int result = shim::wait_until(
+      deadline, call, ThreadState::WaitingFd, app_mask, &timed_out,
+      [fds, count](const sigset_t* mask) { return real_ppoll(fds, count, nullptr, mask); });
+  if (timed_out) {
+    for (nfds_t i = 0; i < count; ++i) fds[i].revents = 0;
+  }
+  return result;
+}
+
+}  // namespace ubersim::timeshim::shim
+
+using shim::poll_until;
 
 extern "C" {
 

@@ -48,6 +48,7 @@ enum class ShimCall : std::uint32_t {
   EpollPwait,
   SemTimedwait,
   CondTimedwait,
+  SocketReceive,  // a receive on a socket with SO_RCVTIMEO
   ChargedYield,  // the pause a thread that never blocks is given (charged calls)
 };
 
