@@ -157,6 +157,19 @@ TEST(Timeshim, SocketReceiveTimeoutEndsInSimTime) {
   EXPECT_LT(run.wall_s, 1.5);
 }
 
+TEST(Timeshim, TimerfdExpiresInSimTime) {
+  TempDir dir;
+  const GroupRun run = run_probe(dir, "timer_fd");
+  ASSERT_EQ(run.exit_status, 0) << run.output;
+  const Seen expected = {{"expired", 0.5}, {"expired", 0.75},       {"expired", 1.0},
+                         {"count", 2.0},   {"epoll_expired", 1.75}, {"left", 0.25}};
+  ASSERT_EQ(run.seen.size(), expected.size()) << run.output;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(run.seen[i].first, expected[i].first);
+    EXPECT_NEAR(run.seen[i].second, expected[i].second, 1e-9) << run.seen[i].first;
+  }
+}
+
 TEST(Timeshim, ThreadsEachWaitTheirOwnSimTime) {
   TempDir dir;
   const GroupRun run = run_probe(dir, "threads");

@@ -11,11 +11,13 @@
 #include <sys/socket.h>
 #include <sys/syscall.h>
 #include <sys/time.h>
+#include <sys/timerfd.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
@@ -186,6 +188,37 @@ int receive_timeout() {
   return 0;
 }
 
+// A periodic timerfd (first expiry at 0.5 s, then every 0.25 s), read with
+// a blocking read and through epoll.
+int timer_fd() {
+  const int timer = timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC);
+  itimerspec every{};
+  every.it_value.tv_nsec = 500000000;
+  every.it_interval.tv_nsec = 250000000;
+  timerfd_settime(timer, 0, &every, nullptr);
+  std::uint64_t expirations = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (read(timer, &expirations, sizeof(expirations)) != sizeof(expirations)) return 1;
+    say("expired", monotonic_s());
+  }
+  usleep(600000);  // two more expirations meanwhile (at 1.25 and 1.5 s)
+  if (read(timer, &expirations, sizeof(expirations)) != sizeof(expirations)) return 1;
+  say("count", static_cast<double>(expirations));
+  const int epoll = epoll_create1(0);
+  epoll_event event{};
+  event.events = EPOLLIN;
+  epoll_ctl(epoll, EPOLL_CTL_ADD, timer, &event);
+  epoll_event got[1];
+  epoll_wait(epoll, got, 1, -1);
+  say("epoll_expired", monotonic_s());
+  itimerspec left{};
+  timerfd_gettime(timer, &left);
+  say("left", static_cast<double>(left.it_value.tv_sec) +
+                  static_cast<double>(left.it_value.tv_nsec) * 1e-9);
+  close(timer);
+  return 0;
+}
+
 // Reads the clock in a loop until 1 s of sim time passed: charged time must
 // get it there.
 int busy_clock() {
@@ -243,12 +276,13 @@ int main(int argc, char** argv) {
       {"threads", threads},         {"forks", forks},
       {"socket_wait", socket_wait}, {"busy_clock", busy_clock},
       {"raw_sleep", raw_sleep},     {"clock_cost", clock_cost},
-      {"sleep_cost", sleep_cost},   {"receive_timeout", receive_timeout}};
+      {"sleep_cost", sleep_cost},   {"receive_timeout", receive_timeout},
+      {"timer_fd", timer_fd}};
   const auto mode = argc == 2 ? modes.find(argv[1]) : modes.end();
   if (mode == modes.end()) {
-    std::fprintf(stderr,
-                 "usage: timeshim_probe "
-                 "sleeps|fd_timeouts|threads|forks|socket_wait|busy_clock|raw_sleep\n");
+    std::fprintf(stderr, "usage: timeshim_probe MODE, one of:");
+    for (const auto& [name, run] : modes) std::fprintf(stderr, " %s", name.c_str());
+    std::fprintf(stderr, " (or: exec_static PATH)\n");
     return 2;
   }
   return mode->second();

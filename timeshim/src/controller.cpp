@@ -218,12 +218,13 @@ void Controller::wake_due() {
     if (slot.claim.load() == 0 || slot.deadline_ns.load() > now) continue;
     const auto state = static_cast<ThreadState>(slot.state.load());
     ThreadSlot* to_wake = &slot;
-    if (state == ThreadState::WaitingCond) {
+    if (state == ThreadState::WaitingCond || state == ThreadState::Timer) {
       const auto helper = helpers.find(slot.pid.load());
       if (helper == helpers.end()) continue;  // not started yet: woken at the next look
       to_wake = helper->second;
     }
-    if (state == ThreadState::Sleeping || state == ThreadState::WaitingCond) {
+    if (state == ThreadState::Sleeping || state == ThreadState::WaitingCond ||
+        state == ThreadState::Timer) {
       to_wake->wake_seq.fetch_add(1);
       futex_wake_all(to_wake->wake_seq);
     } else if (state == ThreadState::WaitingFd || state == ThreadState::WaitingSem) {

@@ -33,7 +33,10 @@ struct SlotView {
 std::map<pid_t, SlotView> slots_by_tid(Header& header) {
   std::map<pid_t, SlotView> result;
   for (auto& slot : header.threads) {
-    if (slot.claim.load() == 0) continue;
+    if (slot.claim.load() == 0 ||
+        slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer)) {
+      continue;
+    }
     result[slot.tid.load()] =
         SlotView{static_cast<ThreadState>(slot.state.load()), slot.deadline_ns.load(),
                  static_cast<ShimCall>(slot.call.load())};
@@ -75,13 +78,34 @@ void free_dead_slots(Header& header, const std::set<pid_t>& alive) {
   for (auto& slot : header.threads) {
     if (slot.claim.load() == 0) continue;
     const pid_t tid = slot.tid.load();
-    if (alive.count(tid) != 0) continue;
-    const std::string path =
-        "/proc/" + std::to_string(slot.pid.load()) + "/task/" + std::to_string(tid);
+    const bool timer = slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer);
+    if (!timer && alive.count(tid) != 0) continue;
+    // A timer lives as long as its process; a thread as long as its task.
+    std::string path = "/proc/" + std::to_string(slot.pid.load());
+    if (!timer) path += "/task/" + std::to_string(tid);
     if (::access(path.c_str(), F_OK) == 0) continue;
     slot.state.store(static_cast<std::uint32_t>(ThreadState::Free));
     slot.tid.store(0);
     slot.claim.store(0);
+  }
+}
+
+// Armed timers of the group's processes: deadlines it can wake at, or, when
+// due and not yet fired, a wake the process's helper still owes.
+void scan_timers(Header& header, const std::set<pid_t>& processes, std::int64_t now,
+                 bool* owed_wake, std::int64_t* next_deadline) {
+  for (auto& slot : header.threads) {
+    if (slot.claim.load() == 0 ||
+        slot.state.load() != static_cast<std::uint32_t>(ThreadState::Timer)) {
+      continue;
+    }
+    if (processes.count(slot.pid.load()) == 0) continue;
+    const std::int64_t deadline = slot.deadline_ns.load();
+    if (deadline <= now) {
+      *owed_wake = true;
+    } else {
+      *next_deadline = std::min(*next_deadline, deadline);
+    }
   }
 }
 
@@ -154,7 +178,8 @@ Controller::Scan Controller::scan() {
   const std::int64_t now = segment.sim_now_ns.load();
   Scan result;
   std::set<pid_t> alive;
-  for (pid_t pid : group_processes()) {
+  const std::vector<pid_t> processes = group_processes();
+  for (pid_t pid : processes) {
     check_shim_loaded(pid);
     for (pid_t tid : threads_of(pid)) {
       const auto sample = sample_thread(pid, tid);
@@ -197,6 +222,9 @@ Controller::Scan Controller::scan() {
       note_suspect(pid, tid, describe_kernel_wait(pid, tid, call));
     }
   }
+  scan_timers(segment, std::set<pid_t>(processes.begin(), processes.end()), now, &result.owed_wake,
+              &result.next_deadline);
+  if (result.owed_wake) result.all_waiting = false;
   free_dead_slots(segment, alive);
   for (auto it = suspects_.begin(); it != suspects_.end();) {
     it = alive.count(it->first) != 0 ? std::next(it) : suspects_.erase(it);

@@ -23,12 +23,32 @@ namespace {
 
 std::atomic<pid_t> helper_pid{0};
 
+// A due timer: its expirations up to now go to its eventfd (read returns
+// their count, as a timerfd's does), and it is due again a period later.
+void fire_timer(ThreadSlot& slot, std::int64_t now) {
+  const std::int64_t deadline = slot.deadline_ns.load();
+  const std::int64_t interval = slot.interval_ns.load();
+  const std::uint64_t expirations =
+      1 + (interval > 0 ? static_cast<std::uint64_t>((now - deadline) / interval) : 0);
+  const int fd = slot.timer_fd.load();
+  if (::write(fd, &expirations, sizeof(expirations)) < 0) {
+    // The counter is full; the program has not read it for 2^64 periods.
+  }
+  slot.deadline_ns.store(interval > 0 ? deadline + static_cast<std::int64_t>(expirations) * interval
+                                      : ubersim::timeshim::kNoDeadline);
+  shim::notify();
+}
+
 void wake_due_waiters(Header& segment, pid_t pid) {
   const std::int64_t now = segment.sim_now_ns.load();
   for (auto& slot : segment.threads) {
     if (slot.claim.load() == 0 || slot.pid.load() != pid) continue;
-    if (slot.state.load() != static_cast<std::uint32_t>(ThreadState::WaitingCond)) continue;
     if (slot.deadline_ns.load() > now) continue;
+    if (slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer)) {
+      fire_timer(slot, now);
+      continue;
+    }
+    if (slot.state.load() != static_cast<std::uint32_t>(ThreadState::WaitingCond)) continue;
     // Pin, then look again: a waiter that left meanwhile may have destroyed
     // its condition variable; one that leaves later waits for the pin.
     slot.pin.store(1);
@@ -57,7 +77,10 @@ void* run_helper(void* /*unused*/) {
   return nullptr;
 }
 
-// The helper of this process (after a fork, the child's own).
+}  // namespace
+
+namespace ubersim::timeshim::shim {
+
 void ensure_helper() {
   const pid_t self = ::getpid();
   pid_t known = helper_pid.load();
@@ -73,6 +96,10 @@ void ensure_helper() {
   pthread_attr_destroy(&attributes);
 }
 
+}  // namespace ubersim::timeshim::shim
+
+namespace {
+
 using CondWaitFn = int (*)(pthread_cond_t*, pthread_mutex_t*);
 
 int real_cond_wait(pthread_cond_t* cond, pthread_mutex_t* mutex) {
@@ -86,7 +113,7 @@ int cond_wait_until(pthread_cond_t* cond, pthread_mutex_t* mutex, std::int64_t d
     shim::charge_call();
     return ETIMEDOUT;
   }
-  ensure_helper();
+  shim::ensure_helper();
   ThreadSlot& slot = shim::own_slot();
   slot.cond_addr.store(reinterpret_cast<std::uint64_t>(cond));
   shim::set_state(slot, ThreadState::WaitingCond, ShimCall::CondTimedwait, deadline);

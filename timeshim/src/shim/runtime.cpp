@@ -88,6 +88,26 @@ ThreadSlot* claim_slot(pid_t tid) {
 
 }  // namespace
 
+ThreadSlot* claim_other_slot() {
+  for (auto& slot : the_segment->threads) {
+    std::uint32_t free_claim = 0;
+    if (!slot.claim.compare_exchange_strong(free_claim, 1)) continue;
+    slot.pid.store(static_cast<std::int32_t>(::getpid()));
+    slot.tid.store(0);
+    slot.deadline_ns.store(kNoDeadline);
+    return &slot;
+  }
+  return nullptr;
+}
+
+void release_other_slot(ThreadSlot& slot) {
+  release_slot(&slot);
+}
+
+void notify() {
+  notify_controller();
+}
+
 ThreadSlot& own_slot() {
   if (this_thread.slot == nullptr) {
     this_thread.tid = static_cast<pid_t>(::syscall(SYS_gettid));

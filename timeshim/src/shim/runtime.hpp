@@ -36,6 +36,15 @@ void charge_call();
 
 // This thread's slot (claimed at its first use).
 ThreadSlot& own_slot();
+// A slot for something that is not a thread (a timer) of this process, or
+// nullptr when all are taken.
+ThreadSlot* claim_other_slot();
+void release_other_slot(ThreadSlot& slot);
+// Wakes the controller to look again.
+void notify();
+// Starts this process's helper thread (after a fork, the child's own) if it
+// has none: it wakes condition variable waiters and fires timers.
+void ensure_helper();
 // Says what this thread does now (and wakes the controller to look).
 void set_state(ThreadSlot& slot, ThreadState state, ShimCall call, std::int64_t deadline_ns);
 // After a block that began when the thread saw view_at_start and reached

@@ -12,6 +12,7 @@
 
 #include "fd_waits.hpp"
 #include "runtime.hpp"
+#include "timers.hpp"
 
 namespace shim = ubersim::timeshim::shim;
 using ubersim::timeshim::ShimCall;
@@ -146,6 +147,7 @@ __attribute__((visibility("default"))) ssize_t read(int fd, void* buffer, size_t
 __attribute__((visibility("default"))) int close(int fd) {
   static const auto next = real<int (*)(int)>("close");
   if (fd >= 0 && fd < kMaxFd) receive_timeout_ns[fd].store(0, std::memory_order_relaxed);
+  shim::forget_timer(fd);
   return next(fd);
 }
 

@@ -31,6 +31,7 @@ enum class ThreadState : std::uint32_t {
   WaitingSem = 4,   // in a shim semaphore wait, until deadline_ns (woken by kWakeSignal)
   WaitingCond = 5,  // in a shim condition variable wait, until deadline_ns (woken by the helper)
   Helper = 6,       // the shim's helper thread of a process (it wakes WaitingCond threads)
+  Timer = 7,        // not a thread: a timerfd of process pid, due at deadline_ns (or never)
 };
 
 // Which intercepted call a thread is blocked in, for the messages that name it.
@@ -49,7 +50,7 @@ enum class ShimCall : std::uint32_t {
   SemTimedwait,
   CondTimedwait,
   SocketReceive,  // a receive on a socket with SO_RCVTIMEO
-  ChargedYield,  // the pause a thread that never blocks is given (charged calls)
+  ChargedYield,   // the pause a thread that never blocks is given (charged calls)
 };
 
 const char* shim_call_name(ShimCall call);
@@ -66,6 +67,9 @@ struct alignas(64) ThreadSlot {
   // and the helper's pin on it (the waiter does not leave while it is set).
   std::atomic<std::uint64_t> cond_addr{0};
   std::atomic<std::uint32_t> pin{0};
+  // Timer: its fd (an eventfd the helper writes expirations to) and period.
+  std::atomic<std::int32_t> timer_fd{-1};
+  std::atomic<std::int64_t> interval_ns{0};
 };
 
 struct Header {
