@@ -173,6 +173,7 @@ pid_t Controller::spawn(const std::vector<std::string>& argv, const std::string&
     output = ::open(output_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (output < 0) throw std::runtime_error("timeshim: cannot write " + output_path);
   }
+  const std::string exec_failed = "timeshim: cannot execute " + program + "\n";
   const pid_t pid = ::fork();
   if (pid == 0) {
     if (output >= 0) {
@@ -180,6 +181,7 @@ pid_t Controller::spawn(const std::vector<std::string>& argv, const std::string&
       ::dup2(output, 2);
     }
     ::execve(program.c_str(), args.data(), envp.data());
+    if (::write(2, exec_failed.data(), exec_failed.size()) < 0) ::_exit(127);
     ::_exit(127);
   }
   if (output >= 0) ::close(output);
