@@ -5,6 +5,7 @@
 #include <signal.h>
 #include <sys/prctl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -23,9 +24,11 @@ using ubersim::timeshim::kNoDeadline;
 using ubersim::timeshim::Quiescence;
 
 std::atomic<int> stop_signal{0};
+std::atomic<int> stop_requests{0};
 
 void on_stop(int signal_number) {
   stop_signal.store(signal_number);
+  stop_requests.fetch_add(1);
 }
 
 struct RunOptions {
@@ -49,7 +52,7 @@ void print_problems(Controller& group) {
 int run(Controller& group, pid_t command, const RunOptions& options) {
   const std::int64_t until =
       options.duration_s > 0 ? static_cast<std::int64_t>(options.duration_s * 1e9) : kNoDeadline;
-  bool forwarded = false;
+  int forwarded = 0;  // stop requests passed on (the first as it came, then SIGKILL)
   auto idle_since = std::chrono::steady_clock::now();
   bool idle_reported = false;
   for (;;) {
@@ -57,9 +60,11 @@ int run(Controller& group, pid_t command, const RunOptions& options) {
     print_problems(group);
     const bool reached_end =
         until != kNoDeadline && group.now_ns() >= until && q.state == GroupState::Quiescent;
-    if ((stop_signal.load() != 0 || reached_end) && !forwarded) {
-      forwarded = true;
-      ::kill(command, stop_signal.load() != 0 ? stop_signal.load() : SIGTERM);
+    const int requests = std::max(stop_requests.load(), reached_end ? 1 : 0);
+    if (requests > forwarded) {
+      const int first = stop_signal.load() != 0 ? stop_signal.load() : SIGTERM;
+      ::kill(command, forwarded > 0 ? SIGKILL : first);
+      forwarded = requests;
     }
     if (q.state == GroupState::Exited) break;
     if (q.state != GroupState::Quiescent) {
