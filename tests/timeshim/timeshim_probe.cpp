@@ -6,6 +6,7 @@
 #include <netinet/in.h>
 #include <poll.h>
 #include <pthread.h>
+#include <semaphore.h>
 #include <sys/epoll.h>
 #include <sys/select.h>
 #include <sys/socket.h>
@@ -17,12 +18,14 @@
 
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -219,6 +222,53 @@ int timer_fd() {
   return 0;
 }
 
+// Timed condition variable and semaphore waits, on each clock they can use.
+int cond_waits() {
+  std::mutex mutex;
+  std::condition_variable condition;
+  std::unique_lock<std::mutex> lock(mutex);
+  condition.wait_for(lock, std::chrono::milliseconds(300));  // steady_clock: clockwait
+  say("wait_for", monotonic_s());
+  condition.wait_until(lock, std::chrono::system_clock::now() + std::chrono::milliseconds(200));
+  say("wait_until_system", monotonic_s());
+  lock.unlock();
+  pthread_condattr_t attributes;
+  pthread_condattr_init(&attributes);
+  pthread_condattr_setclock(&attributes, CLOCK_MONOTONIC);
+  pthread_cond_t monotonic_condition;
+  pthread_cond_init(&monotonic_condition, &attributes);
+  pthread_mutex_t plain_mutex = PTHREAD_MUTEX_INITIALIZER;
+  timespec deadline{};
+  clock_gettime(CLOCK_MONOTONIC, &deadline);
+  deadline.tv_sec += 1;
+  pthread_mutex_lock(&plain_mutex);
+  const int timed_out = pthread_cond_timedwait(&monotonic_condition, &plain_mutex, &deadline);
+  pthread_mutex_unlock(&plain_mutex);
+  say("timedwait_monotonic", timed_out == ETIMEDOUT ? monotonic_s() : -1.0);
+  sem_t semaphore;
+  sem_init(&semaphore, 0, 0);
+  clock_gettime(CLOCK_REALTIME, &deadline);
+  deadline.tv_nsec += 250000000;
+  if (deadline.tv_nsec >= 1000000000) {
+    deadline.tv_nsec -= 1000000000;
+    deadline.tv_sec += 1;
+  }
+  const int waited = sem_timedwait(&semaphore, &deadline);
+  say("sem_timedwait", waited != 0 && errno == ETIMEDOUT ? monotonic_s() : -1.0);
+  // A notify before the deadline ends the wait then.
+  std::thread notifier([&] {
+    usleep(100000);
+    std::lock_guard<std::mutex> guard(mutex);
+    condition.notify_all();
+  });
+  lock.lock();
+  const auto status = condition.wait_for(lock, std::chrono::seconds(5));
+  say("notified", status == std::cv_status::no_timeout ? monotonic_s() : -1.0);
+  lock.unlock();
+  notifier.join();
+  return 0;
+}
+
 // Reads the clock in a loop until 1 s of sim time passed: charged time must
 // get it there.
 int busy_clock() {
@@ -277,7 +327,7 @@ int main(int argc, char** argv) {
       {"socket_wait", socket_wait}, {"busy_clock", busy_clock},
       {"raw_sleep", raw_sleep},     {"clock_cost", clock_cost},
       {"sleep_cost", sleep_cost},   {"receive_timeout", receive_timeout},
-      {"timer_fd", timer_fd}};
+      {"timer_fd", timer_fd},       {"cond_waits", cond_waits}};
   const auto mode = argc == 2 ? modes.find(argv[1]) : modes.end();
   if (mode == modes.end()) {
     std::fprintf(stderr, "usage: timeshim_probe MODE, one of:");
