@@ -4,6 +4,7 @@
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
+#include <signal.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -385,6 +386,34 @@ TEST(Timeshim, RunnerRunsACommandOnSimTime) {
   const std::string text = read_file(log);
   EXPECT_NE(text.find("sleep_for 8.000000000"), std::string::npos) << text;
   EXPECT_NE(text.find("timeshim: sim time 8.000000 s"), std::string::npos) << text;
+}
+
+TEST(Timeshim, GroupEndsWhenItsControllerIsGone) {
+  TempDir dir;
+  const std::string log = dir.path("runner.log");
+  ubersim::test::ChildProcess runner({TIMESHIM_RUN, "--", TIMESHIM_PROBE, "socket_wait"}, log);
+  // The probe waits for input with no deadline, for ever.
+  pid_t probe = 0;
+  for (int i = 0; i < 500 && probe == 0; ++i) {
+    std::istringstream(read_file("/proc/" + std::to_string(runner.pid()) + "/task/" +
+                                 std::to_string(runner.pid()) + "/children")) >>
+        probe;
+    if (probe == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_NE(probe, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_EQ(runner.stop(10, SIGKILL), 128 + SIGKILL);
+  // Its shim waits check once a second of wall time that the controller runs.
+  bool gone = false;
+  for (int i = 0; i < 100 && !gone; ++i) {
+    gone = !ubersim::test::process_alive(probe);
+    if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_TRUE(gone);
+  EXPECT_NE(
+      read_file(log).find("the controller (pid " + std::to_string(runner.pid()) + ") is gone"),
+      std::string::npos)
+      << read_file(log);
 }
 
 TEST(Timeshim, RunnerRejectsABadCommandLine) {

@@ -100,11 +100,12 @@ void ensure_helper() {
 
 namespace {
 
-using CondWaitFn = int (*)(pthread_cond_t*, pthread_mutex_t*);
+using CondClockwaitFn = int (*)(pthread_cond_t*, pthread_mutex_t*, clockid_t, const timespec*);
 
-int real_cond_wait(pthread_cond_t* cond, pthread_mutex_t* mutex) {
-  static const auto real = shim::next_symbol<CondWaitFn>("pthread_cond_wait");
-  return real(cond, mutex);
+int real_cond_clockwait(pthread_cond_t* cond, pthread_mutex_t* mutex, clockid_t clock,
+                        const timespec* limit) {
+  static const auto real = shim::next_symbol<CondClockwaitFn>("pthread_cond_clockwait");
+  return real(cond, mutex, clock, limit);
 }
 
 int cond_wait_until(pthread_cond_t* cond, pthread_mutex_t* mutex, std::int64_t deadline) {
@@ -121,9 +122,15 @@ int cond_wait_until(pthread_cond_t* cond, pthread_mutex_t* mutex, std::int64_t d
   if (shim::segment()->sim_now_ns.load() >= deadline) {
     result = ETIMEDOUT;
   } else {
-    // One wait: whatever wakes it (the program, or the helper at the
-    // deadline) is a wakeup the caller checks its condition after.
-    result = real_cond_wait(cond, mutex);
+    // Whatever wakes it (the program, or the helper at the deadline) is a
+    // wakeup the caller checks its condition after; the wall-time limit only
+    // checks that the controller still runs.
+    for (;;) {
+      const timespec limit = shim::wall_liveness_deadline();
+      result = real_cond_clockwait(cond, mutex, CLOCK_MONOTONIC, &limit);
+      if (result != ETIMEDOUT || shim::segment()->sim_now_ns.load() >= deadline) break;
+      shim::exit_if_controller_gone();
+    }
     if (result == 0 && shim::segment()->sim_now_ns.load() >= deadline) result = ETIMEDOUT;
   }
   shim::set_state(slot, ThreadState::Running, ShimCall::None, ubersim::timeshim::kNoDeadline);

@@ -92,7 +92,7 @@ int select_until(int count, fd_set* readable, fd_set* writable, fd_set* failed,
   const int result = shim::wait_until(
       deadline, call, ThreadState::WaitingFd, app_mask, &timed_out, [&](const sigset_t* mask) {
         sets.restore();
-        return real_pselect(count, readable, writable, failed, nullptr, mask);
+        return real_pselect(count, readable, writable, failed, &shim::kLivenessCheck, mask);
       });
   if (timed_out) sets.clear();
   return result;
@@ -107,8 +107,9 @@ int epoll_until(int epoll, epoll_event* events, int count, std::int64_t deadline
   }
   bool timed_out = false;
   return shim::wait_until(
-      deadline, call, ThreadState::WaitingFd, app_mask, &timed_out,
-      [=](const sigset_t* mask) { return real_epoll_pwait(epoll, events, count, -1, mask); });
+      deadline, call, ThreadState::WaitingFd, app_mask, &timed_out, [=](const sigset_t* mask) {
+        return real_epoll_pwait(epoll, events, count, shim::kLivenessCheckMs, mask);
+      });
 }
 
 }  // namespace
@@ -124,9 +125,10 @@ int poll_until(pollfd* fds, nfds_t count, std::int64_t deadline, const sigset_t*
     return ready;
   }
   bool timed_out = false;
-  const int result = shim::wait_until(
-      deadline, call, ThreadState::WaitingFd, app_mask, &timed_out,
-      [fds, count](const sigset_t* mask) { return real_ppoll(fds, count, nullptr, mask); });
+  const int result = shim::wait_until(deadline, call, ThreadState::WaitingFd, app_mask, &timed_out,
+                                      [fds, count](const sigset_t* mask) {
+                                        return real_ppoll(fds, count, &shim::kLivenessCheck, mask);
+                                      });
   if (timed_out) {
     for (nfds_t i = 0; i < count; ++i) fds[i].revents = 0;
   }

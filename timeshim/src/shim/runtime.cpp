@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <pthread.h>
+#include <signal.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
@@ -199,6 +200,26 @@ __attribute__((constructor)) void start_at_load() {
 
 }  // namespace
 
+void exit_if_controller_gone() {
+  const int saved = errno;
+  const pid_t controller = the_segment->controller_pid;
+  if (::kill(controller, 0) != 0 && errno == ESRCH) {
+    std::fprintf(stderr,
+                 "ubersim timeshim: process %d: the controller (pid %d) is gone, so sim time "
+                 "cannot advance; exiting\n",
+                 static_cast<int>(::getpid()), static_cast<int>(controller));
+    ::_exit(124);
+  }
+  errno = saved;
+}
+
+timespec wall_liveness_deadline() {
+  static const auto real_clock = next_symbol<int (*)(clockid_t, timespec*)>("clock_gettime");
+  timespec now{};
+  real_clock(CLOCK_MONOTONIC, &now);
+  return to_timespec(to_ns(now) + to_ns(kLivenessCheck));
+}
+
 Header* segment() {
   if (!start_done.load(std::memory_order_acquire)) pthread_once(&started, start_once);
   return the_segment;
@@ -237,10 +258,12 @@ int sleep_until(std::int64_t deadline_ns, ShimCall call) {
   for (;;) {
     const std::uint32_t seq = slot.wake_seq.load();
     if (the_segment->sim_now_ns.load() >= deadline_ns) break;
-    if (futex_wait(slot.wake_seq, seq, -1) != 0 && errno == EINTR) {
+    const long waited = futex_wait(slot.wake_seq, seq, to_ns(kLivenessCheck));
+    if (waited != 0 && errno == EINTR) {
       result = EINTR;
       break;
     }
+    if (waited != 0 && errno == ETIMEDOUT) exit_if_controller_gone();
   }
   set_state(slot, ThreadState::Running, ShimCall::None, kNoDeadline);
   after_block(view_at_start, result == 0 ? deadline_ns : 0, call);

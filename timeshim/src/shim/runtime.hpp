@@ -59,12 +59,25 @@ int sleep_until(std::int64_t deadline_ns, ShimCall call);
 // Runs a wait for fds or a semaphore until it returns or sim time reaches
 // deadline_ns (kNoDeadline: no limit). `block` is called with the signal mask
 // to wait with (the thread's own, or `wait_mask`, without the wake signal) and
-// blocks with no time limit; it returns like the call it stands for. Returns
-// block's result, or 0 with errno untouched when the deadline came first.
-// `*timed_out` says which.
+// blocks for at most kLivenessCheck of wall time; it returns > 0 when its wait
+// ended (ready), 0 when the wall limit passed (then the controller's life is
+// checked and it is called again), or -1 with errno. Returns block's result,
+// or 0 with errno untouched when the deadline came first. `*timed_out` says
+// which.
 template <typename Block>
 int wait_until(std::int64_t deadline_ns, ShimCall call, ThreadState state,
                const sigset_t* wait_mask, bool* timed_out, Block&& block);
+
+// How long a shim wait blocks in the kernel before it checks that the
+// controller still runs (with it gone, sim time never advances again).
+inline constexpr timespec kLivenessCheck{1, 0};
+inline constexpr int kLivenessCheckMs = 1000;
+// Says so and ends the process when the controller is gone: a wait for sim
+// time would never end (never a silent hang).
+void exit_if_controller_gone();
+// kLivenessCheck from now on the kernel's CLOCK_MONOTONIC (for the waits
+// that take an absolute time).
+timespec wall_liveness_deadline();
 
 // Parts of wait_until that need no template.
 struct WaitScope {
@@ -97,7 +110,11 @@ int wait_until(std::int64_t deadline_ns, ShimCall call, ThreadState state,
       return 0;
     }
     const int result = block(scope.mask());
-    if (result >= 0) return result;
+    if (result > 0) return result;
+    if (result == 0) {
+      exit_if_controller_gone();
+      continue;
+    }
     // Our wake signal: look at the deadline again. The program's own signal
     // (EINTR without ours) or an error goes back to the program.
     if (errno == EINTR && scope.take_wake()) continue;

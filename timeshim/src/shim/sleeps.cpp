@@ -103,6 +103,12 @@ __attribute__((visibility("default"))) unsigned int sleep(unsigned int seconds) 
 
 namespace {
 
+int real_sem_clockwait(sem_t* semaphore, clockid_t clock, const timespec* limit) {
+  static const auto real =
+      shim::next_symbol<int (*)(sem_t*, clockid_t, const timespec*)>("sem_clockwait");
+  return real(semaphore, clock, limit);
+}
+
 // A semaphore wait until a sim deadline: sem_wait interrupted by the wake
 // signal (it never restarts after a handler) when the deadline passes.
 int sem_wait_until(sem_t* semaphore, std::int64_t deadline) {
@@ -118,18 +124,21 @@ int sem_wait_until(sem_t* semaphore, std::int64_t deadline) {
                                       nullptr, &timed_out, [semaphore](const sigset_t* mask) {
                                         sigset_t saved{};
                                         pthread_sigmask(SIG_SETMASK, mask, &saved);
-                                        const int waited = sem_wait(semaphore);
+                                        const timespec limit = shim::wall_liveness_deadline();
+                                        const int waited =
+                                            real_sem_clockwait(semaphore, CLOCK_MONOTONIC, &limit);
                                         const int error = errno;
                                         pthread_sigmask(SIG_SETMASK, &saved, nullptr);
                                         errno = error;
-                                        return waited;
+                                        if (waited == 0) return 1;
+                                        return error == ETIMEDOUT ? 0 : -1;
                                       });
   if (timed_out) {
     if (sem_trywait(semaphore) == 0) return 0;
     errno = ETIMEDOUT;
     return -1;
   }
-  return result;
+  return result > 0 ? 0 : result;
 }
 
 }  // namespace
