@@ -103,7 +103,8 @@ GroupRun run_to_end(Controller& group, pid_t pid, const std::string& output_path
     for (auto& problem : group.take_problems()) run.problems.push_back(std::move(problem));
     if (q.state == GroupState::Exited) break;
     if (std::chrono::steady_clock::now() - start > std::chrono::seconds(60)) {
-      ADD_FAILURE() << "the group did not end within 60 s of wall time";
+      ADD_FAILURE() << "the group did not end within 60 s of wall time; problems found:\n"
+                    << all_text(run.problems);
       break;
     }
     if (q.state == GroupState::Quiescent) std::this_thread::sleep_for(std::chrono::milliseconds(5));

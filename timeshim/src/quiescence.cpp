@@ -77,15 +77,18 @@ std::string describe_state(char state) {
 void free_dead_slots(Header& header, const std::set<pid_t>& alive) {
   for (auto& slot : header.threads) {
     if (slot.claim.load() == 0) continue;
-    const pid_t tid = slot.tid.load();
+    pid_t tid = slot.tid.load();
     const bool timer = slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer);
-    if (!timer && alive.count(tid) != 0) continue;
+    // tid 0: a slot being claimed (a thread writes its tid after taking it).
+    if (!timer && (tid == 0 || alive.count(tid) != 0)) continue;
     // A timer lives as long as its process; a thread as long as its task.
     std::string path = "/proc/" + std::to_string(slot.pid.load());
     if (!timer) path += "/task/" + std::to_string(tid);
     if (::access(path.c_str(), F_OK) == 0) continue;
+    // Only if the slot still holds what was judged: a new thread may have
+    // taken it meanwhile.
+    if (!slot.tid.compare_exchange_strong(tid, 0)) continue;
     slot.state.store(static_cast<std::uint32_t>(ThreadState::Free));
-    slot.tid.store(0);
     slot.claim.store(0);
   }
 }

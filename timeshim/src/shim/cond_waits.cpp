@@ -30,12 +30,13 @@ void fire_timer(ThreadSlot& slot, std::int64_t now) {
   const std::int64_t interval = slot.interval_ns.load();
   const std::uint64_t expirations =
       1 + (interval > 0 ? static_cast<std::uint64_t>((now - deadline) / interval) : 0);
+  // The next deadline first: a reader woken by the write may ask for it.
+  slot.deadline_ns.store(interval > 0 ? deadline + static_cast<std::int64_t>(expirations) * interval
+                                      : ubersim::timeshim::kNoDeadline);
   const int fd = slot.timer_fd.load();
   if (::write(fd, &expirations, sizeof(expirations)) < 0) {
     // The counter is full; the program has not read it for 2^64 periods.
   }
-  slot.deadline_ns.store(interval > 0 ? deadline + static_cast<std::int64_t>(expirations) * interval
-                                      : ubersim::timeshim::kNoDeadline);
   shim::notify();
 }
 

@@ -75,11 +75,12 @@ ThreadSlot* claim_slot(pid_t tid) {
   for (auto& slot : the_segment->threads) {
     std::uint32_t free_claim = 0;
     if (!slot.claim.compare_exchange_strong(free_claim, 1)) continue;
+    // tid last: until it is set the controller leaves the slot alone.
     slot.pid.store(static_cast<std::int32_t>(::getpid()));
-    slot.tid.store(static_cast<std::int32_t>(tid));
     slot.deadline_ns.store(kNoDeadline);
     slot.call.store(static_cast<std::uint32_t>(ShimCall::None));
     slot.state.store(static_cast<std::uint32_t>(ThreadState::Running));
+    slot.tid.store(static_cast<std::int32_t>(tid));
     return &slot;
   }
   std::fprintf(stderr, "ubersim timeshim: more than %d threads in the group; stopping\n",
@@ -94,7 +95,6 @@ ThreadSlot* claim_other_slot() {
     std::uint32_t free_claim = 0;
     if (!slot.claim.compare_exchange_strong(free_claim, 1)) continue;
     slot.pid.store(static_cast<std::int32_t>(::getpid()));
-    slot.tid.store(0);
     slot.deadline_ns.store(kNoDeadline);
     return &slot;
   }
