@@ -1,0 +1,339 @@
+// A team-like program for the time shim's tests (test_timeshim.cpp): each
+// mode does one thing the shim must handle and prints the sim times it saw,
+// one "label seconds" line each, so that a test can check them and compare
+// two runs.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <pthread.h>
+#include <semaphore.h>
+#include <sys/epoll.h>
+#include <sys/select.h>
+#include <sys/socket.h>
+#include <sys/syscall.h>
+#include <sys/time.h>
+#include <sys/timerfd.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+double monotonic_s() {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) * 1e-9;
+}
+
+void say(const char* label, double value) {
+  std::printf("%s %.9f\n", label, value);
+  std::fflush(stdout);
+}
+
+int sleeps() {
+  say("start", monotonic_s());
+  timespec second{1, 0};
+  nanosleep(&second, nullptr);
+  say("nanosleep", monotonic_s());
+  usleep(500000);
+  say("usleep", monotonic_s());
+  sleep(2);
+  say("sleep", monotonic_s());
+  timespec deadline{};
+  clock_gettime(CLOCK_MONOTONIC, &deadline);
+  deadline.tv_sec += 3;
+  clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr);
+  say("clock_nanosleep_abs", monotonic_s());
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  say("sleep_for", monotonic_s());
+  say("steady_clock",
+      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count());
+  timeval wall{};
+  gettimeofday(&wall, nullptr);
+  say("gettimeofday", static_cast<double>(wall.tv_sec) + static_cast<double>(wall.tv_usec) * 1e-6);
+  say("time", static_cast<double>(time(nullptr)));
+  say("system_clock",
+      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+  return 0;
+}
+
+int fd_timeouts() {
+  int fds[2];
+  if (pipe(fds) != 0) return 1;
+  say("start", monotonic_s());
+  fd_set readable;
+  FD_ZERO(&readable);
+  FD_SET(fds[0], &readable);
+  timeval timeout{0, 250000};
+  const int selected = select(fds[0] + 1, &readable, nullptr, nullptr, &timeout);
+  say("select", monotonic_s());
+  pollfd wanted{fds[0], POLLIN, 0};
+  const int polled = poll(&wanted, 1, 750);
+  say("poll", monotonic_s());
+  const int epoll = epoll_create1(0);
+  epoll_event event{};
+  event.events = EPOLLIN;
+  event.data.fd = fds[0];
+  epoll_ctl(epoll, EPOLL_CTL_ADD, fds[0], &event);
+  epoll_event got[1];
+  const int waited = epoll_wait(epoll, got, 1, 2000);
+  say("epoll_wait", monotonic_s());
+  // Readiness before the deadline: a thread writes after 100 ms of sim time.
+  std::thread writer([&] {
+    usleep(100000);
+    if (write(fds[1], "x", 1) != 1) std::perror("write");
+  });
+  const int ready = poll(&wanted, 1, 5000);
+  say("poll_ready", monotonic_s());
+  writer.join();
+  say("results", selected * 1000 + polled * 100 + waited * 10 + ready);
+  return 0;
+}
+
+int threads() {
+  std::map<int, std::vector<double>> seen;
+  std::vector<std::thread> workers;
+  for (int worker = 1; worker <= 3; ++worker) {
+    workers.emplace_back([worker, &seen] {
+      auto& mine = seen[worker];
+      for (int i = 0; i < 4; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(100 * worker));
+        mine.push_back(monotonic_s());
+      }
+    });
+  }
+  for (auto& worker : workers) worker.join();
+  for (const auto& [worker, times] : seen) {
+    for (double t : times) say(("thread" + std::to_string(worker)).c_str(), t);
+  }
+  say("end", monotonic_s());
+  return 0;
+}
+
+int forks() {
+  const pid_t child = fork();
+  if (child == 0) {
+    sleep(2);
+    say("child", monotonic_s());
+    _exit(0);
+  }
+  usleep(500000);
+  say("parent", monotonic_s());
+  int status = 0;
+  waitpid(child, &status, 0);
+  say("reaped", monotonic_s());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+// A UDP socket on the loopback, its port written to *port.
+int bound_socket(int* port) {
+  const int sock = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (bind(sock, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0) return -1;
+  socklen_t length = sizeof(address);
+  getsockname(sock, reinterpret_cast<sockaddr*>(&address), &length);
+  *port = ntohs(address.sin_port);
+  return sock;
+}
+
+// Every thread waits on a socket of its own with no deadline: one in poll(),
+// one in a plain blocking recv(). Quiescent until datagrams come from outside
+// the group.
+int socket_wait() {
+  int poll_port = 0, recv_port = 0;
+  const int polled = bound_socket(&poll_port);
+  const int received = bound_socket(&recv_port);
+  if (polled < 0 || received < 0) return 1;
+  std::printf("ports %d %d\n", poll_port, recv_port);
+  std::fflush(stdout);
+  std::thread reader([received] {
+    char buffer[64];
+    const ssize_t got = recv(received, buffer, sizeof(buffer), 0);  // no shim call
+    say("received", static_cast<double>(got));
+  });
+  pollfd wanted{polled, POLLIN, 0};
+  poll(&wanted, 1, -1);
+  say("poll_woke", monotonic_s());
+  reader.join();
+  return 0;
+}
+
+// A receive timeout set with SO_RCVTIMEO ends in sim time.
+int receive_timeout() {
+  int port = 0;
+  const int sock = bound_socket(&port);
+  const timeval timeout{1, 500000};
+  setsockopt(sock, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof(timeout));
+  char buffer[16];
+  const ssize_t got = recv(sock, buffer, sizeof(buffer), 0);
+  say("recv_timed_out", got < 0 && errno == EAGAIN ? monotonic_s() : -1.0);
+  const ssize_t read_got = read(sock, buffer, sizeof(buffer));
+  say("read_timed_out", read_got < 0 && errno == EAGAIN ? monotonic_s() : -1.0);
+  timeval seen{};
+  socklen_t length = sizeof(seen);
+  getsockopt(sock, SOL_SOCKET, SO_RCVTIMEO, &seen, &length);
+  say("timeout", static_cast<double>(seen.tv_sec) + static_cast<double>(seen.tv_usec) * 1e-6);
+  return 0;
+}
+
+// A periodic timerfd (first expiry at 0.5 s, then every 0.25 s), read with
+// a blocking read and through epoll.
+int timer_fd() {
+  const int timer = timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC);
+  itimerspec every{};
+  every.it_value.tv_nsec = 500000000;
+  every.it_interval.tv_nsec = 250000000;
+  timerfd_settime(timer, 0, &every, nullptr);
+  std::uint64_t expirations = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (read(timer, &expirations, sizeof(expirations)) != sizeof(expirations)) return 1;
+    say("expired", monotonic_s());
+  }
+  usleep(600000);  // two more expirations meanwhile (at 1.25 and 1.5 s)
+  if (read(timer, &expirations, sizeof(expirations)) != sizeof(expirations)) return 1;
+  say("count", static_cast<double>(expirations));
+  const int epoll = epoll_create1(0);
+  epoll_event event{};
+  event.events = EPOLLIN;
+  epoll_ctl(epoll, EPOLL_CTL_ADD, timer, &event);
+  epoll_event got[1];
+  epoll_wait(epoll, got, 1, -1);
+  say("epoll_expired", monotonic_s());
+  itimerspec left{};
+  timerfd_gettime(timer, &left);
+  say("left", static_cast<double>(left.it_value.tv_sec) +
+                  static_cast<double>(left.it_value.tv_nsec) * 1e-9);
+  close(timer);
+  return 0;
+}
+
+// Timed condition variable and semaphore waits, on each clock they can use.
+int cond_waits() {
+  std::mutex mutex;
+  std::condition_variable condition;
+  std::unique_lock<std::mutex> lock(mutex);
+  condition.wait_for(lock, std::chrono::milliseconds(300));  // steady_clock: clockwait
+  say("wait_for", monotonic_s());
+  condition.wait_until(lock, std::chrono::system_clock::now() + std::chrono::milliseconds(200));
+  say("wait_until_system", monotonic_s());
+  lock.unlock();
+  pthread_condattr_t attributes;
+  pthread_condattr_init(&attributes);
+  pthread_condattr_setclock(&attributes, CLOCK_MONOTONIC);
+  pthread_cond_t monotonic_condition;
+  pthread_cond_init(&monotonic_condition, &attributes);
+  pthread_mutex_t plain_mutex = PTHREAD_MUTEX_INITIALIZER;
+  timespec deadline{};
+  clock_gettime(CLOCK_MONOTONIC, &deadline);
+  deadline.tv_sec += 1;
+  pthread_mutex_lock(&plain_mutex);
+  const int timed_out = pthread_cond_timedwait(&monotonic_condition, &plain_mutex, &deadline);
+  pthread_mutex_unlock(&plain_mutex);
+  say("timedwait_monotonic", timed_out == ETIMEDOUT ? monotonic_s() : -1.0);
+  sem_t semaphore;
+  sem_init(&semaphore, 0, 0);
+  clock_gettime(CLOCK_REALTIME, &deadline);
+  deadline.tv_nsec += 250000000;
+  if (deadline.tv_nsec >= 1000000000) {
+    deadline.tv_nsec -= 1000000000;
+    deadline.tv_sec += 1;
+  }
+  const int waited = sem_timedwait(&semaphore, &deadline);
+  say("sem_timedwait", waited != 0 && errno == ETIMEDOUT ? monotonic_s() : -1.0);
+  // A notify before the deadline ends the wait then.
+  std::thread notifier([&] {
+    usleep(100000);
+    std::lock_guard<std::mutex> guard(mutex);
+    condition.notify_all();
+  });
+  lock.lock();
+  const auto status = condition.wait_for(lock, std::chrono::seconds(5));
+  say("notified", status == std::cv_status::no_timeout ? monotonic_s() : -1.0);
+  lock.unlock();
+  notifier.join();
+  return 0;
+}
+
+// Reads the clock in a loop until 1 s of sim time passed: charged time must
+// get it there.
+int busy_clock() {
+  const double start = monotonic_s();
+  long reads = 0;
+  while (monotonic_s() - start < 1.0) ++reads;
+  say("reads", static_cast<double>(reads));
+  say("end", monotonic_s());
+  return 0;
+}
+
+// A sleep the shim cannot see (a raw syscall): must be reported by name.
+int raw_sleep() {
+  timespec request{3, 0};
+  syscall(SYS_nanosleep, &request, nullptr);
+  say("end", monotonic_s());
+  return 0;
+}
+
+// Starts a program the shim cannot enter (statically linked): the
+// controller must say so.
+int exec_static(const char* path) {
+  execl(path, path, static_cast<char*>(nullptr));
+  std::perror("execl");
+  return 1;
+}
+
+// For the benchmark: the CPU time of one clock read (the process CPU clock
+// is the kernel's under the shim too).
+int clock_cost() {
+  constexpr long kCalls = 2000000;
+  timespec start{}, end{}, now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &start);
+  for (long i = 0; i < kCalls; ++i) clock_gettime(CLOCK_MONOTONIC, &now);
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &end);
+  const double spent = static_cast<double>(end.tv_sec - start.tv_sec) * 1e9 +
+                       static_cast<double>(end.tv_nsec - start.tv_nsec);
+  say("ns_per_clock_read", spent / kCalls);
+  return 0;
+}
+
+// For the benchmark: 1000 sleeps of 1 ms, each a trip through the controller.
+int sleep_cost() {
+  for (int i = 0; i < 1000; ++i) usleep(1000);
+  say("end", monotonic_s());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 3 && std::string(argv[1]) == "exec_static") return exec_static(argv[2]);
+  const std::map<std::string, std::function<int()>> modes = {
+      {"sleeps", sleeps},           {"fd_timeouts", fd_timeouts},
+      {"threads", threads},         {"forks", forks},
+      {"socket_wait", socket_wait}, {"busy_clock", busy_clock},
+      {"raw_sleep", raw_sleep},     {"clock_cost", clock_cost},
+      {"sleep_cost", sleep_cost},   {"receive_timeout", receive_timeout},
+      {"timer_fd", timer_fd},       {"cond_waits", cond_waits}};
+  const auto mode = argc == 2 ? modes.find(argv[1]) : modes.end();
+  if (mode == modes.end()) {
+    std::fprintf(stderr, "usage: timeshim_probe MODE, one of:");
+    for (const auto& [name, run] : modes) std::fprintf(stderr, " %s", name.c_str());
+    std::fprintf(stderr, " (or: exec_static PATH)\n");
+    return 2;
+  }
+  return mode->second();
+}

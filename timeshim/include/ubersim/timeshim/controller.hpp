@@ -1,0 +1,141 @@
+#pragma once
+// The time shim's controller (docs/timeshim.md): owns simulation time for a
+// group of processes started under the shim (libubersim_timeshim.so), knows
+// every thread of the group, detects quiescence (every thread waits: for a
+// sim-time deadline, or for input), and advances sim time when told to.
+//
+//   Controller group(ControllerOptions{});
+//   group.spawn({"python3", "team.py"});
+//   for (;;) {  // as fast as the group allows: to each next deadline
+//     const Quiescence q = group.run_until(kNoDeadline, std::chrono::seconds(1));
+//     if (q.state == GroupState::Exited) break;
+//   }
+//
+// A simulation drives it with run_until(T): "advance to T"; the call returns
+// once the group is quiescent at T, that is once everything it will send up
+// to sim time T has been sent.
+#include <sys/types.h>
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "ubersim/timeshim/shared_state.hpp"
+
+namespace ubersim::timeshim {
+
+struct ControllerOptions {
+  // The shim library; "" finds it next to the running program (../lib).
+  std::string shim_library;
+  // Folder of the shared segment's file; "" uses $TMPDIR, else /dev/shm, else /tmp.
+  std::string segment_dir;
+  // CLOCK_REALTIME at sim time 0 (ns since 1970); the default is fixed so that
+  // runs are alike: 2026-01-01T00:00:00Z.
+  std::int64_t realtime_epoch_ns = 1767225600LL * 1000000000LL;
+  // Sim time charged per intercepted call that does not block (after the
+  // first 100 since the thread last blocked), and how far a thread's charge
+  // may run ahead of sim time before it pauses.
+  std::int64_t charge_ns = 1000;
+  std::int64_t yield_after_ns = 1000000;
+  // Wall time a thread may stay in a state that holds the group back (running
+  // without blocking, blocked in a call the shim does not know) before it is
+  // reported by name.
+  std::chrono::milliseconds grace{2000};
+};
+
+// Something the controller found that keeps the shim from working: named,
+// never silent. `pid`/`tid` are 0 when not about one thread.
+struct Problem {
+  pid_t pid = 0;
+  pid_t tid = 0;
+  std::string text;
+};
+
+// A program that cannot run under the shim (statically linked).
+class UnsupportedProgram : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class GroupState {
+  Quiescent,  // every thread waits; next_deadline_ns is the earliest sim deadline
+  Busy,       // the wall-time limit passed before the group was quiescent
+  Exited,     // no process of the group is left
+};
+
+struct Quiescence {
+  GroupState state = GroupState::Busy;
+  std::int64_t next_deadline_ns = kNoDeadline;  // kNoDeadline: only input can wake it
+};
+
+class Controller {
+ public:
+  explicit Controller(ControllerOptions options);
+  ~Controller();
+  Controller(const Controller&) = delete;
+  Controller& operator=(const Controller&) = delete;
+
+  // Starts argv (argv[0] searched in PATH) under the shim, with stdout and
+  // stderr to `output_path` ("" inherits the controller's). Throws
+  // UnsupportedProgram for a statically linked program.
+  pid_t spawn(const std::vector<std::string>& argv, const std::string& output_path = "");
+  // What a process needs in its environment to join the group (LD_PRELOAD,
+  // UBERSIM_TIMESHIM_SHM), for programs started by other means.
+  std::vector<std::string> environment() const;
+
+  std::int64_t now_ns() const;
+  // Waits (up to wall_limit) until the group is quiescent or gone.
+  Quiescence wait_quiescent(std::chrono::milliseconds wall_limit);
+  // Sets sim time to sim_ns (not before now) and wakes the threads whose
+  // deadline it reached. Call it when the group is quiescent.
+  void advance_to(std::int64_t sim_ns);
+  // Runs the group's own deadlines up to until_ns: while quiescent, advances
+  // to the next deadline not after until_ns; returns quiescent at until_ns
+  // (now_ns() == until_ns unless until_ns is kNoDeadline), Exited, or Busy
+  // when wall_limit passed first.
+  Quiescence run_until(std::int64_t until_ns, std::chrono::milliseconds wall_limit);
+
+  // Problems found since the last call (each reported once).
+  std::vector<Problem> take_problems();
+  // Exit status of a spawned process once it ended (0..255, 128 + signal).
+  std::optional<int> exit_status(pid_t pid) const;
+  std::uint64_t intercepted_calls() const;
+  std::uint64_t advances() const { return advances_; }
+
+ private:
+  struct Scan;
+  Scan scan();
+  void reap(bool wait_for_end);
+  void wake_due();
+  void note_suspect(pid_t pid, pid_t tid, const std::string& why);
+  void check_shim_loaded(pid_t pid);
+  std::vector<pid_t> group_processes();
+  Header& header();
+
+  class Segment;
+  ControllerOptions options_;
+  std::unique_ptr<Segment> segment_;
+  std::string shim_library_;
+  std::vector<pid_t> roots_;
+  std::map<pid_t, int> exit_status_;
+  struct Suspect {
+    std::string why;
+    std::chrono::steady_clock::time_point since;
+    bool reported = false;
+  };
+  std::map<pid_t, Suspect> suspects_;          // by tid
+  std::map<pid_t, std::string> shim_checked_;  // pid -> exe it was checked for
+  std::map<pid_t, std::chrono::steady_clock::time_point> first_seen_;
+  std::vector<Problem> problems_;
+  std::uint64_t advances_ = 0;
+};
+
+// The shim library next to the running program: <dir of /proc/self/exe>/../lib.
+std::string default_shim_library();
+
+}  // namespace ubersim::timeshim

@@ -1,0 +1,113 @@
+#pragma once
+// The time shim's shared memory segment (docs/timeshim.md): what the
+// controller and every shimmed thread of its group read and write. The
+// controller creates it (a file it maps, its path in UBERSIM_TIMESHIM_SHM);
+// each process the shim is loaded into maps it at start.
+//
+// Plain data with lock-free atomics only, so that it means the same in every
+// process that maps it (no pointers, no locks: a process may die anywhere).
+#include <sys/types.h>
+
+#include <atomic>
+#include <cstdint>
+#include <limits>
+
+namespace ubersim::timeshim {
+
+// The environment variable that names the segment's file.
+inline constexpr const char* kSegmentEnv = "UBERSIM_TIMESHIM_SHM";
+inline constexpr std::uint32_t kMagic = 0x54534d55;  // "UMST"
+inline constexpr std::uint32_t kVersion = 1;
+inline constexpr int kMaxThreads = 1024;
+// No deadline: a wait only input can end.
+inline constexpr std::int64_t kNoDeadline = std::numeric_limits<std::int64_t>::max();
+
+// What a thread is doing, as the shim last said.
+enum class ThreadState : std::uint32_t {
+  Free = 0,         // slot unused
+  Running = 1,      // in the program's own code (or in a call the shim does not know)
+  Sleeping = 2,     // in a shim sleep until deadline_ns (woken by a futex on wake_seq)
+  WaitingFd = 3,    // in a shim wait for fd readiness, until deadline_ns (woken by kWakeSignal)
+  WaitingSem = 4,   // in a shim semaphore wait, until deadline_ns (woken by kWakeSignal)
+  WaitingCond = 5,  // in a shim condition variable wait, until deadline_ns (woken by the helper)
+  Helper = 6,       // the shim's helper thread of a process (it wakes WaitingCond threads)
+  Timer = 7,        // not a thread: a timerfd of process pid, due at deadline_ns (or never)
+};
+
+// Which intercepted call a thread is blocked in, for the messages that name it.
+enum class ShimCall : std::uint32_t {
+  None = 0,
+  Nanosleep,
+  ClockNanosleep,
+  Usleep,
+  Sleep,
+  Select,
+  Pselect,
+  Poll,
+  Ppoll,
+  EpollWait,
+  EpollPwait,
+  SemTimedwait,
+  CondTimedwait,
+  SocketReceive,  // a receive on a socket with SO_RCVTIMEO
+  ChargedYield,   // the pause a thread that never blocks is given (charged calls)
+};
+
+const char* shim_call_name(ShimCall call);
+
+struct alignas(64) ThreadSlot {
+  std::atomic<std::uint32_t> state{0};     // ThreadState
+  std::atomic<std::uint32_t> wake_seq{0};  // futex: the controller bumps it to wake a sleeper
+  std::atomic<std::int32_t> pid{0};
+  std::atomic<std::int32_t> tid{0};
+  std::atomic<std::int64_t> deadline_ns{kNoDeadline};  // sim time the wait ends at
+  std::atomic<std::uint32_t> call{0};                  // ShimCall
+  std::atomic<std::uint32_t> claim{0};                 // 0 free, 1 taken (CAS to allocate)
+  // WaitingCond: the condition variable (an address in the thread's process)
+  // and the helper's pin on it (the waiter does not leave while it is set).
+  std::atomic<std::uint64_t> cond_addr{0};
+  std::atomic<std::uint32_t> pin{0};
+  // Timer: its fd (an eventfd the helper writes expirations to) and period.
+  std::atomic<std::int32_t> timer_fd{-1};
+  std::atomic<std::int64_t> interval_ns{0};
+};
+
+struct Header {
+  std::uint32_t magic = 0;
+  std::uint32_t version = 0;
+  std::uint64_t size = 0;  // bytes of the whole segment
+  // Simulation time now, ns since the group's start. Only the controller writes it.
+  std::atomic<std::int64_t> sim_now_ns{0};
+  // CLOCK_REALTIME = realtime_epoch_ns + sim time.
+  std::int64_t realtime_epoch_ns = 0;
+  // Sim time charged per intercepted call that does not block, and how much
+  // charge a thread may run ahead before it pauses until sim time catches up.
+  std::int64_t charge_ns = 0;
+  std::int64_t yield_after_ns = 0;
+  // The signal that interrupts a shim fd or semaphore wait whose deadline passed.
+  std::int32_t wake_signal = 0;
+  std::int32_t controller_pid = 0;
+  // Bumped (and futex-woken) by the shim at every change of a thread's state:
+  // the controller sleeps on it.
+  std::atomic<std::uint32_t> change_seq{0};
+  std::atomic<std::uint64_t> intercepted_calls{0};
+  ThreadSlot threads[kMaxThreads];
+};
+
+static_assert(std::atomic<std::int64_t>::is_always_lock_free);
+static_assert(std::atomic<std::uint32_t>::is_always_lock_free);
+static_assert(sizeof(std::atomic<std::uint32_t>) == sizeof(std::uint32_t));  // futex words
+
+// Blocking states: the thread waits in the shim (and, once the kernel says it
+// sleeps, counts as waiting for the controller).
+inline bool is_shim_wait(ThreadState state) {
+  return state == ThreadState::Sleeping || state == ThreadState::WaitingFd ||
+         state == ThreadState::WaitingSem || state == ThreadState::WaitingCond;
+}
+
+// Futex calls on a shared mapping (not FUTEX_PRIVATE: several processes).
+// timeout_ns < 0: no timeout. Returns the syscall's result (errno set).
+long futex_wait(std::atomic<std::uint32_t>& word, std::uint32_t expected, long timeout_ns);
+void futex_wake_all(std::atomic<std::uint32_t>& word);
+
+}  // namespace ubersim::timeshim

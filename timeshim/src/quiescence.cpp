@@ -1,0 +1,269 @@
+// Quiescence (docs/timeshim.md, "Quiescence"): every thread of the group
+// sleeps in the kernel, in a shim wait or in a wait only another party can
+// end, and none ran between two looks at all of them.
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <set>
+#include <thread>
+
+#include "proc_scan.hpp"
+#include "ubersim/timeshim/controller.hpp"
+
+namespace ubersim::timeshim {
+
+struct Controller::Scan {
+  bool any_process = false;
+  bool all_waiting = true;
+  bool owed_wake = false;  // a shim wait whose deadline passed still sleeps
+  std::int64_t next_deadline = kNoDeadline;
+  std::map<pid_t, std::uint64_t> run_counts;  // by tid
+};
+
+namespace {
+
+struct SlotView {
+  ThreadState state;
+  std::int64_t deadline_ns;
+  ShimCall call;
+};
+
+std::map<pid_t, SlotView> slots_by_tid(Header& header) {
+  std::map<pid_t, SlotView> result;
+  for (auto& slot : header.threads) {
+    if (slot.claim.load() == 0 ||
+        slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer)) {
+      continue;
+    }
+    result[slot.tid.load()] =
+        SlotView{static_cast<ThreadState>(slot.state.load()), slot.deadline_ns.load(),
+                 static_cast<ShimCall>(slot.call.load())};
+  }
+  return result;
+}
+
+std::string describe_kernel_wait(pid_t pid, pid_t tid, const std::optional<SyscallSample>& call) {
+  std::string text = "is blocked in ";
+  text += call ? syscall_name(call->number) : std::string("an unknown call");
+  const std::string wchan = wchan_of(pid, tid);
+  if (!wchan.empty() && wchan != "0") text += " (kernel: " + wchan + ")";
+  if (call && classify_wait(*call) == KernelWait::Timed) {
+    text +=
+        ", a wait with a wall-time limit that the time shim does not turn into sim time "
+        "(a raw syscall, a statically linked library, or a call not intercepted yet)";
+  } else {
+    text += ", a wait the time shim does not know";
+  }
+  return text;
+}
+
+std::string describe_state(char state) {
+  switch (state) {
+    case 'R':
+      return "keeps running without a blocking call the time shim knows (a busy loop that does not "
+             "read the clock through libc?): sim time cannot advance past it";
+    case 'D':
+      return "is in an uninterruptible kernel wait (disk?)";
+    case 'T':
+    case 't':
+      return "is stopped (SIGSTOP or a debugger)";
+    default:
+      return std::string("is in kernel state ") + state;
+  }
+}
+
+void free_dead_slots(Header& header, const std::set<pid_t>& alive) {
+  for (auto& slot : header.threads) {
+    if (slot.claim.load() == 0) continue;
+    pid_t tid = slot.tid.load();
+    const bool timer = slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer);
+    // tid 0: a slot being claimed (a thread writes its tid after taking it).
+    if (!timer && (tid == 0 || alive.count(tid) != 0)) continue;
+    // A timer lives as long as its process; a thread as long as its task.
+    std::string path = "/proc/" + std::to_string(slot.pid.load());
+    if (!timer) path += "/task/" + std::to_string(tid);
+    if (::access(path.c_str(), F_OK) == 0) continue;
+    // Only if the slot still holds what was judged: a new thread may have
+    // taken it meanwhile.
+    if (!slot.tid.compare_exchange_strong(tid, 0)) continue;
+    slot.state.store(static_cast<std::uint32_t>(ThreadState::Free));
+    slot.claim.store(0);
+  }
+}
+
+// Armed timers of the group's processes: deadlines it can wake at, or, when
+// due and not yet fired, a wake the process's helper still owes.
+void scan_timers(Header& header, const std::set<pid_t>& processes, std::int64_t now,
+                 bool* owed_wake, std::int64_t* next_deadline) {
+  for (auto& slot : header.threads) {
+    if (slot.claim.load() == 0 ||
+        slot.state.load() != static_cast<std::uint32_t>(ThreadState::Timer)) {
+      continue;
+    }
+    if (processes.count(slot.pid.load()) == 0) continue;
+    const std::int64_t deadline = slot.deadline_ns.load();
+    if (deadline <= now) {
+      *owed_wake = true;
+    } else {
+      *next_deadline = std::min(*next_deadline, deadline);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<pid_t> Controller::group_processes() {
+  std::set<pid_t> seen;
+  std::vector<pid_t> pending;
+  for (pid_t root : roots_) {
+    if (exit_status_.count(root) == 0) pending.push_back(root);
+  }
+  for (auto& slot : header().threads) {
+    if (slot.claim.load() != 0) pending.push_back(slot.pid.load());
+  }
+  std::vector<pid_t> result;
+  while (!pending.empty()) {
+    const pid_t pid = pending.back();
+    pending.pop_back();
+    if (pid <= 0 || !seen.insert(pid).second) continue;
+    if (::kill(pid, 0) != 0 && errno == ESRCH) continue;
+    result.push_back(pid);
+    for (pid_t child : children_of(pid)) pending.push_back(child);
+  }
+  return result;
+}
+
+void Controller::note_suspect(pid_t pid, pid_t tid, const std::string& why) {
+  const auto now = std::chrono::steady_clock::now();
+  Suspect& suspect = suspects_[tid];
+  if (suspect.why != why) suspect = Suspect{why, now, false};
+  if (suspect.reported || now - suspect.since < options_.grace) return;
+  suspect.reported = true;
+  const auto waited = std::chrono::duration<double>(now - suspect.since).count();
+  char seconds[32];
+  std::snprintf(seconds, sizeof(seconds), "%.1f", waited);
+  problems_.push_back(Problem{pid, tid,
+                              "process " + std::to_string(pid) + " (" + comm_of(pid, pid) +
+                                  ") thread " + std::to_string(tid) + " (" + comm_of(pid, tid) +
+                                  ") " + why + "; for " + seconds + " s of wall time so far"});
+}
+
+void Controller::check_shim_loaded(pid_t pid) {
+  const auto now = std::chrono::steady_clock::now();
+  const auto first = first_seen_.emplace(pid, now).first->second;
+  const std::string exe = exe_of(pid);
+  if (exe.empty() || shim_checked_[pid] == exe || now - first < std::chrono::milliseconds(200))
+    return;
+  const std::string library = shim_library_.substr(shim_library_.rfind('/') + 1);
+  if (maps_contain(pid, library)) {
+    shim_checked_[pid] = exe;
+    return;
+  }
+  const auto main_thread = sample_thread(pid, pid);
+  if (!main_thread || main_thread->state == 'R') return;  // may still be in exec: look again
+  shim_checked_[pid] = exe;
+  const bool is_static = elf_is_dynamic(exe) == false;
+  problems_.push_back(Problem{
+      pid, 0,
+      "process " + std::to_string(pid) + " (" + comm_of(pid, pid) + ", " + exe +
+          ") runs without the time shim: " +
+          (is_static ? "it is statically linked (no ELF interpreter), LD_PRELOAD has no effect"
+                     : "the shim is not loaded (LD_PRELOAD removed from its environment?)") +
+          "; it sees wall time"});
+}
+
+Controller::Scan Controller::scan() {
+  reap(false);
+  Header& segment = header();
+  const auto slots = slots_by_tid(segment);
+  const std::int64_t now = segment.sim_now_ns.load();
+  Scan result;
+  std::set<pid_t> alive;
+  const std::vector<pid_t> processes = group_processes();
+  for (pid_t pid : processes) {
+    check_shim_loaded(pid);
+    for (pid_t tid : threads_of(pid)) {
+      const auto sample = sample_thread(pid, tid);
+      if (!sample || sample->state == 'Z' || sample->state == 'X') continue;
+      result.any_process = true;
+      alive.insert(tid);
+      result.run_counts[tid] = sample->run_count;
+      const auto slot = slots.find(tid);
+      const bool sleeps = sample->state == 'S';
+      if (slot != slots.end() && slot->second.state == ThreadState::Helper) {
+        if (!sleeps) result.all_waiting = false;  // waking a waiter now
+        continue;
+      }
+      if (sleeps && slot != slots.end() && is_shim_wait(slot->second.state)) {
+        if (slot->second.deadline_ns <= now) {
+          result.owed_wake = true;
+          result.all_waiting = false;
+          note_suspect(pid, tid,
+                       std::string("was woken at the end of its ") +
+                           shim_call_name(slot->second.call) + " but still sleeps");
+        } else {
+          result.next_deadline = std::min(result.next_deadline, slot->second.deadline_ns);
+          suspects_.erase(tid);
+        }
+        continue;
+      }
+      if (!sleeps) {
+        result.all_waiting = false;
+        note_suspect(pid, tid, describe_state(sample->state));
+        continue;
+      }
+      // A wait outside the shim with no time limit (input, a lock, a child)
+      // waits for the group or for input: it does not hold time back.
+      const auto call = sample_syscall(pid, tid);
+      if (call && classify_wait(*call) == KernelWait::ForOthers) {
+        suspects_.erase(tid);
+        continue;
+      }
+      result.all_waiting = false;
+      note_suspect(pid, tid, describe_kernel_wait(pid, tid, call));
+    }
+  }
+  scan_timers(segment, std::set<pid_t>(processes.begin(), processes.end()), now, &result.owed_wake,
+              &result.next_deadline);
+  if (result.owed_wake) result.all_waiting = false;
+  free_dead_slots(segment, alive);
+  for (auto it = suspects_.begin(); it != suspects_.end();) {
+    it = alive.count(it->first) != 0 ? std::next(it) : suspects_.erase(it);
+  }
+  return result;
+}
+
+Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
+  Header& segment = header();
+  const auto give_up = std::chrono::steady_clock::now() + wall_limit;
+  long backoff_ns = 20000;
+  for (;;) {
+    const std::uint32_t seq = segment.change_seq.load();
+    const Scan first = scan();
+    if (!first.any_process) {
+      reap(true);  // what is left of the group are zombies
+      return Quiescence{GroupState::Exited, kNoDeadline};
+    }
+    if (first.owed_wake) wake_due();
+    if (first.all_waiting) {
+      // Nobody ran between the two looks (same run counts, no shim call):
+      // at an instant between them every thread slept.
+      const Scan second = scan();
+      if (second.all_waiting && second.run_counts == first.run_counts &&
+          segment.change_seq.load() == seq) {
+        return Quiescence{GroupState::Quiescent, second.next_deadline};
+      }
+    }
+    if (std::chrono::steady_clock::now() >= give_up)
+      return Quiescence{GroupState::Busy, kNoDeadline};
+    if (futex_wait(segment.change_seq, seq, backoff_ns) == 0 || segment.change_seq.load() != seq) {
+      backoff_ns = 20000;
+    } else {
+      backoff_ns = std::min(backoff_ns * 2, 5000000L);
+    }
+  }
+}
+
+}  // namespace ubersim::timeshim

@@ -1,0 +1,325 @@
+// The shim's per-process and per-thread state (runtime.hpp).
+#include "runtime.hpp"
+
+#include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+
+namespace ubersim::timeshim::shim {
+namespace {
+
+// What the shim keeps per thread. Trivial, so that initial-exec TLS needs no
+// constructor and a call from any context (a signal handler, another
+// library's constructor) can use it.
+struct ThreadRecord {
+  ThreadSlot* slot;
+  pid_t tid;
+  std::int64_t floor_ns;   // the view never goes below this (what it saw last)
+  std::int64_t charge_ns;  // charged since the last block
+  std::int64_t free_calls_used;
+};
+
+__attribute__((tls_model("initial-exec"))) thread_local ThreadRecord this_thread{};
+__attribute__((tls_model("initial-exec"))) thread_local volatile sig_atomic_t wake_arrived = 0;
+
+// Calls a thread may make after each block before it is charged: enough
+// that a program which blocks now and then is never charged (CPython's
+// start reads the clock about 700 times), so that what it sees does not
+// depend on how many calls the scheduler let it make.
+constexpr std::int64_t kFreeCalls = 2000;
+
+Header* the_segment = nullptr;
+pthread_key_t slot_key;
+
+void notify_controller() {
+  the_segment->change_seq.fetch_add(1);
+  futex_wake_all(the_segment->change_seq);
+}
+
+void release_slot(void* slot_ptr) {
+  auto* slot = static_cast<ThreadSlot*>(slot_ptr);
+  if (slot == nullptr || the_segment == nullptr) return;
+  slot->state.store(static_cast<std::uint32_t>(ThreadState::Free));
+  slot->tid.store(0);
+  slot->claim.store(0);
+  notify_controller();
+}
+
+void on_wake_signal(int /*signal*/) {
+  wake_arrived = 1;
+}
+
+void block_wake_signal() {
+  sigset_t wake{};
+  sigemptyset(&wake);
+  sigaddset(&wake, the_segment->wake_signal);
+  pthread_sigmask(SIG_BLOCK, &wake, nullptr);
+}
+
+// A slot for this thread: after exec or fork a slot may still carry this
+// tid (the image before it); it is this thread's no longer.
+ThreadSlot* claim_slot(pid_t tid) {
+  for (auto& slot : the_segment->threads) {
+    if (slot.claim.load() != 0 && slot.tid.load() == tid) release_slot(&slot);
+  }
+  for (auto& slot : the_segment->threads) {
+    std::uint32_t free_claim = 0;
+    if (!slot.claim.compare_exchange_strong(free_claim, 1)) continue;
+    // tid last: until it is set the controller leaves the slot alone.
+    slot.pid.store(static_cast<std::int32_t>(::getpid()));
+    slot.deadline_ns.store(kNoDeadline);
+    slot.call.store(static_cast<std::uint32_t>(ShimCall::None));
+    slot.state.store(static_cast<std::uint32_t>(ThreadState::Running));
+    slot.tid.store(static_cast<std::int32_t>(tid));
+    return &slot;
+  }
+  std::fprintf(stderr, "ubersim timeshim: more than %d threads in the group; stopping\n",
+               kMaxThreads);
+  std::abort();
+}
+
+}  // namespace
+
+ThreadSlot* claim_other_slot() {
+  for (auto& slot : the_segment->threads) {
+    std::uint32_t free_claim = 0;
+    if (!slot.claim.compare_exchange_strong(free_claim, 1)) continue;
+    slot.pid.store(static_cast<std::int32_t>(::getpid()));
+    slot.deadline_ns.store(kNoDeadline);
+    return &slot;
+  }
+  return nullptr;
+}
+
+void release_other_slot(ThreadSlot& slot) {
+  release_slot(&slot);
+}
+
+void notify() {
+  notify_controller();
+}
+
+ThreadSlot& own_slot() {
+  if (this_thread.slot == nullptr) {
+    this_thread.tid = static_cast<pid_t>(::syscall(SYS_gettid));
+    this_thread.slot = claim_slot(this_thread.tid);
+    block_wake_signal();
+    pthread_setspecific(slot_key, this_thread.slot);
+    notify_controller();
+  }
+  return *this_thread.slot;
+}
+
+void set_state(ThreadSlot& slot, ThreadState state, ShimCall call, std::int64_t deadline_ns) {
+  slot.deadline_ns.store(deadline_ns);
+  slot.call.store(static_cast<std::uint32_t>(call));
+  slot.state.store(static_cast<std::uint32_t>(state));
+  notify_controller();
+}
+
+// After a block: the view does not go back, and the charge is forgiven. A
+// charged pause is no block: the free calls stay used.
+void after_block(std::int64_t view_at_start, std::int64_t reached_ns, ShimCall call) {
+  this_thread.floor_ns = std::max({this_thread.floor_ns, view_at_start, reached_ns});
+  this_thread.charge_ns = 0;
+  if (call != ShimCall::ChargedYield) this_thread.free_calls_used = 0;
+}
+
+namespace {
+
+void forget_slot_in_child() {
+  // The forked child's only thread is a new thread: its own slot, later.
+  this_thread.slot = nullptr;
+  this_thread.tid = 0;
+}
+
+[[noreturn]] void fail_attach(const char* path, const char* what) {
+  std::fprintf(stderr, "ubersim timeshim: cannot attach to the controller's segment %s: %s\n", path,
+               what);
+  ::_exit(127);
+}
+
+Header* attach(const char* path) {
+  const int fd = ::open(path, O_RDWR | O_CLOEXEC);
+  if (fd < 0) fail_attach(path, "cannot open it");
+  struct stat info {};
+  if (::fstat(fd, &info) != 0 || info.st_size < static_cast<off_t>(sizeof(Header))) {
+    ::close(fd);
+    fail_attach(path, "it is too small");
+  }
+  void* mapped = ::mmap(nullptr, sizeof(Header), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+  ::close(fd);
+  if (mapped == MAP_FAILED) fail_attach(path, "mmap failed");
+  auto* header = static_cast<Header*>(mapped);
+  if (header->magic != kMagic || header->version != kVersion) {
+    fail_attach(path, "not a time shim segment of this version");
+  }
+  return header;
+}
+
+void start_shim() {
+  const char* path = std::getenv(kSegmentEnv);
+  if (path == nullptr || *path == '\0') return;
+  Header* header = attach(path);
+  pthread_key_create(&slot_key, release_slot);
+  pthread_atfork(nullptr, nullptr, forget_slot_in_child);
+  struct sigaction action {};
+  action.sa_handler = on_wake_signal;
+  // No SA_RESTART: the kernel would restart a futex wait (sem_wait) after
+  // the handler. The signal is blocked outside the shim's waits anyway.
+  action.sa_flags = 0;
+  sigemptyset(&action.sa_mask);
+  sigaction(header->wake_signal, &action, nullptr);
+  the_segment = header;
+  own_slot();
+}
+
+pthread_once_t started = PTHREAD_ONCE_INIT;
+std::atomic<bool> start_done{false};
+
+void start_once() {
+  start_shim();
+  start_done.store(true, std::memory_order_release);
+}
+
+// At load; or earlier, at the first intercepted call, when another library's
+// constructor reads the clock before this one ran.
+__attribute__((constructor)) void start_at_load() {
+  pthread_once(&started, start_once);
+}
+
+}  // namespace
+
+void exit_if_controller_gone() {
+  const int saved = errno;
+  const pid_t controller = the_segment->controller_pid;
+  if (::kill(controller, 0) != 0 && errno == ESRCH) {
+    std::fprintf(stderr,
+                 "ubersim timeshim: process %d: the controller (pid %d) is gone, so sim time "
+                 "cannot advance; exiting\n",
+                 static_cast<int>(::getpid()), static_cast<int>(controller));
+    ::_exit(124);
+  }
+  errno = saved;
+}
+
+timespec wall_liveness_deadline() {
+  static const auto real_clock = next_symbol<int (*)(clockid_t, timespec*)>("clock_gettime");
+  timespec now{};
+  real_clock(CLOCK_MONOTONIC, &now);
+  return to_timespec(to_ns(now) + to_ns(kLivenessCheck));
+}
+
+Header* segment() {
+  if (!start_done.load(std::memory_order_acquire)) pthread_once(&started, start_once);
+  return the_segment;
+}
+
+std::int64_t view_now() {
+  const std::int64_t sim_now = the_segment->sim_now_ns.load();
+  return std::max(sim_now, this_thread.floor_ns) + this_thread.charge_ns;
+}
+
+void charge_call() {
+  the_segment->intercepted_calls.fetch_add(1, std::memory_order_relaxed);
+  if (this_thread.free_calls_used < kFreeCalls) {
+    ++this_thread.free_calls_used;
+    return;
+  }
+  this_thread.charge_ns += the_segment->charge_ns;
+  const std::int64_t yield_after = the_segment->yield_after_ns;
+  if (yield_after > 0 && this_thread.charge_ns >= yield_after) {
+    // Run no further ahead: wait until sim time reaches what this thread sees.
+    sleep_until(view_now(), ShimCall::ChargedYield);
+  }
+}
+
+std::int64_t read_clock() {
+  const std::int64_t now = view_now();
+  charge_call();
+  return now;
+}
+
+int sleep_until(std::int64_t deadline_ns, ShimCall call) {
+  const std::int64_t view_at_start = view_now();
+  ThreadSlot& slot = own_slot();
+  set_state(slot, ThreadState::Sleeping, call, deadline_ns);
+  int result = 0;
+  for (;;) {
+    const std::uint32_t seq = slot.wake_seq.load();
+    if (the_segment->sim_now_ns.load() >= deadline_ns) break;
+    const long waited = futex_wait(slot.wake_seq, seq, to_ns(kLivenessCheck));
+    if (waited != 0 && errno == EINTR) {
+      result = EINTR;
+      break;
+    }
+    if (waited != 0 && errno == ETIMEDOUT) exit_if_controller_gone();
+  }
+  set_state(slot, ThreadState::Running, ShimCall::None, kNoDeadline);
+  after_block(view_at_start, result == 0 ? deadline_ns : 0, call);
+  return result;
+}
+
+WaitScope::WaitScope(std::int64_t deadline_ns, ShimCall call, ThreadState state,
+                     const sigset_t* wait_mask)
+    : deadline_ns_(deadline_ns), view_at_start_(view_now()) {
+  ThreadSlot& slot = own_slot();
+  if (wait_mask != nullptr) {
+    mask_ = *wait_mask;
+  } else {
+    pthread_sigmask(SIG_BLOCK, nullptr, &mask_);
+  }
+  sigdelset(&mask_, the_segment->wake_signal);
+  wake_arrived = 0;
+  set_state(slot, state, call, deadline_ns);
+}
+
+WaitScope::~WaitScope() {
+  set_state(*this_thread.slot, ThreadState::Running, ShimCall::None, kNoDeadline);
+  after_block(view_at_start_, timed_out_ ? deadline_ns_ : 0, ShimCall::None);
+}
+
+bool WaitScope::deadline_passed() const {
+  return deadline_ns_ != kNoDeadline && the_segment->sim_now_ns.load() >= deadline_ns_;
+}
+
+bool WaitScope::take_wake() {
+  const bool arrived = wake_arrived != 0;
+  wake_arrived = 0;
+  return arrived;
+}
+
+bool sim_clock(clockid_t clock, std::int64_t* offset_ns) {
+  switch (clock) {
+    case CLOCK_REALTIME:
+    case CLOCK_REALTIME_COARSE:
+    case CLOCK_REALTIME_ALARM:
+      *offset_ns = the_segment->realtime_epoch_ns;
+      return true;
+    case CLOCK_TAI:
+      // TAI is ahead of UTC by 37 s since 2017.
+      *offset_ns = the_segment->realtime_epoch_ns + 37 * kNsPerSecond;
+      return true;
+    case CLOCK_MONOTONIC:
+    case CLOCK_MONOTONIC_RAW:
+    case CLOCK_MONOTONIC_COARSE:
+    case CLOCK_BOOTTIME:
+    case CLOCK_BOOTTIME_ALARM:
+      *offset_ns = 0;
+      return true;
+    default:
+      return false;  // CPU-time clocks: what the thread really consumed
+  }
+}
+
+}  // namespace ubersim::timeshim::shim
