@@ -47,6 +47,9 @@ usage: tools/launch.sh [options]
   --game-controller PATH
                        the ssl-game-controller binary for --referee official --sync
   --game-length S      the refereed game's length in s of sim time (default: config/referee)
+  --yellow-name NAME, --blue-name NAME
+                       the teams' names on the referee's messages (default: config/referee,
+                       Yellow and Blue); an SSL AI that finds its colour by name needs its own
   --truth-every-step   physics publishes SIM_STATE after every step (default: only at the
                        instants its consumers ask for: vision captures and releases, radio
                        feedback, viewer frames, bridges; docs/sync.md). Use it to record every step
@@ -94,12 +97,12 @@ usage_error() {
 # Options that take a value. A missing one (the end of the line, or the next
 # option in its place) is an error here, not an unbound $2 below.
 options_with_values=" --scenario --field --profile --speed --sync-clients --game-length --cpu --seed
-  --game-controller --duration --lcm-url --channel-prefix --demo --demo-mode --log --log-dir --viewer-port
+  --game-controller --yellow-name --blue-name --duration --lcm-url --channel-prefix --demo --demo-mode --log --log-dir --viewer-port
   --vision-port --vision-interface --vision-ttl --ssl-port-offset "
 
 scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" truth_every_step=0 seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
-referee=none game_length="" tracked=1 game_controller=""
+referee=none game_length="" tracked=1 game_controller="" yellow_name="" blue_name=""
 ssl_mode=0 lan=0 vision_port="" vision_interface="" vision_ttl="" ssl_local_only=0 ssl_port_offset=0 referee_given=0
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port="" open_viewer=0 ssl_bridge=0
 while [ $# -gt 0 ]; do
@@ -121,6 +124,8 @@ while [ $# -gt 0 ]; do
     --no-tracked) tracked=0; shift ;;
     --game-length) game_length=$2; shift 2 ;;
     --game-controller) game_controller=$2; shift 2 ;;
+    --yellow-name) yellow_name=$2; shift 2 ;;
+    --blue-name) blue_name=$2; shift 2 ;;
     --truth-every-step) truth_every_step=1; shift ;;
     --truth-on-demand) shift ;;  # the default; accepted for older scripts
     --cpu) cpu=$2; shift 2 ;;
@@ -502,6 +507,11 @@ fi
 [ -n "$duration" ] && physics_args+=(--duration "$duration")
 referee_args=(auto --events "$log_dir/events.jsonl")
 [ -n "$game_length" ] && referee_args+=(--game-length "$game_length")
+# The teams' names go on REFEREE (both referees take the same two options).
+team_name_args=()
+[ -n "$yellow_name" ] && team_name_args+=(--yellow-name "$yellow_name")
+[ -n "$blue_name" ] && team_name_args+=(--blue-name "$blue_name")
+referee_args+=("${team_name_args[@]}")
 [ "$tracked" = 1 ] && bridge_args+=(--tracked)
 [ "$referee" = official ] && [ "$gc_ci" = 0 ] && bridge_args+=(--official-referee)
 # The bridge's addresses and ports (set_ssl_ports); the defaults are left to it.
@@ -527,6 +537,7 @@ if [ "$gc_ci" = 1 ]; then
   physics_args+=(--sync-referee)
   referee_args=(--game-controller "$game_controller" --gc-dir "$log_dir/gc" --events "$log_dir/events.jsonl")
   [ -n "$game_length" ] && referee_args+=(--game-length "$game_length")
+  referee_args+=("${team_name_args[@]}")
 fi
 start physics "${placement[@]}" "$bin_dir/ubersim_physics" "${common[@]}" "${physics_args[@]}" "${seed_args[@]}"
 # wait_for_bus_claim PID: the rest starts once physics holds its bus (it claims
@@ -686,7 +697,18 @@ report_sync_clients() {
 # A loss is said where the user looks: frames the vision emulator lost
 # (from its exit summary) are named on the terminal.
 report_losses() {
-  local lost
+  local lost line
+  # Commands beyond a robot type's limits were applied at the limit: say how many.
+  line=$(grep -o "commands: .*" "$log_dir/physics.log" 2>/dev/null | tail -n 1)
+  if [ -n "$line" ] && [[ $line != *" 0 of them at a robot type's limit"* ]]; then
+    echo "launch: physics $line (see $log_dir/physics.log)" >&2
+  fi
+  # grSim commands that a newer one for the same robot replaced before they went out.
+  line=$(grep -o "grSim summary:.*" "$log_dir/ssl_bridge.log" 2>/dev/null | tail -n 1)
+  if [[ $line =~ superseded\ yellow=([0-9]+).*superseded\ blue=([0-9]+) ]] &&
+    [ "${BASH_REMATCH[1]}${BASH_REMATCH[2]}" != 00 ]; then
+    echo "launch: grSim commands superseded by newer ones before they went out: yellow ${BASH_REMATCH[1]}, blue ${BASH_REMATCH[2]} (see $log_dir/ssl_bridge.log)" >&2
+  fi
   lost=$(grep -o 'summary: frames lost [0-9]*' "$log_dir/vision.log" 2>/dev/null | tail -n 1)
   lost=${lost##* }
   if [ -n "$lost" ] && [ "$lost" != 0 ]; then
