@@ -42,6 +42,8 @@ usage: tools/launch.sh [options]
   --game-controller PATH
                        the ssl-game-controller binary for --referee official --sync
   --game-length S      the refereed game's length in s of sim time (default: config/referee)
+  --repeat-games       with the built-in referee: a new game starts 5 s after each one ends,
+                       until Ctrl-C, instead of everything stopping (tools/demo.sh)
   --truth-every-step   physics publishes SIM_STATE after every step (default: only at the
                        instants its consumers ask for: vision captures and releases, radio
                        feedback, viewer frames, bridges; docs/sync.md). Use it to record every step
@@ -84,7 +86,7 @@ options_with_values=" --scenario --field --profile --speed --sync-clients --game
 
 scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" truth_every_step=0 seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
-referee=none game_length="" tracked=1 game_controller=""
+referee=none game_length="" repeat_games=0 tracked=1 game_controller=""
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port="" open_viewer=0 ssl_bridge=0
 while [ $# -gt 0 ]; do
   if [[ $options_with_values == *[[:space:]]"$1"[[:space:]]* ]] && { [ $# -lt 2 ] || [[ $2 == --* ]]; }; then
@@ -103,6 +105,7 @@ while [ $# -gt 0 ]; do
       case "${2:-}" in builtin|official) referee=$2; shift 2 ;; *) referee=builtin; shift ;; esac ;;
     --no-tracked) tracked=0; shift ;;
     --game-length) game_length=$2; shift 2 ;;
+    --repeat-games) repeat_games=1; shift ;;
     --game-controller) game_controller=$2; shift 2 ;;
     --truth-every-step) truth_every_step=1; shift ;;
     --truth-on-demand) shift ;;  # the default; accepted for older scripts
@@ -197,6 +200,10 @@ check_number --speed "$speed" 0
 [ -z "$seed" ] || check_whole --seed "$seed"
 [ -z "$duration" ] || check_number --duration "$duration" 0
 [ -z "$game_length" ] || check_positive --game-length "$game_length"
+if [ "$repeat_games" = 1 ]; then
+  [ "$referee" = builtin ] || usage_error "--repeat-games: only with --referee (the built-in referee)"
+  [ "$sync" = 0 ] || usage_error "--repeat-games: not with --sync (physics holds at the end of a synced game)"
+fi
 [ -z "$sync_clients" ] || check_whole --sync-clients "$sync_clients" 0 2
 # 0 (any free port) would print an address nobody can open.
 [ -z "$viewer_port" ] || check_whole --viewer-port "$viewer_port" 1 65535
@@ -337,6 +344,7 @@ fi
 [ -n "$duration" ] && physics_args+=(--duration "$duration")
 referee_args=(auto --events "$log_dir/events.jsonl")
 [ -n "$game_length" ] && referee_args+=(--game-length "$game_length")
+[ "$repeat_games" = 1 ] && referee_args+=(--repeat)
 [ "$tracked" = 1 ] && bridge_args+=(--tracked)
 [ "$referee" = official ] && [ "$gc_ci" = 0 ] && bridge_args+=(--official-referee)
 if [ "$referee" = builtin ] && [ "$sync" = 1 ]; then

@@ -75,9 +75,7 @@ class Runner {
     const std::chrono::milliseconds timeout(static_cast<long>(options_.timeout_s * 1000));
     SimLink link(bus, channels, kName);
     field_ = link.geometry(timeout);
-    judge_.emplace(
-        JudgeOptions{options_.game, options_.sides, options_.sync, options_.judge_every_step},
-        field_, [this](const std::string& type) { return radii_(type); });
+    new_judge();
     ubersim::subscribe(
         bus, channels, topics::kSimState, [this](const sim_state_t& s) { on_state(s); }, 100000);
     // In sync mode the radio emulator says which teams lost control: the result says so.
@@ -101,6 +99,29 @@ class Runner {
                  field_.name, options_.game.game_length, options_.game.halves,
                  channel_name(channels, topics::kReferee),
                  options_.sync ? " after every state (sync)" : "");
+  }
+
+  // A judge that has seen nothing: its first state starts a game.
+  void new_judge() {
+    judge_.emplace(
+        JudgeOptions{options_.game, options_.sides, options_.sync, options_.judge_every_step},
+        field_, [this](const std::string& type) { return radii_(type); });
+  }
+
+  // --repeat: kNewGamePause after a game ended (or at once after a reset of the
+  // simulation), the next one starts from this state, 0 : 0.
+  bool start_next_game(const sim_state_t& state) {
+    const double ended = judge_->last_time();
+    if (!options_.repeat || !std::isfinite(state.sim_time) ||
+        (state.sim_time < ended + kNewGamePause && state.sim_time >= ended)) {
+      return false;
+    }
+    new_judge();
+    over_ = false;
+    started_ = false;
+    ++game_number_;
+    spdlog::info("automatic referee: game {} starts at {:.2f} s", game_number_, state.sim_time);
+    return true;
   }
 
   void write(const std::string& line) {
@@ -137,7 +158,7 @@ class Runner {
   }
 
   void on_state(const sim_state_t& state) {
-    if (over_) return;
+    if (over_ && !start_next_game(state)) return;
     const std::uint64_t refused = judge_->refused();
     auto out = judge_->on_state(state);
     if (judge_->refused() > refused) {
@@ -161,7 +182,7 @@ class Runner {
     if (!out.game_over) return;
     finish();
     // The run ends once the handlers of this wakeup are done, before the next turn.
-    if (options_.exit_at_end) host_.stop(0);
+    if (options_.exit_at_end && !options_.repeat) host_.stop(0);
   }
 
   void finish() {
@@ -192,6 +213,7 @@ class Runner {
   ThrottledLog bad_input_;
   bool started_ = false;
   bool over_ = false;
+  int game_number_ = 1;
   ProcessHost::Clock::time_point wall_start_;
 };
 
