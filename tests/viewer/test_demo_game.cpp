@@ -130,10 +130,10 @@ class DemoGameInBrowser : public ::testing::Test {
     return last;
   }
   // Records every command the page shows until `done` holds for what it shows.
-  json watch_commands(std::vector<std::string>& seen, const std::function<bool(const json&)>& done,
-                      double timeout_s) {
+  json watch_commands(const std::string& what, std::vector<std::string>& seen,
+                      const std::function<bool(const json&)>& done, double timeout_s) {
     return wait_for(
-        "the restart",
+        what,
         [&](const json& v) {
           if (!v.is_object()) return false;
           const std::string command = v["command"];
@@ -175,7 +175,7 @@ TEST_F(DemoGameInBrowser, AfterAGoalTheScoreShowsItAndPlayResumesWithAKickOff) {
 
   std::vector<std::string> commands;
   const json scored = watch_commands(
-      commands,
+      "yellow's score one up", commands,
       [&](const json& v) {
         return score(v, "yellow") == yellow_before + 1 && score(v, "blue") == blue_before;
       },
@@ -188,7 +188,7 @@ TEST_F(DemoGameInBrowser, AfterAGoalTheScoreShowsItAndPlayResumesWithAKickOff) {
     return std::find(commands.begin(), commands.end(), command) != commands.end();
   };
   watch_commands(
-      commands,
+      "NORMAL_START after PREPARE_KICKOFF_BLUE", commands,
       [&](const json& v) { return v["command"] == "NORMAL_START" && seen("PREPARE_KICKOFF_BLUE"); },
       15);
   ASSERT_FALSE(HasFailure());
@@ -247,7 +247,7 @@ TEST(DemoGame, ANewGameStartsWhenOneIsOver) {
       << "no game ended; launch said:\n"
       << launch.output();
   const double ended = referee.latest()->sim_time;
-  EXPECT_EQ(referee.latest()->stage, ubersim::referee_t::STAGE_POST_GAME);
+  EXPECT_EQ(int{referee.latest()->stage}, int{ubersim::referee_t::STAGE_POST_GAME});
   ASSERT_TRUE(referee.wait_for(
       [&](const auto& r) {
         return !r.game_over && r.sim_time > ended && r.yellow_score == 0 && r.blue_score == 0 &&
