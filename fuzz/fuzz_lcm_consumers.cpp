@@ -192,6 +192,7 @@ struct Consumers {
       check(*out.referee);
       // The bridge forwards what the referee publishes.
       check(referee_packets.translate(*out.referee, 1'700'000'000'000'000));
+      if (to_viewer) viewer.on_referee(*out.referee, tick());
     }
     if (out.placement) check(*out.placement);
     if (to_viewer) viewer.on_sim_state(state, tick());
@@ -284,6 +285,7 @@ void run(const ubersim::fuzz::ChannelInput<ConsumerChannel>& input) {
       ubersim::referee_t referee;
       if (decode(referee)) {
         check(c.referee_packets.translate(referee, 1'700'000'000'000'000));
+        c.viewer.on_referee(referee, c.tick());
       }
       break;
     }
