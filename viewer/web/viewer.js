@@ -328,7 +328,7 @@ function teamName(referee, team) {
   return typeof name === 'string' && name.length > 0 ? name : team;
 }
 
-// 283.4 s -> "4:43"; below zero (overtime) with a minus sign.
+// 283.4 s -> "4:44" (a clock counting down shows the second it is in); below zero with a minus.
 function clockText(seconds) {
   if (seconds === null || seconds === undefined) return '–';
   const whole = Math.ceil(Math.abs(seconds));
