@@ -124,6 +124,19 @@ class Runner {
     return true;
   }
 
+  // Between games (--repeat) the final state stays on REFEREE at the rate it
+  // has during a game, for whoever listens (a bridge forwarding it to SSL teams).
+  void keep_final_state_up(const sim_state_t& state) {
+    constexpr double kPeriod = 0.1;  // s of sim time, as StateJudge publishes
+    if (!last_referee_ || !std::isfinite(state.sim_time) ||
+        state.sim_time < last_referee_->sim_time + kPeriod) {
+      return;
+    }
+    last_referee_->sim_time = state.sim_time;
+    last_referee_->next_judge_time = state.sim_time + kPeriod;
+    ubersim::publish(host_.bus(), host_.channels(), topics::kReferee, *last_referee_);
+  }
+
   void write(const std::string& line) {
     if (log_.is_open()) log_ << line << "\n" << std::flush;
   }
@@ -158,7 +171,10 @@ class Runner {
   }
 
   void on_state(const sim_state_t& state) {
-    if (over_ && !start_next_game(state)) return;
+    if (over_ && !start_next_game(state)) {
+      if (options_.repeat) keep_final_state_up(state);
+      return;
+    }
     const std::uint64_t refused = judge_->refused();
     auto out = judge_->on_state(state);
     if (judge_->refused() > refused) {
@@ -177,8 +193,10 @@ class Runner {
       out.placement->sender = kName;
       ubersim::publish(host_.bus(), host_.channels(), topics::kSimControl, *out.placement);
     }
-    if (out.referee)
+    if (out.referee) {
       ubersim::publish(host_.bus(), host_.channels(), topics::kReferee, *out.referee);
+      last_referee_ = std::move(out.referee);
+    }
     if (!out.game_over) return;
     finish();
     // The run ends once the handlers of this wakeup are done, before the next turn.
@@ -208,6 +226,7 @@ class Runner {
   field_geometry_t field_{};
   sync_status_t sync_status_{};  // the latest; all zero (nobody dropped) until one arrives
   std::optional<StateJudge> judge_;
+  std::optional<referee_t> last_referee_;            // the newest published
   RobotRadii radii_{options_.common.config_root()};  // robot types from SIM_STATE
   std::int64_t next_request_ = 0;
   ThrottledLog bad_input_;

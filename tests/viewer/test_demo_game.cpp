@@ -246,8 +246,15 @@ TEST(DemoGame, ANewGameStartsWhenOneIsOver) {
   ASSERT_TRUE(referee.wait_for([](const auto& r) { return r.game_over; }, 60))
       << "no game ended; launch said:\n"
       << launch.output();
-  const double ended = referee.latest()->sim_time;
-  EXPECT_EQ(int{referee.latest()->stage}, int{ubersim::referee_t::STAGE_POST_GAME});
+  const ubersim::referee_t final_state = *referee.latest();
+  const double ended = final_state.sim_time;
+  EXPECT_EQ(int{final_state.stage}, int{ubersim::referee_t::STAGE_POST_GAME});
+  // Between the games the final state stays on REFEREE (for SSL teams through the bridge too).
+  EXPECT_TRUE(referee.wait_for([&](const auto& r) { return r.sim_time >= ended + 4.0; }, 30));
+  const ubersim::referee_t& later = *referee.latest();
+  EXPECT_TRUE(later.game_over) << "at " << later.sim_time << " s";
+  EXPECT_EQ(later.yellow_score, final_state.yellow_score);
+  EXPECT_EQ(later.blue_score, final_state.blue_score);
   ASSERT_TRUE(referee.wait_for(
       [&](const auto& r) {
         return !r.game_over && r.sim_time > ended && r.yellow_score == 0 && r.blue_score == 0 &&
