@@ -266,6 +266,27 @@ TEST(ViewerEncoding, RefereeWithUnknownNumbersNoNextCommandAndManyEvents) {
   EXPECT_EQ(encode_referee(r)["command"], "BALL_PLACEMENT_BLUE");
 }
 
+// The teams' names, when referee_t has them (HasTeamNames); a template, so that
+// this compiles whether it has them or not.
+template <typename Referee>
+void expect_team_names_shown() {
+  if constexpr (HasTeamNames<Referee>::value) {
+    Referee r = referee_after_goal();
+    r.yellow_name = "TIGERs";
+    r.blue_name = "ER-Force";
+    const json j = encode_referee(r);
+    EXPECT_EQ(j["yellow"]["name"], "TIGERs");
+    EXPECT_EQ(j["blue"]["name"], "ER-Force");
+  } else {
+    EXPECT_FALSE(encode_referee(referee_after_goal())["yellow"].contains("name"));
+    GTEST_SKIP() << "referee_t carries no team names in this tree";
+  }
+}
+
+TEST(ViewerEncoding, RefereeTeamNamesWhenTheMessageHasThem) {
+  expect_team_names_shown<referee_t>();
+}
+
 TEST(ViewerControl, PauseResumeResetAndSpeed) {
   auto parsed = parse_control_request(R"({"action":"pause"})", 7, "viewer");
   ASSERT_TRUE(parsed.request) << parsed.error;

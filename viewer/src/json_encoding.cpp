@@ -129,6 +129,15 @@ json encode_referee_team(std::int32_t score, std::int32_t fouls, std::int32_t go
   return {{"score", score}, {"fouls", fouls}, {"goalkeeper", goalkeeper}};
 }
 
+// The teams' names, when the message has them (HasTeamNames).
+template <typename Referee>
+void add_team_names(const Referee& r, json& yellow, json& blue) {
+  if constexpr (HasTeamNames<Referee>::value) {
+    yellow["name"] = r.yellow_name;
+    blue["name"] = r.blue_name;
+  }
+}
+
 bool finite_number(const json& value) {
   return value.is_number() && std::isfinite(value.get<double>());
 }
@@ -245,6 +254,9 @@ json encode_referee(const referee_t& r) {
   }
   json next_command = nullptr;
   if (r.has_next_command) next_command = command_text(r.next_command);
+  json yellow = encode_referee_team(r.yellow_score, r.yellow_fouls, r.yellow_goalkeeper);
+  json blue = encode_referee_team(r.blue_score, r.blue_fouls, r.blue_goalkeeper);
+  add_team_names(r, yellow, blue);
   return {{"sim_time", number(r.sim_time, 1e-6)},
           {"stage", stage_text(r.stage)},
           {"stage_time_left", number(r.stage_time_left, 1e-3)},
@@ -254,8 +266,8 @@ json encode_referee(const referee_t& r) {
           {"ball_in_play", static_cast<bool>(r.ball_in_play)},
           {"action_time_left", number(r.action_time_left, 1e-3)},
           {"game_over", static_cast<bool>(r.game_over)},
-          {"yellow", encode_referee_team(r.yellow_score, r.yellow_fouls, r.yellow_goalkeeper)},
-          {"blue", encode_referee_team(r.blue_score, r.blue_fouls, r.blue_goalkeeper)},
+          {"yellow", yellow},
+          {"blue", blue},
           {"events", events}};
 }
 
