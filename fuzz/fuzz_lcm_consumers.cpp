@@ -190,9 +190,9 @@ struct Consumers {
     const auto out = judge->on_state(state);
     if (out.referee) {
       check(*out.referee);
+      if (to_viewer) viewer.on_referee(*out.referee, tick());
       // The bridge forwards what the referee publishes.
       check(referee_packets.translate(*out.referee, 1'700'000'000'000'000));
-      if (to_viewer) viewer.on_referee(*out.referee, tick());
     }
     if (out.placement) check(*out.placement);
     if (to_viewer) viewer.on_sim_state(state, tick());
@@ -285,8 +285,9 @@ void run(const ubersim::fuzz::ChannelInput<ConsumerChannel>& input) {
       ubersim::referee_t referee;
       if (decode(referee)) {
         check(c.referee_packets.translate(referee, 1'700'000'000'000'000));
-        c.viewer.on_referee(referee, c.tick());
       }
+      // The viewer shows what the bus carries, decoded alike.
+      if (decode(referee)) c.viewer.on_referee(referee, c.tick());
       break;
     }
   }
