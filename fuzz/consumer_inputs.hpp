@@ -26,7 +26,7 @@ enum class ConsumerChannel : std::uint8_t {
   RadioYellow,     // radio_packet_t -> viewer
   RadioBlue,       // radio_packet_t -> viewer
   SimControlAck,   // sim_control_ack_t -> viewer
-  Referee,         // referee_t -> bridge (SSL game controller packets)
+  Referee,         // referee_t -> bridge (SSL game controller packets), viewer
   Count
 };
 

@@ -190,6 +190,7 @@ struct Consumers {
     const auto out = judge->on_state(state);
     if (out.referee) {
       check(*out.referee);
+      if (to_viewer) viewer.on_referee(*out.referee, tick());
       // The bridge forwards what the referee publishes.
       check(referee_packets.translate(*out.referee));
     }
@@ -285,6 +286,8 @@ void run(const ubersim::fuzz::ChannelInput<ConsumerChannel>& input) {
       if (decode(referee)) {
         check(c.referee_packets.translate(referee));
       }
+      // The viewer shows what the bus carries, decoded alike.
+      if (decode(referee)) c.viewer.on_referee(referee, c.tick());
       break;
     }
   }

@@ -50,6 +50,8 @@ usage: tools/launch.sh [options]
   --yellow-name NAME, --blue-name NAME
                        the teams' names on the referee's messages (default: config/referee,
                        Yellow and Blue); an SSL AI that finds its colour by name needs its own
+  --repeat-games       with the built-in referee: a new game starts 5 s after each one ends,
+                       until Ctrl-C, instead of everything stopping (tools/demo.sh)
   --truth-every-step   physics publishes SIM_STATE after every step (default: only at the
                        instants its consumers ask for: vision captures and releases, radio
                        feedback, viewer frames, bridges; docs/sync.md). Use it to record every step
@@ -105,6 +107,7 @@ lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
 referee=none game_length="" tracked=1 game_controller="" yellow_name="" blue_name=""
 ssl_mode=0 lan=0 vision_port="" vision_interface="" vision_ttl="" ssl_local_only=0 ssl_port_offset=0 referee_given=0
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port="" open_viewer=0 ssl_bridge=0
+repeat_games=0
 while [ $# -gt 0 ]; do
   if [[ $options_with_values == *[[:space:]]"$1"[[:space:]]* ]] && { [ $# -lt 2 ] || [[ $2 == --* ]]; }; then
     usage_error "$1 needs a value (tools/launch.sh --help lists the options)"
@@ -123,6 +126,7 @@ while [ $# -gt 0 ]; do
       case "${2:-}" in builtin|official) referee=$2; shift 2 ;; *) referee=builtin; shift ;; esac ;;
     --no-tracked) tracked=0; shift ;;
     --game-length) game_length=$2; shift 2 ;;
+    --repeat-games) repeat_games=1; shift ;;
     --game-controller) game_controller=$2; shift 2 ;;
     --yellow-name) yellow_name=$2; shift 2 ;;
     --blue-name) blue_name=$2; shift 2 ;;
@@ -261,6 +265,10 @@ check_number --speed "$speed" 0
 [ -z "$seed" ] || check_whole --seed "$seed"
 [ -z "$duration" ] || check_number --duration "$duration" 0
 [ -z "$game_length" ] || check_positive --game-length "$game_length"
+if [ "$repeat_games" = 1 ]; then
+  [ "$referee" = builtin ] || usage_error "--repeat-games: only with --referee (the built-in referee)"
+  [ "$sync" = 0 ] || usage_error "--repeat-games: not with --sync (physics holds at the end of a synced game)"
+fi
 [ -z "$sync_clients" ] || check_whole --sync-clients "$sync_clients" 0 2
 # 0 (any free port) would print an address nobody can open.
 [ -z "$viewer_port" ] || check_whole --viewer-port "$viewer_port" 1 65535
@@ -512,6 +520,7 @@ team_name_args=()
 [ -n "$yellow_name" ] && team_name_args+=(--yellow-name "$yellow_name")
 [ -n "$blue_name" ] && team_name_args+=(--blue-name "$blue_name")
 referee_args+=("${team_name_args[@]}")
+[ "$repeat_games" = 1 ] && referee_args+=(--repeat)
 [ "$tracked" = 1 ] && bridge_args+=(--tracked)
 [ "$referee" = official ] && [ "$gc_ci" = 0 ] && bridge_args+=(--official-referee)
 # The bridge's addresses and ports (set_ssl_ports); the defaults are left to it.

@@ -75,9 +75,7 @@ class Runner {
     const std::chrono::milliseconds timeout(static_cast<long>(options_.timeout_s * 1000));
     SimLink link(bus, channels, kName);
     field_ = link.geometry(timeout);
-    judge_.emplace(
-        JudgeOptions{options_.game, options_.sides, options_.sync, options_.judge_every_step},
-        field_, [this](const std::string& type) { return radii_(type); });
+    new_judge();
     ubersim::subscribe(
         bus, channels, topics::kSimState, [this](const sim_state_t& s) { on_state(s); }, 100000);
     // In sync mode the radio emulator says which teams lost control: the result says so.
@@ -103,6 +101,42 @@ class Runner {
         field_.name, options_.game.game_length, options_.game.halves, options_.game.yellow_name,
         options_.game.blue_name, channel_name(channels, topics::kReferee),
         options_.sync ? " after every state (sync)" : "");
+  }
+
+  // A judge that has seen nothing: its first state starts a game.
+  void new_judge() {
+    judge_.emplace(
+        JudgeOptions{options_.game, options_.sides, options_.sync, options_.judge_every_step},
+        field_, [this](const std::string& type) { return radii_(type); });
+  }
+
+  // --repeat: kNewGamePause after a game ended (or at once after a reset of the
+  // simulation), the next one starts from this state, 0 : 0.
+  bool start_next_game(const sim_state_t& state) {
+    const double ended = judge_->last_time();
+    if (!options_.repeat || !std::isfinite(state.sim_time) ||
+        (state.sim_time < ended + kNewGamePause && state.sim_time >= ended)) {
+      return false;
+    }
+    new_judge();
+    over_ = false;
+    started_ = false;
+    ++game_number_;
+    spdlog::info("automatic referee: game {} starts at {:.2f} s", game_number_, state.sim_time);
+    return true;
+  }
+
+  // Between games (--repeat) the final state stays on REFEREE at the rate it
+  // has during a game, for whoever listens (a bridge forwarding it to SSL teams).
+  void keep_final_state_up(const sim_state_t& state) {
+    constexpr double kPeriod = 0.1;  // s of sim time, as StateJudge publishes
+    if (!last_referee_ || !std::isfinite(state.sim_time) ||
+        state.sim_time < last_referee_->sim_time + kPeriod) {
+      return;
+    }
+    last_referee_->sim_time = state.sim_time;
+    last_referee_->next_judge_time = state.sim_time + kPeriod;
+    ubersim::publish(host_.bus(), host_.channels(), topics::kReferee, *last_referee_);
   }
 
   void write(const std::string& line) {
@@ -139,7 +173,10 @@ class Runner {
   }
 
   void on_state(const sim_state_t& state) {
-    if (over_) return;
+    if (over_ && !start_next_game(state)) {
+      if (options_.repeat) keep_final_state_up(state);
+      return;
+    }
     const std::uint64_t refused = judge_->refused();
     auto out = judge_->on_state(state);
     if (judge_->refused() > refused) {
@@ -158,12 +195,14 @@ class Runner {
       out.placement->sender = kName;
       ubersim::publish(host_.bus(), host_.channels(), topics::kSimControl, *out.placement);
     }
-    if (out.referee)
+    if (out.referee) {
       ubersim::publish(host_.bus(), host_.channels(), topics::kReferee, *out.referee);
+      last_referee_ = std::move(out.referee);
+    }
     if (!out.game_over) return;
     finish();
     // The run ends once the handlers of this wakeup are done, before the next turn.
-    if (options_.exit_at_end) host_.stop(0);
+    if (options_.exit_at_end && !options_.repeat) host_.stop(0);
   }
 
   void finish() {
@@ -189,11 +228,13 @@ class Runner {
   field_geometry_t field_{};
   sync_status_t sync_status_{};  // the latest; all zero (nobody dropped) until one arrives
   std::optional<StateJudge> judge_;
+  std::optional<referee_t> last_referee_;            // the newest published
   RobotRadii radii_{options_.common.config_root()};  // robot types from SIM_STATE
   std::int64_t next_request_ = 0;
   ThrottledLog bad_input_;
   bool started_ = false;
   bool over_ = false;
+  int game_number_ = 1;
   ProcessHost::Clock::time_point wall_start_;
 };
 

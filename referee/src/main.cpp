@@ -50,6 +50,7 @@ struct Options {
   std::optional<std::string> yellow_name, blue_name;  // override YELLOW_NAME / BLUE_NAME
   std::string events_file;
   bool keep_running = false;
+  bool repeat = false;
   bool start_physics = false;
   bool sync = false;
   bool judge_every_step = false;
@@ -67,6 +68,7 @@ int run_auto(const Options& o) {
   a.events_file = o.events_file;
   a.timeout_s = o.timeout_s;
   a.exit_at_end = !o.keep_running;
+  a.repeat = o.repeat;
   a.start_physics = o.start_physics;
   a.sync = o.sync;
   a.judge_every_step = o.judge_every_step;
@@ -459,9 +461,14 @@ void add_auto_command(CLI::App& app, Options& o) {
   automatic->add_flag("--keep-running", o.keep_running, "do not exit when the game is over");
   automatic->add_flag("--start", o.start_physics,
                       "resume physics once listening (start physics with --paused)");
-  automatic->add_flag("--sync", o.sync,
-                      "REFEREE after every state: a physics started with --sync-referee waits "
-                      "for it, placements apply at a fixed step, games are reproducible");
+  auto* sync =
+      automatic->add_flag("--sync", o.sync,
+                          "REFEREE after every state: a physics started with --sync-referee waits "
+                          "for it, placements apply at a fixed step, games are reproducible");
+  automatic
+      ->add_flag("--repeat", o.repeat,
+                 "when a game is over, start a new one 5 s of sim time later, until stopped")
+      ->excludes(sync);
   automatic->add_flag("--judge-every-step", o.judge_every_step,
                       "judge every state (default: only the states where a rule could decide, "
                       "docs/autoref.md; the same decisions at a fraction of the cost)");

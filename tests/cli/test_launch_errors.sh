@@ -49,6 +49,8 @@ expect_usage_error "--seed: 'x' is not a whole number" -- --seed x --log-dir "$w
 expect_usage_error "--sync-clients: 3 is not in [0, 2]" -- --sync-clients 3 --log-dir "$work/logs"
 expect_usage_error "--viewer-port: 0 is not in [1, 65535]" -- --viewer-port 0 --log-dir "$work/logs"
 expect_usage_error "--game-length: 0 is not greater than 0" -- --game-length 0 --log-dir "$work/logs"
+expect_usage_error "--repeat-games: only with --referee" -- --repeat-games --log-dir "$work/logs"
+expect_usage_error "--repeat-games: not with --sync" -- --referee --repeat-games --sync --log-dir "$work/logs"
 expect_usage_error "--duration: 'soon' is not a number" -- --duration soon --log-dir "$work/logs"
 expect_usage_error "--scenario needs a value" -- --log-dir "$work/logs" --scenario
 expect_usage_error "--scenario needs a value" -- --scenario --speed 2 --log-dir "$work/logs"

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <ubersim/referee_t.hpp>
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/viewer/json_encoding.hpp"
@@ -192,6 +193,100 @@ TEST(ViewerEncoding, FieldGeometryAndCameras) {
   EXPECT_DOUBLE_EQ(cameras[0]["z"].get<double>(), 4.0);
 }
 
+referee_t referee_after_goal() {
+  referee_t r{};
+  r.sim_time = 42.5;
+  r.stage = referee_t::STAGE_FIRST_HALF;
+  r.stage_time_left = 257.4999;
+  r.command = referee_t::STOP;
+  r.command_counter = 5;
+  r.has_next_command = true;
+  r.next_command = referee_t::PREPARE_KICKOFF_BLUE;
+  r.ball_in_play = false;
+  r.action_time_left = 0;
+  r.yellow_score = 1;
+  r.blue_score = 0;
+  r.yellow_fouls = 2;
+  r.blue_fouls = 3;
+  r.yellow_goalkeeper = 0;
+  r.blue_goalkeeper = 5;
+  referee_event_t goal{};
+  goal.type = referee_event_t::GOAL;
+  goal.has_team = true;
+  goal.team = team_t::YELLOW;
+  goal.description = "goal by yellow 3";
+  r.events = {goal};
+  r.num_events = 1;
+  return r;
+}
+
+TEST(ViewerEncoding, RefereeNamesStageCommandAndEventsAndCarriesTheScore) {
+  const json j = encode_referee(referee_after_goal());
+  EXPECT_DOUBLE_EQ(j["sim_time"].get<double>(), 42.5);
+  EXPECT_EQ(j["stage"], "NORMAL_FIRST_HALF");
+  EXPECT_DOUBLE_EQ(j["stage_time_left"].get<double>(), 257.5) << "rounded to 1 ms";
+  EXPECT_EQ(j["command"], "STOP");
+  EXPECT_EQ(j["command_counter"], 5);
+  EXPECT_EQ(j["next_command"], "PREPARE_KICKOFF_BLUE");
+  EXPECT_EQ(j["ball_in_play"], false);
+  EXPECT_EQ(j["game_over"], false);
+  EXPECT_EQ(j["yellow"]["score"], 1);
+  EXPECT_EQ(j["blue"]["score"], 0);
+  EXPECT_EQ(j["yellow"]["fouls"], 2);
+  EXPECT_EQ(j["blue"]["fouls"], 3);
+  EXPECT_EQ(j["blue"]["goalkeeper"], 5);
+  ASSERT_EQ(j["events"].size(), 1u);
+  EXPECT_EQ(j["events"][0]["type"], "GOAL");
+  EXPECT_EQ(j["events"][0]["team"], "yellow");
+  EXPECT_EQ(j["events"][0]["description"], "goal by yellow 3");
+}
+
+TEST(ViewerEncoding, RefereeWithUnknownNumbersNoNextCommandAndManyEvents) {
+  referee_t r = referee_after_goal();
+  r.stage = 99;
+  r.command = -3;
+  r.has_next_command = false;
+  r.stage_time_left = std::numeric_limits<double>::infinity();
+  r.events.assign(1000, r.events[0]);
+  r.events.back().has_team = false;
+  r.events.back().type = 77;
+  r.num_events = 1000;
+  const json j = encode_referee(r);
+  EXPECT_EQ(j["stage"], "STAGE 99");
+  EXPECT_EQ(j["command"], "COMMAND -3");
+  EXPECT_TRUE(j["next_command"].is_null());
+  EXPECT_TRUE(j["stage_time_left"].is_null());
+  ASSERT_EQ(j["events"].size(), 8u) << "only the newest few";
+  EXPECT_EQ(j["events"][7]["type"], "EVENT 77");
+  EXPECT_TRUE(j["events"][7]["team"].is_null());
+  // Every stage and command the message names has its SSL name.
+  r.stage = referee_t::STAGE_POST_GAME;
+  r.command = referee_t::BALL_PLACEMENT_BLUE;
+  EXPECT_EQ(encode_referee(r)["stage"], "POST_GAME");
+  EXPECT_EQ(encode_referee(r)["command"], "BALL_PLACEMENT_BLUE");
+}
+
+// The teams' names, when referee_t has them (HasTeamNames); a template, so that
+// this compiles whether it has them or not.
+template <typename Referee>
+void expect_team_names_shown() {
+  if constexpr (HasTeamNames<Referee>::value) {
+    Referee r = referee_after_goal();
+    r.yellow_name = "TIGERs";
+    r.blue_name = "ER-Force";
+    const json j = encode_referee(r);
+    EXPECT_EQ(j["yellow"]["name"], "TIGERs");
+    EXPECT_EQ(j["blue"]["name"], "ER-Force");
+  } else {
+    EXPECT_FALSE(encode_referee(referee_after_goal())["yellow"].contains("name"));
+    GTEST_SKIP() << "referee_t carries no team names in this tree";
+  }
+}
+
+TEST(ViewerEncoding, RefereeTeamNamesWhenTheMessageHasThem) {
+  expect_team_names_shown<referee_t>();
+}
+
 TEST(ViewerControl, PauseResumeResetAndSpeed) {
   auto parsed = parse_control_request(R"({"action":"pause"})", 7, "viewer");
   ASSERT_TRUE(parsed.request) << parsed.error;
@@ -311,6 +406,21 @@ TEST(ViewerModelTest, VisionGeometryWinsOverPhysicsGeometryAndResetForgetsOldDet
   EXPECT_TRUE(snapshot["commands"]["yellow"].is_null());
 }
 
+TEST(ViewerModelTest, SnapshotHoldsTheNewestRefereeStateAndItsRate) {
+  ViewerModel model;
+  const auto t0 = ViewerModel::Clock::now();
+  EXPECT_TRUE(json::parse(model.snapshot(t0, {}))["referee"].is_null()) << "none before any";
+  referee_t r = referee_after_goal();
+  for (int i = 0; i < 10; ++i) {
+    r.blue_score = i;
+    model.on_referee(r, t0 + std::chrono::milliseconds(i * 100));
+  }
+  EXPECT_TRUE(model.changed());
+  const json snapshot = json::parse(model.snapshot(t0 + std::chrono::seconds(1), {}));
+  EXPECT_EQ(snapshot["referee"]["blue"]["score"], 9) << "only the newest";
+  EXPECT_NEAR(snapshot["rates"]["REFEREE"].get<double>(), 10, 1) << snapshot["rates"].dump();
+}
+
 TEST(ViewerModelTest, RatesPerChannelUseTheActualChannelNames) {
   ViewerModel model;
   model.set_channel_names({{"SIM_STATE", "SIM2_SIM_STATE"}});
@@ -339,6 +449,9 @@ TEST(ViewerModelTest, StringsThatAreNotUtf8DoNotStopTheSnapshot) {
   sim_control_ack_t ack{};
   ack.message = "\x80ok";
   model.on_ack(ack);
+  referee_t referee = referee_after_goal();
+  referee.events[0].description = "goal\xff";
+  model.on_referee(referee, t0);
   std::string text;
   ASSERT_NO_THROW(text = model.snapshot(t0, {}));
   const json snapshot = json::parse(text);
@@ -346,6 +459,7 @@ TEST(ViewerModelTest, StringsThatAreNotUtf8DoNotStopTheSnapshot) {
       << "each bad byte becomes U+FFFD";
   EXPECT_EQ(snapshot["geometry"]["name"], "div\xef\xbf\xbd");
   EXPECT_EQ(snapshot["ack"]["message"], "\xef\xbf\xbdok");
+  EXPECT_EQ(snapshot["referee"]["events"][0]["description"], "goal\xef\xbf\xbd");
   EXPECT_EQ(snapshot["state"]["robots"][1]["type"], "omni4_ssl");
 }
 

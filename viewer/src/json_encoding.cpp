@@ -1,6 +1,7 @@
 #include "ubersim/viewer/json_encoding.hpp"
 
 #include <cmath>
+#include <iterator>
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/viewer/request_policy.hpp"
@@ -51,6 +52,90 @@ json encode_vision_robots(const std::vector<vision_robot_t>& robots) {
                    {"confidence", number(robot.confidence, 1e-3)}});
   }
   return out;
+}
+
+// The SSL names (ssl_gc_referee_message.proto) of referee_t's stages and
+// commands; a number this viewer does not know is shown as one.
+std::string stage_text(int stage) {
+  static const char* const kStages[] = {
+      "NORMAL_FIRST_HALF_PRE",  "NORMAL_FIRST_HALF",  "NORMAL_HALF_TIME",
+      "NORMAL_SECOND_HALF_PRE", "NORMAL_SECOND_HALF", "EXTRA_TIME_BREAK",
+      "EXTRA_FIRST_HALF_PRE",   "EXTRA_FIRST_HALF",   "EXTRA_HALF_TIME",
+      "EXTRA_SECOND_HALF_PRE",  "EXTRA_SECOND_HALF",  "PENALTY_SHOOTOUT_BREAK",
+      "PENALTY_SHOOTOUT",       "POST_GAME"};
+  if (stage >= 0 && stage < static_cast<int>(std::size(kStages))) return kStages[stage];
+  return "STAGE " + std::to_string(stage);
+}
+
+std::string command_text(int command) {
+  switch (command) {
+    case referee_t::HALT:
+      return "HALT";
+    case referee_t::STOP:
+      return "STOP";
+    case referee_t::NORMAL_START:
+      return "NORMAL_START";
+    case referee_t::FORCE_START:
+      return "FORCE_START";
+    case referee_t::PREPARE_KICKOFF_YELLOW:
+      return "PREPARE_KICKOFF_YELLOW";
+    case referee_t::PREPARE_KICKOFF_BLUE:
+      return "PREPARE_KICKOFF_BLUE";
+    case referee_t::PREPARE_PENALTY_YELLOW:
+      return "PREPARE_PENALTY_YELLOW";
+    case referee_t::PREPARE_PENALTY_BLUE:
+      return "PREPARE_PENALTY_BLUE";
+    case referee_t::DIRECT_FREE_YELLOW:
+      return "DIRECT_FREE_YELLOW";
+    case referee_t::DIRECT_FREE_BLUE:
+      return "DIRECT_FREE_BLUE";
+    case referee_t::TIMEOUT_YELLOW:
+      return "TIMEOUT_YELLOW";
+    case referee_t::TIMEOUT_BLUE:
+      return "TIMEOUT_BLUE";
+    case referee_t::BALL_PLACEMENT_YELLOW:
+      return "BALL_PLACEMENT_YELLOW";
+    case referee_t::BALL_PLACEMENT_BLUE:
+      return "BALL_PLACEMENT_BLUE";
+    default:
+      return "COMMAND " + std::to_string(command);
+  }
+}
+
+std::string event_type_text(int type) {
+  switch (type) {
+    case referee_event_t::NO_PROGRESS_IN_GAME:
+      return "NO_PROGRESS_IN_GAME";
+    case referee_event_t::BALL_LEFT_FIELD_TOUCH_LINE:
+      return "BALL_LEFT_FIELD_TOUCH_LINE";
+    case referee_event_t::BALL_LEFT_FIELD_GOAL_LINE:
+      return "BALL_LEFT_FIELD_GOAL_LINE";
+    case referee_event_t::GOAL:
+      return "GOAL";
+    case referee_event_t::ATTACKER_DOUBLE_TOUCHED_BALL:
+      return "ATTACKER_DOUBLE_TOUCHED_BALL";
+    case referee_event_t::BOT_KICKED_BALL_TOO_FAST:
+      return "BOT_KICKED_BALL_TOO_FAST";
+    case referee_event_t::DEFENDER_IN_DEFENSE_AREA:
+      return "DEFENDER_IN_DEFENSE_AREA";
+    case referee_event_t::TOO_MANY_ROBOTS:
+      return "TOO_MANY_ROBOTS";
+    default:
+      return "EVENT " + std::to_string(type);
+  }
+}
+
+json encode_referee_team(std::int32_t score, std::int32_t fouls, std::int32_t goalkeeper) {
+  return {{"score", score}, {"fouls", fouls}, {"goalkeeper", goalkeeper}};
+}
+
+// The teams' names, when the message has them (HasTeamNames).
+template <typename Referee>
+void add_team_names(const Referee& r, json& yellow, json& blue) {
+  if constexpr (HasTeamNames<Referee>::value) {
+    yellow["name"] = r.yellow_name;
+    blue["name"] = r.blue_name;
+  }
 }
 
 bool finite_number(const json& value) {
@@ -152,6 +237,38 @@ json encode_radio_packet(const radio_packet_t& packet) {
           {"sequence", packet.sequence},
           {"t_sent", number(packet.t_sent, 1e-6)},
           {"commands", commands}};
+}
+
+json encode_referee(const referee_t& r) {
+  // The newest few: a hostile message's thousands would only bloat every frame.
+  constexpr std::size_t kEventsShown = 8;
+  json events = json::array();
+  const std::size_t first = r.events.size() > kEventsShown ? r.events.size() - kEventsShown : 0;
+  for (std::size_t i = first; i < r.events.size(); ++i) {
+    const auto& event = r.events[i];
+    json team = nullptr;
+    if (event.has_team) team = team_text(event.team);
+    events.push_back({{"type", event_type_text(event.type)},
+                      {"team", team},
+                      {"description", event.description}});
+  }
+  json next_command = nullptr;
+  if (r.has_next_command) next_command = command_text(r.next_command);
+  json yellow = encode_referee_team(r.yellow_score, r.yellow_fouls, r.yellow_goalkeeper);
+  json blue = encode_referee_team(r.blue_score, r.blue_fouls, r.blue_goalkeeper);
+  add_team_names(r, yellow, blue);
+  return {{"sim_time", number(r.sim_time, 1e-6)},
+          {"stage", stage_text(r.stage)},
+          {"stage_time_left", number(r.stage_time_left, 1e-3)},
+          {"command", command_text(r.command)},
+          {"command_counter", r.command_counter},
+          {"next_command", next_command},
+          {"ball_in_play", static_cast<bool>(r.ball_in_play)},
+          {"action_time_left", number(r.action_time_left, 1e-3)},
+          {"game_over", static_cast<bool>(r.game_over)},
+          {"yellow", yellow},
+          {"blue", blue},
+          {"events", events}};
 }
 
 json encode_ack(const sim_control_ack_t& ack) {

@@ -1,5 +1,5 @@
 // ubersim_viewer: the live field viewer. Subscribes to ground truth, vision,
-// field geometry and both teams' radio commands, and serves a web page that
+// field geometry, both teams' radio commands and the referee, and serves a web page that
 // draws them, pushing it one snapshot per display frame over a WebSocket. The
 // page's controls (pause, speed, reset, drag to place) go out on SIM_CONTROL.
 // See docs/viewer.md.
@@ -10,6 +10,7 @@
 #include <mutex>
 #include <ubersim/field_geometry_t.hpp>
 #include <ubersim/radio_packet_t.hpp>
+#include <ubersim/referee_t.hpp>
 #include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
@@ -75,7 +76,8 @@ void subscribe_model(ubersim::ProcessHost& host, ubersim::viewer::ViewerModel& m
                            {"VISION_GEOMETRY", channel_name(channels, topics::kVisionGeometry)},
                            {"SIM_GEOMETRY", channel_name(channels, topics::kSimGeometry)},
                            {"RADIO_YELLOW", channel_name(channels, topics::kRadio.yellow)},
-                           {"RADIO_BLUE", channel_name(channels, topics::kRadio.blue)}});
+                           {"RADIO_BLUE", channel_name(channels, topics::kRadio.blue)},
+                           {"REFEREE", channel_name(channels, topics::kReferee)}});
 
   subscribe(bus, channels, topics::kSimState,
             [&](const sim_state_t& m) { model.on_sim_state(m, host.now()); });
@@ -90,6 +92,8 @@ void subscribe_model(ubersim::ProcessHost& host, ubersim::viewer::ViewerModel& m
       model.on_radio(static_cast<int>(team), m, host.now());
     });
   }
+  subscribe(bus, channels, topics::kReferee,
+            [&](const referee_t& m) { model.on_referee(m, host.now()); });
   subscribe(bus, channels, topics::kSimControlAck, [&](const sim_control_ack_t& ack) {
     if (ack.sender == "viewer") model.on_ack(ack);
   });

@@ -52,12 +52,18 @@ void ViewerModel::on_ack(const sim_control_ack_t& ack) {
   changed_ = true;
 }
 
+void ViewerModel::on_referee(const referee_t& referee, Clock::time_point now) {
+  meter("REFEREE").count(now);
+  referee_ = encode_referee(referee);
+  changed_ = true;
+}
+
 std::string ViewerModel::snapshot(Clock::time_point now, const nlohmann::json& server_info) {
   nlohmann::json vision = nlohmann::json::array();
   for (const auto& [camera, frame] : vision_by_camera_) vision.push_back(frame);
   nlohmann::json rates = nlohmann::json::object();
-  for (const char* base :
-       {"SIM_STATE", "VISION", "VISION_GEOMETRY", "SIM_GEOMETRY", "RADIO_YELLOW", "RADIO_BLUE"}) {
+  for (const char* base : {"SIM_STATE", "VISION", "VISION_GEOMETRY", "SIM_GEOMETRY", "RADIO_YELLOW",
+                           "RADIO_BLUE", "REFEREE"}) {
     const auto name = channel_names_.find(base);
     const std::string shown = name == channel_names_.end() ? base : name->second;
     rates[shown] = std::round(meter(base).rate(now) * 10) / 10;
@@ -67,8 +73,8 @@ std::string ViewerModel::snapshot(Clock::time_point now, const nlohmann::json& s
       {"type", "frame"},       {"state", state_},
       {"vision", vision},      {"commands", {{"yellow", commands_[0]}, {"blue", commands_[1]}}},
       {"geometry", geometry_}, {"cameras", cameras_},
-      {"rates", rates},        {"ack", ack_},
-      {"server", server_info}};
+      {"referee", referee_},   {"rates", rates},
+      {"ack", ack_},           {"server", server_info}};
   // LCM strings (robot types, the field's name, ack messages) are bytes from
   // anyone on the bus: dump() throws on one that is not UTF-8, which stopped
   // the viewer while a page was open. Such bytes become U+FFFD instead (fuzz_lcm_consumers).

@@ -24,6 +24,7 @@ const viewerState = {
   visionRobotsDrawn: 0,
   ballDrawn: null,     // {x, y} of the ground-truth ball drawn
   requestsSent: [],    // control requests sent, newest last (at most 20 kept)
+  game: null,          // the referee's state shown: {yellow, blue, stage, command, ...} or null
 };
 window.viewerState = viewerState;
 
@@ -113,6 +114,7 @@ function draw() {
     if (state && byId('show-commands').checked) drawCommands(frame.commands, state);
   }
   if (drag) drawDragGhost();
+  if (frame && frame.referee) drawScoreboard(frame.referee);
   viewerState.framesDrawn += 1;
   updatePanel(frame);
 }
@@ -319,6 +321,55 @@ function drawDragGhost() {
   context.globalAlpha = 1;
 }
 
+// ---- the game (REFEREE) ---------------------------------------------------
+// A team's name when the referee gives one, else its colour.
+function teamName(referee, team) {
+  const name = referee[team] && referee[team].name;
+  return typeof name === 'string' && name.length > 0 ? name : team;
+}
+
+// 283.4 s -> "4:44" (a clock counting down shows the second it is in); below zero with a minus.
+function clockText(seconds) {
+  if (seconds === null || seconds === undefined) return '–';
+  const whole = Math.ceil(Math.abs(seconds));
+  const text = `${Math.floor(whole / 60)}:${String(whole % 60).padStart(2, '0')}`;
+  return seconds < 0 ? `-${text}` : text;
+}
+
+// The score, stage and command across the top of the field.
+function drawScoreboard(referee) {
+  const text = `${teamName(referee, 'yellow')} ${referee.yellow.score} : ` +
+               `${referee.blue.score} ${teamName(referee, 'blue')}   ${referee.stage} ` +
+               `${clockText(referee.stage_time_left)}   ${referee.command}`;
+  context.font = 'bold 14px sans-serif';
+  context.textAlign = 'center';
+  context.textBaseline = 'top';
+  const width = context.measureText(text).width + 16;
+  context.fillStyle = 'rgba(0,0,0,0.55)';
+  context.fillRect(canvas.clientWidth / 2 - width / 2, 4, width, 22);
+  context.fillStyle = '#ffffff';
+  context.fillText(text, canvas.clientWidth / 2, 8);
+}
+
+function updateGame(referee) {
+  if (!referee) return;
+  byId('yellow-name').textContent = teamName(referee, 'yellow');
+  byId('blue-name').textContent = teamName(referee, 'blue');
+  byId('yellow-score').textContent = String(referee.yellow.score);
+  byId('blue-score').textContent = String(referee.blue.score);
+  byId('game-stage').textContent = referee.game_over ? `${referee.stage} (game over)` : referee.stage;
+  byId('game-time-left').textContent = clockText(referee.stage_time_left);
+  byId('game-command').textContent = referee.command;
+  byId('game-next-command').textContent = referee.next_command || '–';
+  const last = referee.events[referee.events.length - 1];
+  if (last) byId('game-event').textContent = last.description || last.type;
+  viewerState.game = {
+    yellow: referee.yellow.score, blue: referee.blue.score, stage: referee.stage,
+    command: referee.command, next_command: referee.next_command,
+    ball_in_play: referee.ball_in_play, sim_time: referee.sim_time,
+  };
+}
+
 // ---- side panel ----------------------------------------------------------
 function speedText(factor) {
   if (factor === null || factor === undefined) return '–';
@@ -337,6 +388,7 @@ function updatePanel(frame) {
   byId('field-name').textContent = geometry().name;
   byId('robot-count').textContent = String(viewerState.robotsDrawn.length);
   if (!frame) return;
+  updateGame(frame.referee);
   const rows = Object.entries(frame.rates)
       .map(([channel, rate]) => `<tr><th>${channel}</th><td>${rate.toFixed(1)}</td></tr>`);
   byId('rates').innerHTML = rows.join('');

@@ -24,7 +24,14 @@ struct AutoOptions {
   bool sync = false;
   // Judge every state, not only those AutoReferee::next_judge_time names.
   bool judge_every_step = false;
+  // A new game starts kNewGamePause after each one is over, until stopped (the
+  // demo: it never simply ends). Not with sync, where physics holds at the end.
+  bool repeat = false;
 };
+
+// s of sim time between the end of a game and the next one's start (repeat):
+// the final score stays on REFEREE, everyone halted, this long.
+inline constexpr double kNewGamePause = 5.0;
 
 // Returns 0 after a finished game (or a clean stop), 1 on an error.
 int run_auto_referee(const AutoOptions& options);

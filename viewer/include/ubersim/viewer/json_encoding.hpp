@@ -7,8 +7,10 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <ubersim/field_geometry_t.hpp>
 #include <ubersim/radio_packet_t.hpp>
+#include <ubersim/referee_t.hpp>
 #include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
@@ -34,6 +36,22 @@ nlohmann::json encode_cameras(const vision_geometry_t& geometry);
 // {team, sequence, t_sent, commands: [{id, mode: "local"|"global"|"wheels", vx, vy, omega,
 //  kick, chip, dribbler}]}
 nlohmann::json encode_radio_packet(const radio_packet_t& packet);
+
+// Whether referee_t carries the teams' names (yellow_name, blue_name): it does
+// once the referee's team names are in the tree; until then the page shows colours.
+template <typename Referee, typename = void>
+struct HasTeamNames : std::false_type {};
+template <typename Referee>
+struct HasTeamNames<Referee,
+                    std::void_t<decltype(Referee::yellow_name), decltype(Referee::blue_name)>>
+    : std::true_type {};
+
+// The game state on REFEREE, stages and commands by their SSL names:
+// {sim_time, stage: "NORMAL_FIRST_HALF", stage_time_left, command: "STOP", command_counter,
+//  next_command: "PREPARE_KICKOFF_BLUE" | null, ball_in_play, action_time_left, game_over,
+//  yellow: {score, fouls, goalkeeper, name (when the message has names)}, blue: {...},
+//  events: [{type: "GOAL", team: "yellow"|"blue"|null, description}] (the newest 8)}
+nlohmann::json encode_referee(const referee_t& referee);
 
 // {request_id, ok, message, sim_time}
 nlohmann::json encode_ack(const sim_control_ack_t& ack);

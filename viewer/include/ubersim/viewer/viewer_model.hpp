@@ -8,6 +8,7 @@
 #include <string>
 #include <ubersim/field_geometry_t.hpp>
 #include <ubersim/radio_packet_t.hpp>
+#include <ubersim/referee_t.hpp>
 #include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/sim_state_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
@@ -27,9 +28,12 @@ class ViewerModel {
   void on_sim_geometry(const field_geometry_t& field, Clock::time_point now);
   void on_radio(int team, const radio_packet_t& packet, Clock::time_point now);
   void on_ack(const sim_control_ack_t& ack);
+  // The game state (REFEREE): the newest is shown until another comes.
+  void on_referee(const referee_t& referee, Clock::time_point now);
 
   // {"type":"frame", "state", "vision": [newest frame per camera], "commands": {yellow, blue},
-  //  "geometry", "cameras", "rates": {channel: Hz}, "ack", "server": {...}} as text.
+  //  "geometry", "cameras", "referee" (null before any), "rates": {channel: Hz}, "ack",
+  //  "server": {...}} as text.
   std::string snapshot(Clock::time_point now, const nlohmann::json& server_info);
   // True when something arrived since the last snapshot.
   bool changed() const { return changed_; }
@@ -49,6 +53,7 @@ class ViewerModel {
   bool geometry_from_vision_ = false;  // vision's geometry is what control software sees
   nlohmann::json cameras_ = nlohmann::json::array();
   nlohmann::json ack_ = nullptr;
+  nlohmann::json referee_ = nullptr;
   std::map<std::string, RateMeter> rates_;
   std::map<std::string, std::string> channel_names_;
   double last_sim_time_ = -1;
