@@ -18,7 +18,8 @@ usage: tools/launch.sh [options]
                        physics, vision and radio emulators, the SSL bridge with tracked frames,
                        grSim's protocol (UDP 20011), the simulation protocol (10300-10302), a
                        referee on 224.5.23.1:10003 (the automatic one; --referee official: the
-                       game controller's) and the viewer; prints every port a team needs
+                       game controller's) and the viewer; prints every port a team needs;
+                       in real time a new game follows each (--repeat-games)
   --scenario NAME      robots, ball and field (default division_b_6v6)
   --field NAME         field2002 | division_b | division_a: that field's default scenario;
                        any other config/fields/NAME.cfg (erforce_2014 ... erforce_2023b):
@@ -162,9 +163,12 @@ done
 
 # --ssl: the one command for an SSL team: the bridge with tracked frames, a
 # referee (the automatic one unless --referee says otherwise) and the viewer.
+# In real time the built-in referee starts a new game after each, as grSim runs
+# until it is closed; a synced game ends the run.
 if [ "$ssl_mode" = 1 ]; then
   ssl_bridge=1 viewer=1
   [ "$referee_given" = 1 ] || referee=builtin
+  [ "$referee" = builtin ] && [ "$sync" = 0 ] && repeat_games=1
 fi
 
 # The official game controller in CI mode (--referee official --sync): ubersim_gc_link drives it

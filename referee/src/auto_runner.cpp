@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <ubersim/radio_packet_t.hpp>
 #include <ubersim/referee_t.hpp>
 #include <ubersim/sync_status_t.hpp>
 #include <vector>
@@ -81,6 +82,14 @@ class Runner {
     // In sync mode the radio emulator says which teams lost control: the result says so.
     ubersim::subscribe(bus, channels, topics::kSyncStatus,
                        [this](const sync_status_t& s) { on_sync_status(s); });
+    // Before the first STOP the referee waits for the teams (--team-wait): who commands robots.
+    if (options_.game.team_wait > 0) {
+      for (Team team : kTeams) {
+        ubersim::subscribe_unhurried(
+            bus, channels, topics::kRadio.of(team),
+            [this, team](const radio_packet_t&) { judge_->team_heard(team); });
+      }
+    }
     // Physics announces its field now and then and at once after a SET_FIELD.
     ubersim::subscribe(bus, channels, topics::kSimGeometry,
                        [this](const field_geometry_t& g) { on_geometry(g); });

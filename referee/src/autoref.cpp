@@ -1,9 +1,11 @@
 #include "ubersim/referee/autoref.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <ubersim/team_t.hpp>
 
+#include "ubersim/logging.hpp"
 #include "ubersim/referee/autoref_rules.hpp"
 #include "ubersim/referee/fouls.hpp"
 
@@ -475,6 +477,28 @@ void AutoReferee::run_phase(const sim_state_t& state, Decision& decision) {
   }
 }
 
+bool AutoReferee::teams_ready(const sim_state_t& state) {
+  if (config_.team_wait <= 0) return true;
+  if (!waiting_since_ || now_ < *waiting_since_) {  // the first state, or the simulation was reset
+    waiting_since_ = now_;
+    spdlog::info("HALT until every team on the field sends a command (at most {} s)",
+                 config_.team_wait);
+  }
+  std::string silent;
+  for (Team team : kTeams) {
+    const bool on_field =
+        std::any_of(state.robots.begin(), state.robots.end(),
+                    [team](const robot_state_t& r) { return team_of(r) == team; });
+    if (on_field && !heard_[static_cast<std::size_t>(team)])
+      silent += std::string(" ") + team_name(team);
+  }
+  if (silent.empty()) return true;
+  if (now_ - *waiting_since_ < config_.team_wait) return false;
+  spdlog::warn("no command from{} within {} s: the game starts without waiting for it", silent,
+               config_.team_wait);
+  return true;
+}
+
 Decision AutoReferee::update(const sim_state_t& state) {
   Decision decision;
   if (phase_ == Phase::Over) return decision;
@@ -485,7 +509,7 @@ Decision AutoReferee::update(const sim_state_t& state) {
   have_time_ = true;
 
   if (phase_ == Phase::Start) {
-    start_half(Stage::FirstHalfPre, config_.first_kickoff, decision);
+    if (teams_ready(state)) start_half(Stage::FirstHalfPre, config_.first_kickoff, decision);
     return decision;
   }
   advance_clock(dt);

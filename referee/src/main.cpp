@@ -51,6 +51,7 @@ struct Options {
   std::string events_file;
   bool keep_running = false;
   bool repeat = false;
+  double team_wait = 10;
   bool start_physics = false;
   bool sync = false;
   bool judge_every_step = false;
@@ -69,6 +70,8 @@ int run_auto(const Options& o) {
   a.timeout_s = o.timeout_s;
   a.exit_at_end = !o.keep_running;
   a.repeat = o.repeat;
+  // In sync mode physics starts only once every team's program is there (the sync gate).
+  a.game.team_wait = o.sync ? 0 : o.team_wait;
   a.start_physics = o.start_physics;
   a.sync = o.sync;
   a.judge_every_step = o.judge_every_step;
@@ -469,6 +472,13 @@ void add_auto_command(CLI::App& app, Options& o) {
       ->add_flag("--repeat", o.repeat,
                  "when a game is over, start a new one 5 s of sim time later, until stopped")
       ->excludes(sync);
+  automatic
+      ->add_option("--team-wait", o.team_wait,
+                   "s of sim time the game stays in HALT before its first STOP until every team "
+                   "on the field has sent a command (an SSL AI leaves its halt on STOP); 0: "
+                   "start at once; not in sync mode")
+      ->capture_default_str()
+      ->check(ubersim::in_range(0.0, 3600.0));
   automatic->add_flag("--judge-every-step", o.judge_every_step,
                       "judge every state (default: only the states where a rule could decide, "
                       "docs/autoref.md; the same decisions at a fraction of the cost)");

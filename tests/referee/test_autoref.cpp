@@ -68,6 +68,7 @@ class Game {
   }
 
   void set_field(const field_geometry_t& field) { referee_.set_field(field); }
+  void team_heard(Team team) { referee_.team_heard(team); }
 
   // Feeds one state; collects what was decided.
   Decision tick() {
@@ -142,6 +143,36 @@ TEST(AutoRefereeStart, StopThenKickOffPlacedThenNormalStartStartsTheFirstHalf) {
   game.ball(0.1, 0);
   game.tick();
   EXPECT_TRUE(game.state().ball_in_play);
+}
+
+// --team-wait: an SSL AI leaves its own halt only on STOP, so the game stays in HALT until every
+// team on the field has sent a command.
+TEST(AutoRefereeStart, HaltUntilEveryTeamOnTheFieldHasSentACommand) {
+  GameConfig config = shipped_config();
+  config.team_wait = 5;
+  Game game(config);
+  game.run(1.0);
+  EXPECT_EQ(game.state().command, Command::Halt);
+  EXPECT_EQ(game.state().stage, Stage::FirstHalfPre);
+  game.team_heard(Team::Yellow);
+  game.run(1.0);
+  EXPECT_EQ(game.state().command, Command::Halt) << "blue has not been heard yet";
+  game.team_heard(Team::Blue);
+  game.tick();
+  EXPECT_EQ(game.state().command, Command::Stop);
+  ASSERT_TRUE(game.state().next_command.has_value());
+  EXPECT_EQ(*game.state().next_command, Command::PrepareKickoffYellow);
+}
+
+TEST(AutoRefereeStart, ASilentTeamIsWaitedForOnlyTheTeamWait) {
+  GameConfig config = shipped_config();
+  config.team_wait = 2;
+  Game game(config);
+  game.team_heard(Team::Blue);
+  game.run(1.9);
+  EXPECT_EQ(game.state().command, Command::Halt);
+  game.run(0.2);
+  EXPECT_EQ(game.state().command, Command::Stop) << "yellow was waited for 2 s, no longer";
 }
 
 TEST(AutoRefereeGoal, WholeBallOverTheGoalLineBetweenThePostsScores) {

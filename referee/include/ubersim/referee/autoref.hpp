@@ -9,6 +9,7 @@
 // Numbering of stages, commands and event types is that of the SSL game
 // controller's protocol (ssl_gc_referee_message.proto, ssl_gc_game_event.proto),
 // so they go out as SSL messages without a translation table.
+#include <array>
 #include <optional>
 #include <string>
 #include <ubersim/field_geometry_t.hpp>
@@ -146,6 +147,10 @@ class AutoReferee {
 
   Decision update(const sim_state_t& state);
 
+  // A team sent a command: before the game starts the referee holds HALT until every team
+  // with robots on the field has (GameConfig::team_wait).
+  void team_heard(Team team) { heard_[static_cast<std::size_t>(team)] = true; }
+
   // The field changed at run time (a SIM_GEOMETRY that differs, e.g. the
   // geometry a SET_FIELD applied): rules and restart spots use it from now on.
   void set_field(const field_geometry_t& field) { field_ = field; }
@@ -166,6 +171,9 @@ class AutoReferee {
  private:
   // Where the game is between commands.
   enum class Phase { Start, Stopped, Prepared, AwaitKick, Running, HalfTime, Over };
+  bool teams_ready(const sim_state_t& state);
+  std::array<bool, 2> heard_{};
+  std::optional<double> waiting_since_;  // sim time the referee began to wait for the teams
   struct Restart {
     Command command =
         Command::ForceStart;  // PrepareKickoff*, PreparePenalty*, DirectFree*, ForceStart

@@ -29,6 +29,10 @@ struct GameConfig {
   // an SSL AI that finds its colour by name finds none in an empty name.
   std::string yellow_name = "Yellow";
   std::string blue_name = "Blue";
+  // s of sim time the referee holds HALT before the first STOP until every team with robots on
+  // the field has sent a command (`ubersim_referee auto --team-wait`): an SSL AI leaves its own
+  // halt only on the referee's STOP, so it must be listening when STOP comes. 0: start at once.
+  double team_wait = 0;
 
   int keeper(Team team) const { return team == Team::Yellow ? keeper_yellow : keeper_blue; }
   double half_length() const { return halves == 2 ? game_length / 2 : game_length; }

@@ -43,6 +43,8 @@ class StateJudge {
   // number that is not finite or beyond 1e9 is not judged (refused()): what
   // it holds would go out in REFEREE or a placement.
   JudgeOutput on_state(const sim_state_t& state);
+  // A team sent a command (AutoReferee::team_heard).
+  void team_heard(Team team) { referee_.team_heard(team); }
 
   // The field changed at run time: placements and rules follow it.
   void set_field(const field_geometry_t& field) {
