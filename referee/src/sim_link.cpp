@@ -47,14 +47,14 @@ sim_control_ack_t SimLink::request(sim_control_t control, std::chrono::milliseco
   ack_.reset();
   ubersim::publish(bus_, channels_, topics::kSimControl, control);
   wait_until([this] { return ack_.has_value(); }, timeout,
-             "waiting on " + channels_(Channel::SimControlAck));
+             "waiting on " + channel_name(channels_, topics::kSimControlAck));
   return *ack_;
 }
 
 sim_state_t SimLink::state(std::chrono::milliseconds timeout) {
   state_.reset();
   wait_until([this] { return state_.has_value(); }, timeout,
-             "waiting on " + channels_(Channel::SimState));
+             "waiting on " + channel_name(channels_, topics::kSimState));
   return *state_;
 }
 
@@ -74,7 +74,7 @@ field_geometry_t SimLink::geometry(std::chrono::milliseconds timeout) {
     try {
       wait_until([this] { return geometry_.has_value(); },
                  std::min(left, std::chrono::milliseconds(500)),
-                 "waiting on " + channels_(Channel::SimGeometry));
+                 "waiting on " + channel_name(channels_, topics::kSimGeometry));
     } catch (const NoAnswer&) {
       if (std::chrono::steady_clock::now() >= deadline) throw;
     }

@@ -94,12 +94,14 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
   }
   if (options_.official_referee) {
     spdlog::info("official referee: Referee messages on {}:{} go to {}; ubersim sends none",
-                 options_.referee_address, options_.referee_port, channels_.referee());
+                 options_.referee_address, options_.referee_port,
+                 channel_name(channels_, topics::kReferee));
   } else {
     ubersim::subscribe(bus_, channels_, topics::kReferee,
                        [this](const referee_t& r) { on_referee(r); });
-    spdlog::info("referee messages from {} to {}:{} (ttl {})", channels_.referee(),
-                 options_.referee_address, options_.referee_port, options_.referee_ttl);
+    spdlog::info("referee messages from {} to {}:{} (ttl {})",
+                 channel_name(channels_, topics::kReferee), options_.referee_address,
+                 options_.referee_port, options_.referee_ttl);
   }
   for (Team team : kTeams) {
     ubersim::subscribe(bus_, channels_, topics::kRadioFeedback.of(team),
@@ -196,7 +198,7 @@ void SslBridge::on_referee_datagram(const std::vector<uint8_t>& bytes) {
           "no longer sent there; start the bridge with --official-referee (launch.sh --referee "
           "official) to forward that game controller to {} instead",
           referee.source_identifier(), options_.referee_address, options_.referee_port,
-          channels_.referee());
+          channel_name(channels_, topics::kReferee));
     }
     foreign_referee_heard_ = true;
     ++counters_["foreign referee packets heard"];

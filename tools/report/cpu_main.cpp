@@ -33,6 +33,7 @@
 #include "ubersim/process_cpu.hpp"
 #include "ubersim/process_main.hpp"
 #include "ubersim/scenario_config.hpp"
+#include "ubersim/topics.hpp"
 
 namespace {
 
@@ -126,7 +127,7 @@ int run(int argc, char** argv) {
       ubersim::MessageBus bus(ubersim::with_receive_buffer(ubersim::default_lcm_url()));
       double sim_time = 0;
       bus.subscribe<ubersim::sim_state_t>(
-          ubersim::ChannelNames()(ubersim::Channel::SimState),
+          ubersim::channel_name(ubersim::ChannelNames(), ubersim::topics::kSimState),
           [&](const ubersim::sim_state_t& s) { sim_time = s.sim_time; });
       const std::string cd = "--config-dir=" + config_dir;
       // On one CPU, as tools/launch.sh runs them in real time.
