@@ -14,6 +14,7 @@
 #include "ubersim/gc_link/gc_process.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/process_host.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/sim_link.hpp"
 #include "ubersim/topics.hpp"
@@ -56,9 +57,10 @@ class Runner {
   }
 
   int run() {
+    // The game config first: its error ends the run at once (exit 2), not after physics answered.
+    const auto rules = referee::load_game_config(options_.common.config_root(), options_.game);
     referee::SimLink sim(host_.bus(), host_.channels(), "ubersim_gc_link");
     field_ = sim.geometry(ms(options_.timeout_s));
-    const auto rules = referee::load_game_config(options_.common.config_root(), options_.game);
     start_gc(rules);
     link_.emplace(link_options(rules), field_,
                   [this](const std::string& type) { return radii_(type); });
@@ -185,9 +187,7 @@ class Runner {
   std::chrono::steady_clock::time_point wall_start_ = std::chrono::steady_clock::now();
 };
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int parse_and_run(int argc, char** argv) {
   Options o;
   CLI::App app{
       "ubersim_gc_link: the official ssl-game-controller referees a sync-mode game through its "
@@ -229,12 +229,13 @@ int main(int argc, char** argv) {
     return 2;
   }
   setup_logging("gc_link", o.common.verbosity());
-  try {
-    ProcessHost host(o.common, "gc_link");
-    Runner runner(o, host);
-    return runner.run();
-  } catch (const std::exception& error) {
-    std::cerr << "ubersim_gc_link: " << error.what() << "\n";
-    return 1;
-  }
+  ProcessHost host(o.common, "gc_link");
+  Runner runner(o, host);
+  return runner.run();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ubersim::run_main("ubersim_gc_link", [&] { return parse_and_run(argc, argv); });
 }

@@ -11,6 +11,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/logging.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/referee/auto_runner.hpp"
 #include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/scene_io.hpp"
@@ -468,15 +469,10 @@ int run_subcommand(const CLI::App& app, const Options& o, const Actions& actions
   } catch (const CLI::ValidationError& error) {
     std::cerr << "referee: " << error.what() << "\n";
     return 2;
-  } catch (const std::exception& error) {
-    std::cerr << "referee: " << error.what() << "\n";
-    return 1;
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int parse_and_run(int argc, char** argv) {
   Options o;
   Actions actions;
   CLI::App app{"ubersim referee: set up the field and control the simulation"};
@@ -488,4 +484,10 @@ int main(int argc, char** argv) {
   add_auto_command(app, o);
   if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
   return run_subcommand(app, o, actions);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ubersim::run_main("referee", [&] { return parse_and_run(argc, argv); });
 }

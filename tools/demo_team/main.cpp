@@ -19,6 +19,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/process_host.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/sync_client.hpp"
 #include "ubersim/topics.hpp"
 
@@ -179,9 +180,7 @@ void add_options(CLI::App& app, Options& o) {
                "(docs/sync.md)");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int parse_and_run(int argc, char** argv) {
   Options options;
   CLI::App app{"ubersim demo team: drives one team's robots from VISION over RADIO_<TEAM>"};
   add_options(app, options);
@@ -198,10 +197,11 @@ int main(int argc, char** argv) {
   options.team.defends = options.defends_text.empty()
                              ? (yellow ? -1 : 1)
                              : (options.defends_text == "negative" ? -1 : 1);
-  try {
-    return run(options, own);
-  } catch (const std::exception& error) {
-    spdlog::error("{}", error.what());
-    return 1;
-  }
+  return run(options, own);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ubersim::run_main("demo_team", [&] { return parse_and_run(argc, argv); });
 }
