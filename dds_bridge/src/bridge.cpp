@@ -19,6 +19,7 @@
 #include "ubersim/dds_bridge/qos.hpp"
 #include "ubersim/dds_bridge/sample_checks.hpp"
 #include "ubersim/logging.hpp"
+#include "ubersim/sim_control_requests.hpp"
 #include "ubersim/topics.hpp"
 
 namespace ubersim::dds {
@@ -235,10 +236,7 @@ int Bridge::take_dds() {
 }
 
 void Bridge::request_sim_geometry() {
-  sim_control_t request{};
-  request.request_id = 0;
-  request.sender = "ubersim_dds_bridge";
-  request.action = sim_control_t::REQUEST_GEOMETRY;
+  const sim_control_t request = geometry_request("ubersim_dds_bridge", 0);
   for (const auto& link : links_) {
     if (link->route.channel == topics::kSimControl.name) {
       publish_lcm(*link, request);

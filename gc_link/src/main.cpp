@@ -9,6 +9,7 @@
 #include <ubersim/sim_control_ack_t.hpp>
 
 #include "ubersim/cli.hpp"
+#include "ubersim/field_side.hpp"
 #include "ubersim/gc_link/ci_client.hpp"
 #include "ubersim/gc_link/gc_link.hpp"
 #include "ubersim/gc_link/gc_process.hpp"
@@ -112,7 +113,7 @@ class Runner {
     o.setup.blue_keeper = rules.keeper_blue;
     o.setup.division_a = field_.field_length > 10.5;
     o.setup.first_kickoff = rules.first_kickoff;
-    o.setup.sides.yellow_defends = options_.yellow_defends == "positive" ? 1 : -1;
+    o.setup.sides.yellow_defends = parse_defended_side(options_.yellow_defends);
     o.detectors = rules;
     o.tick_period = options_.tick_period;
     return o;
@@ -219,7 +220,7 @@ int parse_and_run(int argc, char** argv) {
   app.add_option("--yellow-name", o.yellow_name, "team name")->capture_default_str();
   app.add_option("--blue-name", o.blue_name, "team name")->capture_default_str();
   app.add_option("--yellow-defends", o.yellow_defends, "side yellow defends")
-      ->check(CLI::IsMember({"negative", "positive"}))
+      ->check(CLI::IsMember(kDefendedSides))
       ->capture_default_str();
   app.add_option("--events", o.events_file, "write the event log (JSON lines) here");
   app.add_flag("--keep-running", o.keep_running, "do not exit when the game is over");

@@ -10,6 +10,7 @@
 #include "ubersim/angles.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
+#include "ubersim/field_side.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/process_main.hpp"
 #include "ubersim/referee/auto_runner.hpp"
@@ -60,7 +61,7 @@ int run_auto(const Options& o) {
   a.common = o.common;
   a.game = load_game_config(o.common.config_root(), o.game);
   if (o.game_length > 0) a.game.game_length = o.game_length;
-  a.sides.yellow_defends = o.yellow_defends == "positive" ? 1 : -1;
+  a.sides.yellow_defends = ubersim::parse_defended_side(o.yellow_defends);
   a.events_file = o.events_file;
   a.timeout_s = o.timeout_s;
   a.exit_at_end = !o.keep_running;
@@ -297,7 +298,7 @@ class Referee {
     request.x = options_.x;
     request.y = options_.y;
     FieldSides sides;
-    sides.yellow_defends = options_.yellow_defends == "positive" ? 1 : -1;
+    sides.yellow_defends = ubersim::parse_defended_side(options_.yellow_defends);
     const auto planned = plan_situation(request, before, field, sides);
     // Every robot is stopped in a set piece; the ball too.
     return send(place_request(before, planned, true, true));
@@ -334,7 +335,7 @@ void add_global_options(CLI::App& app, Options& o) {
       ->capture_default_str()
       ->check(ubersim::greater_than(0));
   app.add_option("--yellow-defends", o.yellow_defends, "which goal yellow defends")
-      ->check(CLI::IsMember({"negative", "positive"}))
+      ->check(CLI::IsMember(ubersim::kDefendedSides))
       ->capture_default_str();
 }
 

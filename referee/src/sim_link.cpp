@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "ubersim/sim_control_requests.hpp"
 #include "ubersim/topics.hpp"
 
 namespace ubersim::referee {
@@ -64,11 +65,8 @@ field_geometry_t SimLink::geometry(std::chrono::milliseconds timeout) {
   // loses the request; it also publishes the geometry by itself now and then.
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (!geometry_) {
-    sim_control_t ask{};
-    ask.action = sim_control_t::REQUEST_GEOMETRY;
-    ask.request_id = next_request_id_++;
-    ask.sender = sender_;
-    ubersim::publish(bus_, channels_, topics::kSimControl, ask);
+    ubersim::publish(bus_, channels_, topics::kSimControl,
+                     geometry_request(sender_, next_request_id_++));
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     try {

@@ -9,6 +9,7 @@
 
 #include "ubersim/channels.hpp"
 #include "ubersim/cli.hpp"
+#include "ubersim/field_side.hpp"
 #include "ubersim/topics.hpp"
 
 using ubersim::channel_name;
@@ -141,4 +142,13 @@ TEST(Channels, PublisherSendsOnTheTopicsChannelInThisProcess) {
   feedback(ubersim::radio_feedback_t{});
   bus.handle_pending();
   EXPECT_EQ(heard, (std::vector<std::string>{"commands", "feedback"}));
+}
+
+// The side a team defends: one parser for every program and the Python module.
+TEST(DefendedSide, NegativeAndPositiveOnly) {
+  EXPECT_EQ(ubersim::parse_defended_side("negative"), -1);
+  EXPECT_EQ(ubersim::parse_defended_side("positive"), 1);
+  EXPECT_THROW(ubersim::parse_defended_side("Positive"), std::invalid_argument);
+  EXPECT_THROW(ubersim::parse_defended_side("-1"), std::invalid_argument);
+  EXPECT_THROW(ubersim::parse_defended_side(""), std::invalid_argument);
 }

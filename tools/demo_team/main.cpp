@@ -17,6 +17,7 @@
 #include "behaviour.hpp"
 #include "referee_rules.hpp"
 #include "ubersim/cli.hpp"
+#include "ubersim/field_side.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/process_main.hpp"
@@ -167,7 +168,7 @@ void add_options(CLI::App& app, Options& o) {
       ->capture_default_str();
   app.add_option("--defends", o.defends_text,
                  "negative | positive x goal (default: yellow negative, blue positive)")
-      ->check(CLI::IsMember({"negative", "positive"}));
+      ->check(CLI::IsMember(ubersim::kDefendedSides));
   app.add_option("--rate", o.rate, "commands per second of capture time (Hz)")
       ->capture_default_str()
       ->check(ubersim::greater_than(0));
@@ -196,7 +197,7 @@ int parse_and_run(int argc, char** argv) {
   const bool yellow = own == ubersim::Team::Yellow;
   options.team.defends = options.defends_text.empty()
                              ? (yellow ? -1 : 1)
-                             : (options.defends_text == "negative" ? -1 : 1);
+                             : ubersim::parse_defended_side(options.defends_text);
   return run(options, own);
 }
 
