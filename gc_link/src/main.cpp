@@ -1,6 +1,7 @@
 // ubersim_gc_link: the official ssl-game-controller referees a sync-mode game
 // through its CI port, with simulation time as its clock (docs/official_gc.md).
-// Exit status: 0 game over (or stopped by a signal), 1 the GC failed, 2 bad usage.
+// Exit status: 0 game over (or stopped by a signal), 1 the GC failed, 2 bad usage or a config
+// error.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <fstream>
