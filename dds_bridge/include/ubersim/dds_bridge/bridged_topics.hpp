@@ -10,11 +10,10 @@
 
 namespace ubersim::dds {
 
-inline constexpr auto kBridgedTopics =
-    std::make_tuple(topics::kVision, topics::kVisionGeometry, topics::kRadio.yellow,
-                    topics::kRadio.blue, topics::kRadioFeedback.yellow,
-                    topics::kRadioFeedback.blue, topics::kSimCommands, topics::kSimState,
-                    topics::kSimControl, topics::kSimControlAck, topics::kSimGeometry);
+inline constexpr auto kBridgedTopics = std::make_tuple(
+    topics::kVision, topics::kVisionGeometry, topics::kRadio.yellow, topics::kRadio.blue,
+    topics::kRadioFeedback.yellow, topics::kRadioFeedback.blue, topics::kSimCommands,
+    topics::kSimState, topics::kSimControl, topics::kSimControlAck, topics::kSimGeometry);
 
 // Calls visit(topic) for every bridged topic, in order (each a Topic<Msg> of its own type).
 template <class Visit>
