@@ -18,7 +18,7 @@
 namespace ubersim::fuzz {
 
 // The channels the referee (auto), the viewer and the SSL bridge read.
-enum class ConsumerChannel : std::uint8_t {
+enum class ConsumerInput : std::uint8_t {
   SimState,        // sim_state_t -> referee, viewer, bridge (tracked frames)
   SimGeometry,     // field_geometry_t -> referee (the field it judges on), viewer
   Vision,          // vision_frame_t -> viewer, bridge (detection packets)

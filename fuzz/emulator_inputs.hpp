@@ -6,7 +6,7 @@
 namespace ubersim::fuzz {
 
 // The channels the vision and radio emulators take outside bytes from.
-enum class EmulatorChannel : std::uint8_t {
+enum class EmulatorInput : std::uint8_t {
   RadioYellow,      // radio_packet_t -> radio emulator
   RadioBlue,        // radio_packet_t -> radio emulator
   SimState,         // sim_state_t -> both

@@ -39,7 +39,7 @@
 
 namespace {
 
-using ubersim::fuzz::ConsumerChannel;
+using ubersim::fuzz::ConsumerInput;
 using Clock = ubersim::viewer::ViewerModel::Clock;
 
 constexpr double kRobotRadius = 0.09;  // m, the bridge's geometry: the largest SSL robot
@@ -226,9 +226,9 @@ const ubersim::fuzz::ConsumerTraffic& traffic() {
 }
 
 // One input: the fuzzed datagram amid real traffic, every output checked.
-void run(const ubersim::fuzz::ChannelInput<ConsumerChannel>& input) {
+void run(const ubersim::fuzz::ChannelInput<ConsumerInput>& input) {
   const auto& t = traffic();
-  const ConsumerChannel channel = input.channel;
+  const ConsumerInput channel = input.channel;
   const auto decode = [&input](auto& message) {
     return ubersim::decode_bounded(input.bytes, input.length, message);
   };
@@ -239,7 +239,7 @@ void run(const ubersim::fuzz::ChannelInput<ConsumerChannel>& input) {
   c.vision_geometry(t.vision_geometry);
   // The referee starts on the field SIM_GEOMETRY gives it (it asks once).
   ubersim::field_geometry_t field;
-  if (channel == ConsumerChannel::SimGeometry && decode(field)) {
+  if (channel == ConsumerInput::SimGeometry && decode(field)) {
     c.field(field);
   } else {
     c.field(t.field);
@@ -249,39 +249,39 @@ void run(const ubersim::fuzz::ChannelInput<ConsumerChannel>& input) {
   if (!t.frames.empty()) c.vision(t.frames.front());
 
   switch (channel) {
-    case ConsumerChannel::SimState: {
+    case ConsumerInput::SimState: {
       ubersim::sim_state_t state;
       if (decode(state)) c.state(state);
       break;
     }
-    case ConsumerChannel::SimGeometry:
+    case ConsumerInput::SimGeometry:
       if (decode(field)) c.viewer.on_sim_geometry(field, c.tick());
       break;
-    case ConsumerChannel::Vision: {
+    case ConsumerInput::Vision: {
       ubersim::vision_frame_t frame;
       if (decode(frame)) c.vision(frame);
       break;
     }
-    case ConsumerChannel::VisionGeometry: {
+    case ConsumerInput::VisionGeometry: {
       ubersim::vision_geometry_t geometry;
       if (decode(geometry)) c.vision_geometry(geometry);
       break;
     }
-    case ConsumerChannel::RadioYellow:
-    case ConsumerChannel::RadioBlue: {
+    case ConsumerInput::RadioYellow:
+    case ConsumerInput::RadioBlue: {
       ubersim::radio_packet_t packet;
       if (decode(packet)) {
-        c.viewer.on_radio(channel == ConsumerChannel::RadioYellow ? 0 : 1, packet, c.tick());
+        c.viewer.on_radio(channel == ConsumerInput::RadioYellow ? 0 : 1, packet, c.tick());
       }
       break;
     }
-    case ConsumerChannel::SimControlAck: {
+    case ConsumerInput::SimControlAck: {
       ubersim::sim_control_ack_t ack;
       if (decode(ack)) c.viewer.on_ack(ack);
       break;
     }
-    case ConsumerChannel::Referee:
-    case ConsumerChannel::Count: {
+    case ConsumerInput::Referee:
+    case ConsumerInput::Count: {
       ubersim::referee_t referee;
       if (decode(referee)) {
         check(c.referee_packets.translate(referee));
@@ -302,7 +302,7 @@ void run(const ubersim::fuzz::ChannelInput<ConsumerChannel>& input) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  if (size > 0) run(ubersim::fuzz::channel_input<ConsumerChannel>(data, size));
+  if (size > 0) run(ubersim::fuzz::channel_input<ConsumerInput>(data, size));
   return 0;
 }
 

@@ -33,7 +33,7 @@
 
 namespace {
 
-using ubersim::fuzz::EmulatorChannel;
+using ubersim::fuzz::EmulatorInput;
 
 bool finite(double value) {
   return std::isfinite(value);
@@ -118,7 +118,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
   const Fixture& f = fixture();
-  const auto [channel, bytes, length] = ubersim::fuzz::channel_input<EmulatorChannel>(data, size);
+  const auto [channel, bytes, length] = ubersim::fuzz::channel_input<EmulatorInput>(data, size);
 
   ubersim::vision::VisionEmulator vision(f.vision_profile, f.robot_sizes);
   ubersim::radio::RadioEmulator radio({f.radio_profile, f.radio_profile}, std::nullopt);
@@ -130,34 +130,34 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   feed(f.states.front());
 
   switch (channel) {
-    case EmulatorChannel::RadioYellow:
-    case EmulatorChannel::RadioBlue: {
+    case EmulatorInput::RadioYellow:
+    case EmulatorInput::RadioBlue: {
       ubersim::radio_packet_t packet;
       if (decode(bytes, length, packet)) {
         const auto team =
-            channel == EmulatorChannel::RadioYellow ? ubersim::Team::Yellow : ubersim::Team::Blue;
+            channel == EmulatorInput::RadioYellow ? ubersim::Team::Yellow : ubersim::Team::Blue;
         check(radio.on_radio_packet(team, packet, {}));
       }
       break;
     }
-    case EmulatorChannel::SimState: {
+    case EmulatorInput::SimState: {
       ubersim::sim_state_t state;
       if (decode(bytes, length, state)) feed(state);
       break;
     }
-    case EmulatorChannel::SimGeometry: {
+    case EmulatorInput::SimGeometry: {
       ubersim::field_geometry_t geometry;
       if (decode(bytes, length, geometry)) vision.on_field_geometry(geometry);
       break;
     }
-    case EmulatorChannel::VisionCameras: {
+    case EmulatorInput::VisionCameras: {
       ubersim::vision_cameras_t cameras;
       if (decode(bytes, length, cameras)) vision.apply_cameras(cameras);
       (void)vision.geometry_message();
       break;
     }
-    case EmulatorChannel::EmulatorRealism:
-    case EmulatorChannel::Count: {
+    case EmulatorInput::EmulatorRealism:
+    case EmulatorInput::Count: {
       ubersim::emulator_realism_t realism;
       if (decode(bytes, length, realism)) {
         vision.apply_realism(realism);

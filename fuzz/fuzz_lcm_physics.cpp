@@ -19,14 +19,14 @@
 
 #include "fuzz_support.hpp"
 #include "physics_inputs.hpp"
-#include "ubersim/channels.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/physics/physics_server.hpp"
 #include "ubersim/process_host.hpp"
+#include "ubersim/topics.hpp"
 
 namespace {
 
-using ubersim::fuzz::PhysicsChannel;
+using ubersim::fuzz::PhysicsInput;
 
 bool finite(const double* values, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) {
@@ -54,24 +54,23 @@ bool finite(const ubersim::sim_state_t& state) {
   return true;
 }
 
-std::string channel_name(PhysicsChannel channel, const ubersim::ChannelNames& channels) {
-  using ubersim::Channel;
+std::string channel_name(PhysicsInput channel, const ubersim::ChannelNames& channels) {
   switch (channel) {
-    case PhysicsChannel::SimCommands:
-      return channels(Channel::SimCommands);
-    case PhysicsChannel::SimControl:
-      return channels(Channel::SimControl);
-    case PhysicsChannel::TruthDemand:
-      return channels.extra(ubersim::kTruthDemandChannel);
-    case PhysicsChannel::SyncHorizon:
-      return channels.extra(ubersim::kSyncHorizonChannel);
-    case PhysicsChannel::VisionSchedule:
-      return channels.extra(ubersim::kVisionScheduleChannel);
-    case PhysicsChannel::Referee:
-    case PhysicsChannel::Count:
+    case PhysicsInput::SimCommands:
+      return ubersim::channel_name(channels, ubersim::topics::kSimCommands);
+    case PhysicsInput::SimControl:
+      return ubersim::channel_name(channels, ubersim::topics::kSimControl);
+    case PhysicsInput::TruthDemand:
+      return ubersim::channel_name(channels, ubersim::topics::kTruthDemand);
+    case PhysicsInput::SyncHorizon:
+      return ubersim::channel_name(channels, ubersim::topics::kSyncHorizon);
+    case PhysicsInput::VisionSchedule:
+      return ubersim::channel_name(channels, ubersim::topics::kVisionSchedule);
+    case PhysicsInput::Referee:
+    case PhysicsInput::Count:
       break;
   }
-  return channels.referee();
+  return ubersim::channel_name(channels, ubersim::topics::kReferee);
 }
 
 const ubersim::physics::WorldSetup& division_b() {
@@ -97,8 +96,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
-  const auto channel = static_cast<PhysicsChannel>((data[0] & ubersim::fuzz::kChannelMask) %
-                                                   static_cast<int>(PhysicsChannel::Count));
+  const auto channel = static_cast<PhysicsInput>((data[0] & ubersim::fuzz::kChannelMask) %
+                                                 static_cast<int>(PhysicsInput::Count));
   // The host's bus (memq://) is the one ubersim_physics has on udpm://.
   ubersim::ProcessHost host("memq://", ubersim::ChannelNames(), "physics");
   ubersim::MessageBus& bus = host.bus();
@@ -110,8 +109,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.sync_referee = (data[0] & ubersim::fuzz::kSyncRefereeBit) != 0;
   options.sync = options.sync_referee || (data[0] & ubersim::fuzz::kSyncBit) != 0;
   ubersim::physics::PhysicsServer server(division_b(), host, options);
-  bus.subscribe<ubersim::sim_state_t>(
-      channels(ubersim::Channel::SimState),
+  ubersim::subscribe(
+      bus, channels, ubersim::topics::kSimState,
       [](const ubersim::sim_state_t& state) {
         if (!finite(state)) std::abort();
         ubersim::fuzz::encode_or_abort(state);
@@ -125,7 +124,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   step.sender = "fuzz";
   step.action = ubersim::sim_control_t::STEP;
   step.step_count = 24;
-  bus.publish(channels(ubersim::Channel::SimControl), step);
+  ubersim::publish(bus, channels, ubersim::topics::kSimControl, step);
   while (bus.handle_pending() > 0) {
   }
   ubersim::sim_state_t state{};

@@ -29,19 +29,19 @@ std::string encode_or_abort(const Msg& message) {
 }
 
 // An input of a target that takes one datagram on one of several channels:
-// the first byte picks the channel (modulo Channel::Count), the rest is the datagram.
-template <class Channel>
+// the first byte picks the channel (modulo the selector's Count), the rest is the datagram.
+template <class Selector>
 struct ChannelInput {
-  Channel channel;
+  Selector channel;
   const std::uint8_t* bytes;
   std::size_t length;
 };
 
 // Needs size >= 1.
-template <class Channel>
-ChannelInput<Channel> channel_input(const std::uint8_t* data, std::size_t size) {
-  const int count = static_cast<int>(Channel::Count);
-  return {static_cast<Channel>(data[0] % count), data + 1, size - 1};
+template <class Selector>
+ChannelInput<Selector> channel_input(const std::uint8_t* data, std::size_t size) {
+  const int count = static_cast<int>(Selector::Count);
+  return {static_cast<Selector>(data[0] % count), data + 1, size - 1};
 }
 
 }  // namespace ubersim::fuzz

@@ -137,6 +137,7 @@ sync_horizon_t horizon() {
   sync_horizon_t h{};
   h.sequence = 3;
   h.horizon = 0.05;
+  h.held_by = sync_horizon_t::HELD_BY_CLIENT;
   h.waiting_for = "demo yellow";
   h.clients = 2;
   return h;
@@ -232,30 +233,29 @@ vision_cameras_t cameras() {
 }
 
 void write_emulator_seeds(const fs::path& dir) {
-  const auto on = [](EmulatorChannel channel) { return static_cast<std::uint8_t>(channel); };
-  write(dir, "radio_yellow", on(EmulatorChannel::RadioYellow), encode_or_abort(radio_packet(0)));
-  write(dir, "radio_blue", on(EmulatorChannel::RadioBlue), encode_or_abort(radio_packet(1)));
+  const auto on = [](EmulatorInput channel) { return static_cast<std::uint8_t>(channel); };
+  write(dir, "radio_yellow", on(EmulatorInput::RadioYellow), encode_or_abort(radio_packet(0)));
+  write(dir, "radio_blue", on(EmulatorInput::RadioBlue), encode_or_abort(radio_packet(1)));
   radio_packet_t not_finite = radio_packet(1);
   not_finite.commands[0].omega = std::numeric_limits<double>::quiet_NaN();
   not_finite.commands[2].wheel_speeds[0] = std::numeric_limits<double>::infinity();
-  write(dir, "radio_not_finite", on(EmulatorChannel::RadioBlue), encode_or_abort(not_finite));
-  write(dir, "radio_wrong_team", on(EmulatorChannel::RadioYellow),
-        encode_or_abort(radio_packet(1)));
-  write(dir, "state", on(EmulatorChannel::SimState), encode_or_abort(division_b_state()));
+  write(dir, "radio_not_finite", on(EmulatorInput::RadioBlue), encode_or_abort(not_finite));
+  write(dir, "radio_wrong_team", on(EmulatorInput::RadioYellow), encode_or_abort(radio_packet(1)));
+  write(dir, "state", on(EmulatorInput::SimState), encode_or_abort(division_b_state()));
   physics::World world(
       physics::load_world_setup(UBERSIM_FUZZ_CONFIG_DIR, "division_b_6v6", "default"));
-  write(dir, "geometry", on(EmulatorChannel::SimGeometry), encode_or_abort(world.geometry()));
-  write(dir, "realism", on(EmulatorChannel::EmulatorRealism), encode_or_abort(realism()));
-  write(dir, "cameras", on(EmulatorChannel::VisionCameras), encode_or_abort(cameras()));
+  write(dir, "geometry", on(EmulatorInput::SimGeometry), encode_or_abort(world.geometry()));
+  write(dir, "realism", on(EmulatorInput::EmulatorRealism), encode_or_abort(realism()));
+  write(dir, "cameras", on(EmulatorInput::VisionCameras), encode_or_abort(cameras()));
 }
 
 void write_consumer_seeds(const fs::path& dir) {
-  const auto on = [](ConsumerChannel channel) { return static_cast<std::uint8_t>(channel); };
+  const auto on = [](ConsumerInput channel) { return static_cast<std::uint8_t>(channel); };
   const ConsumerTraffic traffic = division_b_traffic();
-  write(dir, "state", on(ConsumerChannel::SimState), encode_or_abort(division_b_state()));
+  write(dir, "state", on(ConsumerInput::SimState), encode_or_abort(division_b_state()));
   sim_state_t out_of_field = traffic.states.back();
   out_of_field.ball.position[0] = 7.0;  // over the goal line: the referee stops the game
-  write(dir, "state_ball_out", on(ConsumerChannel::SimState), encode_or_abort(out_of_field));
+  write(dir, "state_ball_out", on(ConsumerInput::SimState), encode_or_abort(out_of_field));
   // The referee looks up each robot type's radius for the restart's placement:
   // names that are no config name (empty, long, not UTF-8, paths), or unknown.
   sim_state_t odd_types = out_of_field;
@@ -265,7 +265,7 @@ void write_consumer_seeds(const fs::path& dir) {
   for (std::size_t i = 0; i < odd_types.robots.size(); ++i) {
     odd_types.robots[i].robot_type = i < std::size(names) ? names[i] : std::string(300, 'x');
   }
-  write(dir, "state_ball_out_odd_types", on(ConsumerChannel::SimState), encode_or_abort(odd_types));
+  write(dir, "state_ball_out_odd_types", on(ConsumerInput::SimState), encode_or_abort(odd_types));
   // More type names than the referee keeps (RobotRadii::kMaxTypes).
   sim_state_t many_types = odd_types;
   while (many_types.robots.size() < 80) {
@@ -280,44 +280,43 @@ void write_consumer_seeds(const fs::path& dir) {
     many_types.robots[i].robot_type = "type_" + std::to_string(i);
   }
   many_types.num_robots = static_cast<std::int32_t>(many_types.robots.size());
-  write(dir, "state_ball_out_many_types", on(ConsumerChannel::SimState),
-        encode_or_abort(many_types));
+  write(dir, "state_ball_out_many_types", on(ConsumerInput::SimState), encode_or_abort(many_types));
   sim_state_t not_finite = traffic.states.back();
   not_finite.ball.position[1] = std::numeric_limits<double>::quiet_NaN();
   not_finite.robots[0].x = std::numeric_limits<double>::infinity();
-  write(dir, "state_not_finite", on(ConsumerChannel::SimState), encode_or_abort(not_finite));
+  write(dir, "state_not_finite", on(ConsumerInput::SimState), encode_or_abort(not_finite));
   not_finite.sim_time = std::numeric_limits<double>::quiet_NaN();  // the SSL bridge drops it
-  write(dir, "state_time_not_finite", on(ConsumerChannel::SimState), encode_or_abort(not_finite));
+  write(dir, "state_time_not_finite", on(ConsumerInput::SimState), encode_or_abort(not_finite));
   sim_state_t not_utf8 = traffic.states.back();  // once stopped the viewer (docs/fuzzing.md)
   not_utf8.robots[0].robot_type = "omni\xff";
-  write(dir, "state_type_not_utf8", on(ConsumerChannel::SimState), encode_or_abort(not_utf8));
-  write(dir, "geometry", on(ConsumerChannel::SimGeometry), encode_or_abort(traffic.field));
+  write(dir, "state_type_not_utf8", on(ConsumerInput::SimState), encode_or_abort(not_utf8));
+  write(dir, "geometry", on(ConsumerInput::SimGeometry), encode_or_abort(traffic.field));
   for (std::size_t i = 0; i < traffic.frames.size() && i < 2; ++i) {
-    write(dir, "vision_" + std::to_string(i), on(ConsumerChannel::Vision),
+    write(dir, "vision_" + std::to_string(i), on(ConsumerInput::Vision),
           encode_or_abort(traffic.frames[i]));
   }
   if (!traffic.frames.empty() && !traffic.frames[0].robots_blue.empty()) {
     vision_frame_t huge = traffic.frames[0];  // the SSL bridge drops it
     huge.robots_blue[0].x = 1e300;
-    write(dir, "vision_huge", on(ConsumerChannel::Vision), encode_or_abort(huge));
+    write(dir, "vision_huge", on(ConsumerInput::Vision), encode_or_abort(huge));
   }
-  write(dir, "vision_geometry", on(ConsumerChannel::VisionGeometry),
+  write(dir, "vision_geometry", on(ConsumerInput::VisionGeometry),
         encode_or_abort(traffic.vision_geometry));
   vision_geometry_t bad_geometry = traffic.vision_geometry;  // the SSL bridge drops it
   bad_geometry.field.ball_radius = std::numeric_limits<double>::quiet_NaN();
   bad_geometry.field.field_length = 1e7;  // 1e10 mm: beyond int32
   if (!bad_geometry.cameras.empty()) bad_geometry.cameras[0].position[2] = 1e300;
-  write(dir, "vision_geometry_not_finite", on(ConsumerChannel::VisionGeometry),
+  write(dir, "vision_geometry_not_finite", on(ConsumerInput::VisionGeometry),
         encode_or_abort(bad_geometry));
-  write(dir, "radio_yellow", on(ConsumerChannel::RadioYellow), encode_or_abort(radio_packet(0)));
-  write(dir, "radio_blue", on(ConsumerChannel::RadioBlue), encode_or_abort(radio_packet(1)));
+  write(dir, "radio_yellow", on(ConsumerInput::RadioYellow), encode_or_abort(radio_packet(0)));
+  write(dir, "radio_blue", on(ConsumerInput::RadioBlue), encode_or_abort(radio_packet(1)));
   sim_control_ack_t ack{};
   ack.request_id = 2;
   ack.sender = "viewer";
   ack.ok = false;
   ack.message = "unknown robot";
-  write(dir, "ack", on(ConsumerChannel::SimControlAck), encode_or_abort(ack));
-  write(dir, "referee", on(ConsumerChannel::Referee), encode_or_abort(referee()));
+  write(dir, "ack", on(ConsumerInput::SimControlAck), encode_or_abort(ack));
+  write(dir, "referee", on(ConsumerInput::Referee), encode_or_abort(referee()));
 }
 
 }  // namespace
@@ -338,58 +337,56 @@ void write_lcm_seeds(const fs::path& decode_dir, const fs::path& physics_dir,
   write_decode_seed(decode_dir, "vision_schedule", schedule());
   write_decode_seed(decode_dir, "referee", referee());
 
-  const auto on = [](PhysicsChannel channel, std::uint8_t options = 0) {
+  const auto on = [](PhysicsInput channel, std::uint8_t options = 0) {
     return static_cast<std::uint8_t>(static_cast<std::uint8_t>(channel) | options);
   };
-  write(physics_dir, "commands", on(PhysicsChannel::SimCommands), encode_or_abort(commands()));
+  write(physics_dir, "commands", on(PhysicsInput::SimCommands), encode_or_abort(commands()));
   // What a hostile or broken sender puts in numbers (the handlers must drop these).
   sim_commands_t not_a_number = commands();
   not_a_number.commands[0].vx = std::numeric_limits<double>::quiet_NaN();
   not_a_number.commands[1].kick_speed = std::numeric_limits<double>::infinity();
   not_a_number.commands[2].wheel_speeds[1] = -std::numeric_limits<double>::infinity();
-  write(physics_dir, "commands_not_finite", on(PhysicsChannel::SimCommands),
+  write(physics_dir, "commands_not_finite", on(PhysicsInput::SimCommands),
         encode_or_abort(not_a_number));
   sim_control_t place_nan = placement();
   place_nan.robots[0].x = std::numeric_limits<double>::quiet_NaN();
   place_nan.ball.linear_velocity[1] = std::numeric_limits<double>::infinity();
-  write(physics_dir, "place_not_finite", on(PhysicsChannel::SimControl),
-        encode_or_abort(place_nan));
-  write(physics_dir, "place", on(PhysicsChannel::SimControl), encode_or_abort(placement()));
+  write(physics_dir, "place_not_finite", on(PhysicsInput::SimControl), encode_or_abort(place_nan));
+  write(physics_dir, "place", on(PhysicsInput::SimControl), encode_or_abort(placement()));
   sim_control_t setup = placement();
   setup.action = sim_control_t::SETUP;
-  write(physics_dir, "setup", on(PhysicsChannel::SimControl), encode_or_abort(setup));
+  write(physics_dir, "setup", on(PhysicsInput::SimControl), encode_or_abort(setup));
   for (std::int8_t action : {sim_control_t::PAUSE, sim_control_t::RESUME, sim_control_t::RESET,
                              sim_control_t::PING, sim_control_t::REQUEST_GEOMETRY}) {
-    write(physics_dir, "control_" + std::to_string(action), on(PhysicsChannel::SimControl),
+    write(physics_dir, "control_" + std::to_string(action), on(PhysicsInput::SimControl),
           encode_or_abort(control(action)));
   }
   sim_control_t step = control(sim_control_t::STEP);
   step.step_count = 12;
-  write(physics_dir, "step", on(PhysicsChannel::SimControl), encode_or_abort(step));
+  write(physics_dir, "step", on(PhysicsInput::SimControl), encode_or_abort(step));
   sim_control_t speed = control(sim_control_t::SET_SPEED);
   speed.speed_factor = 2.0;
-  write(physics_dir, "speed", on(PhysicsChannel::SimControl), encode_or_abort(speed));
+  write(physics_dir, "speed", on(PhysicsInput::SimControl), encode_or_abort(speed));
   sim_control_t seed = control(sim_control_t::SET_SEED);
   seed.seed = 42;
-  write(physics_dir, "seed", on(PhysicsChannel::SimControl), encode_or_abort(seed));
+  write(physics_dir, "seed", on(PhysicsInput::SimControl), encode_or_abort(seed));
   sim_control_t field = control(sim_control_t::SET_FIELD);
   field.field_config =
       read_config_text(fs::path(UBERSIM_FUZZ_CONFIG_DIR) / "fields" / "division_b.cfg");
-  write(physics_dir, "field", on(PhysicsChannel::SimControl), encode_or_abort(field));
+  write(physics_dir, "field", on(PhysicsInput::SimControl), encode_or_abort(field));
   sim_control_t type = control(sim_control_t::DEFINE_ROBOT_TYPE);
   type.robot_type_name = "fuzz_bot";
   type.robot_type_config = "BASE = omni4_ssl\nMASS = 2.5\n";
-  write(physics_dir, "robot_type", on(PhysicsChannel::SimControl), encode_or_abort(type));
+  write(physics_dir, "robot_type", on(PhysicsInput::SimControl), encode_or_abort(type));
   sim_control_t dribbling = control(sim_control_t::SET_DRIBBLING);
   dribbling.perfect_dribbling = true;  // dribblers that hold the ball by a joint
-  write(physics_dir, "perfect_dribbling", on(PhysicsChannel::SimControl),
-        encode_or_abort(dribbling));
-  write(physics_dir, "demand", on(PhysicsChannel::TruthDemand), encode_or_abort(demand()));
-  write(physics_dir, "horizon_sync", on(PhysicsChannel::SyncHorizon, kSyncBit),
+  write(physics_dir, "perfect_dribbling", on(PhysicsInput::SimControl), encode_or_abort(dribbling));
+  write(physics_dir, "demand", on(PhysicsInput::TruthDemand), encode_or_abort(demand()));
+  write(physics_dir, "horizon_sync", on(PhysicsInput::SyncHorizon, kSyncBit),
         encode_or_abort(horizon()));
-  write(physics_dir, "schedule_sync", on(PhysicsChannel::VisionSchedule, kSyncBit),
+  write(physics_dir, "schedule_sync", on(PhysicsInput::VisionSchedule, kSyncBit),
         encode_or_abort(schedule()));
-  write(physics_dir, "referee_sync", on(PhysicsChannel::Referee, kSyncRefereeBit),
+  write(physics_dir, "referee_sync", on(PhysicsInput::Referee, kSyncRefereeBit),
         encode_or_abort(referee()));
 }
 

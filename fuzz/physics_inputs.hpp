@@ -7,7 +7,7 @@
 namespace ubersim::fuzz {
 
 // Every channel the physics server subscribes to.
-enum class PhysicsChannel : std::uint8_t {
+enum class PhysicsInput : std::uint8_t {
   SimCommands,
   SimControl,
   TruthDemand,

@@ -1,6 +1,9 @@
 #include "ubersim/channels.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+
+#include "ubersim/topics.hpp"
 
 namespace ubersim {
 
@@ -24,62 +27,20 @@ bool parse_team(const std::string& text, Team& team) {
   return false;
 }
 
-const char* base_channel_name(Channel channel) {
-  switch (channel) {
-    case Channel::Vision:
-      return "VISION";
-    case Channel::VisionGeometry:
-      return "VISION_GEOMETRY";
-    case Channel::RadioYellow:
-      return "RADIO_YELLOW";
-    case Channel::RadioBlue:
-      return "RADIO_BLUE";
-    case Channel::RadioFeedbackYellow:
-      return "RADIO_FEEDBACK_YELLOW";
-    case Channel::RadioFeedbackBlue:
-      return "RADIO_FEEDBACK_BLUE";
-    case Channel::SimCommands:
-      return "SIM_COMMANDS";
-    case Channel::SimState:
-      return "SIM_STATE";
-    case Channel::SimControl:
-      return "SIM_CONTROL";
-    case Channel::SimControlAck:
-      return "SIM_CONTROL_ACK";
-    case Channel::SimGeometry:
-      return "SIM_GEOMETRY";
-  }
-  throw std::invalid_argument("unknown channel");
-}
-
 ChannelNames::ChannelNames(std::string prefix, std::map<std::string, std::string> overrides)
     : prefix_(std::move(prefix)), overrides_(std::move(overrides)) {
   for (const auto& [base, name] : overrides_) {
-    bool known = false;
-    for (const char* extra : kExtraChannels) known = known || base == extra;
-    for (Channel channel : kAllChannels) known = known || base == base_channel_name(channel);
+    const bool known = std::find(topics::kAllNames.begin(), topics::kAllNames.end(), base) !=
+                       topics::kAllNames.end();
     if (!known) throw std::invalid_argument("no channel named '" + base + "' to override");
     if (name.empty()) throw std::invalid_argument("empty channel name for '" + base + "'");
   }
 }
 
-std::string ChannelNames::operator()(Channel channel) const {
-  const std::string base = base_channel_name(channel);
-  if (auto found = overrides_.find(base); found != overrides_.end()) return found->second;
-  return prefix_ + base;
-}
-
-std::string ChannelNames::radio(Team team) const {
-  return (*this)(team == Team::Yellow ? Channel::RadioYellow : Channel::RadioBlue);
-}
-
-std::string ChannelNames::radio_feedback(Team team) const {
-  return (*this)(team == Team::Yellow ? Channel::RadioFeedbackYellow : Channel::RadioFeedbackBlue);
-}
-
-std::string ChannelNames::extra(const char* base) const {
-  if (auto found = overrides_.find(base); found != overrides_.end()) return found->second;
-  return prefix_ + base;
+std::string ChannelNames::resolve(std::string_view base) const {
+  if (auto found = overrides_.find(std::string(base)); found != overrides_.end())
+    return found->second;
+  return prefix_ + std::string(base);
 }
 
 std::pair<std::string, std::string> ChannelNames::parse_override(const std::string& text) {

@@ -12,20 +12,8 @@ namespace {
 
 // DRIVE and DRIVE_MODEL.
 void read_drive(const ConfigFile& config, RobotTypeConfig& r) {
-  const std::string drive = config.string("DRIVE");
-  if (drive == "omni")
-    r.drive = DriveKind::Omni;
-  else if (drive == "differential")
-    r.drive = DriveKind::Differential;
-  else
-    config.fail("DRIVE", "expected 'omni' or 'differential', got '" + drive + "'");
-  const std::string model = config.string("DRIVE_MODEL");
-  if (model == "jointed")
-    r.model = DriveModel::Jointed;
-  else if (model == "planar")
-    r.model = DriveModel::Planar;
-  else
-    config.fail("DRIVE_MODEL", "expected 'jointed' or 'planar', got '" + model + "'");
+  r.drive = config.choice("DRIVE", kDriveKindNames);
+  r.model = config.choice("DRIVE_MODEL", kDriveModelNames);
 }
 
 // The chassis: mass, size, and where the kicker sits in its front.

@@ -1,10 +1,12 @@
 #include "ubersim/truth_demand_announcer.hpp"
 
+#include "ubersim/topics.hpp"
+
 namespace ubersim {
 
 TruthDemandAnnouncer::TruthDemandAnnouncer(MessageBus& bus, const ChannelNames& channels,
                                            std::string consumer)
-    : bus_(bus), channel_(channels.extra(kTruthDemandChannel)) {
+    : bus_(bus), channel_(channel_name(channels, topics::kTruthDemand)) {
   demand_.consumer = std::move(consumer);
 }
 

@@ -32,7 +32,6 @@
 #include "sample_messages.hpp"
 #include "temp_folder.hpp"
 #include "ubersim/bounded_decode.hpp"
-#include "ubersim/channels.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/dds_bridge/convert_radio.hpp"
 #include "ubersim/dds_bridge/convert_sim_state.hpp"
@@ -40,12 +39,12 @@
 #include "ubersim/message_bus.hpp"
 #include "ubersim/process_main.hpp"
 #include "ubersim/shutdown.hpp"
+#include "ubersim/topics.hpp"
 
 namespace {
 
 namespace dds = ubersim::dds;
 using dds_test::Clock;
-using ubersim::Channel;
 using ubersim::MessageBus;
 
 const Clock::time_point kStart = Clock::now();
@@ -139,11 +138,11 @@ class TimedLcm {
  public:
   explicit TimedLcm(const std::string& url, const ubersim::ChannelNames& channels)
       : bus_(ubersim::with_receive_buffer(url)) {
-    bus_.subscribe<ubersim::sim_state_t>(
-        channels(Channel::SimState),
+    ubersim::subscribe(
+        bus_, channels, ubersim::topics::kSimState,
         [this](const ubersim::sim_state_t& s) { mark(state_, s.step); }, 100000);
-    bus_.subscribe<ubersim::radio_packet_t>(
-        channels.radio(ubersim::Team::Yellow),
+    ubersim::subscribe(
+        bus_, channels, ubersim::topics::kRadio.of(ubersim::Team::Yellow),
         [this](const ubersim::radio_packet_t& p) { mark(radio_, p.sequence); }, 100000);
     thread_ = std::thread([this] {
       while (!stop_) bus_.wait_and_handle(20);
@@ -259,7 +258,7 @@ int run(const Options& options) {
     const ubersim::sim_state_t state = dds_test::sim_state(static_cast<std::int64_t>(i));
     const auto sample = dds::to_dds(state);  // converted before timing the direct DDS hop
     sent[i] = now_ns();
-    publisher.publish(channels(Channel::SimState), state);
+    ubersim::publish(publisher, channels, ubersim::topics::kSimState, state);
     sent_dds[i] = now_ns();
     dds_write(state_writer, &sample.get());
     next += std::chrono::duration_cast<Clock::duration>(period);
@@ -320,7 +319,7 @@ int run(const Options& options) {
     const auto start = Clock::now();
     const auto step = std::chrono::duration<double>(1.0 / rate);
     for (std::size_t i = 0; i < count; ++i) {
-      publisher.publish(channels(Channel::SimState), states[i]);
+      ubersim::publish(publisher, channels, ubersim::topics::kSimState, states[i]);
       const auto when =
           start + std::chrono::duration_cast<Clock::duration>(step * static_cast<double>(i + 1));
       if (Clock::now() < when) sleep_until(when);

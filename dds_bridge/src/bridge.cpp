@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <ubersim/sim_control_t.hpp>
 
+#include "ubersim/dds_bridge/bridged_topics.hpp"
 #include "ubersim/dds_bridge/convert_geometry.hpp"
 #include "ubersim/dds_bridge/convert_radio.hpp"
 #include "ubersim/dds_bridge/convert_sim_control.hpp"
@@ -18,6 +19,8 @@
 #include "ubersim/dds_bridge/qos.hpp"
 #include "ubersim/dds_bridge/sample_checks.hpp"
 #include "ubersim/logging.hpp"
+#include "ubersim/sim_control_requests.hpp"
+#include "ubersim/topics.hpp"
 
 namespace ubersim::dds {
 
@@ -35,7 +38,7 @@ struct Bridge::Link {
   ThrottledLog warnings;
   std::function<int()> take;  // takes and forwards waiting samples; empty unless DDS -> LCM
 
-  std::string label() const { return std::string(base_channel_name(route.channel)); }
+  std::string label() const { return std::string(route.channel); }
 };
 
 namespace {
@@ -99,6 +102,22 @@ std::string stats_line(const std::string& what, const RouteStats& s) {
   return line;
 }
 
+// The check a DDS sample of a topic passes before it goes on LCM
+// (sample_checks.hpp): finite values, and for commands the radio's limits.
+template <class Msg>
+auto admission(const Topic<Msg>& /*topic*/, const radio::CommandLimits& /*limits*/) {
+  return [](const Msg& message) { return admit(message); };
+}
+
+auto admission(const Topic<radio_packet_t>& topic, const radio::CommandLimits& limits) {
+  const Team team = topic.name == topics::kRadio.yellow.name ? Team::Yellow : Team::Blue;
+  return [limits, team](radio_packet_t& packet) { return admit_radio(packet, team, limits); };
+}
+
+auto admission(const Topic<sim_commands_t>& /*topic*/, const radio::CommandLimits& limits) {
+  return [limits](sim_commands_t& commands) { return admit_commands(commands, limits); };
+}
+
 }  // namespace
 
 template <class Lcm>
@@ -110,14 +129,15 @@ void Bridge::publish_lcm(Link& link, const Lcm& message) {
 }
 
 template <class Lcm, class Admit>
-void Bridge::add(const Route& route, const ChannelNames& channels, Admit admit) {
+void Bridge::add(const Topic<Lcm>& lcm_topic, const Route& route, const ChannelNames& channels,
+                 Admit admit) {
   using Dds = typename decltype(to_dds(std::declval<const Lcm&>()))::value_type;
   auto link = std::make_unique<Link>();
   Link& l = *link;
   l.route = route;
-  l.lcm_channel = channels(route.channel);
+  l.lcm_channel = channel_name(channels, lcm_topic);
   l.type_name = DdsType<Dds>::descriptor()->m_typename;
-  l.use = topic_use(route.channel);
+  l.use = topic_use(lcm_topic);
   l.topic = DdsEntity(check(dds_create_topic(participant_, DdsType<Dds>::descriptor(),
                                              route.topic.c_str(), nullptr, nullptr),
                             "cannot create DDS topic " + route.topic));
@@ -188,52 +208,15 @@ void Bridge::add(const Route& route, const ChannelNames& channels, Admit admit) 
 
 Bridge::Bridge(const BridgeConfig& config, const ChannelNames& channels,
                const radio::CommandLimits& radio_limits, dds_entity_t participant, MessageBus& bus)
-    : participant_(participant), bus_(bus), sim_control_channel_(channels(Channel::SimControl)) {
+    : participant_(participant),
+      bus_(bus),
+      sim_control_channel_(channel_name(channels, topics::kSimControl)) {
   wake_fd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
   if (wake_fd_ < 0) throw std::runtime_error("cannot create an eventfd");
-  const auto finite = [](const auto& message) { return admit(message); };
-  const auto radio_of = [radio_limits](Team team) {
-    return [radio_limits, team](radio_packet_t& packet) {
-      return admit_radio(packet, team, radio_limits);
-    };
-  };
-  for (const Route& route : config.routes) {
-    switch (route.channel) {
-      case Channel::Vision:
-        add<vision_frame_t>(route, channels, finite);
-        break;
-      case Channel::VisionGeometry:
-        add<vision_geometry_t>(route, channels, finite);
-        break;
-      case Channel::RadioYellow:
-        add<radio_packet_t>(route, channels, radio_of(Team::Yellow));
-        break;
-      case Channel::RadioBlue:
-        add<radio_packet_t>(route, channels, radio_of(Team::Blue));
-        break;
-      case Channel::RadioFeedbackYellow:
-      case Channel::RadioFeedbackBlue:
-        add<radio_feedback_t>(route, channels, finite);
-        break;
-      case Channel::SimCommands:
-        add<sim_commands_t>(route, channels, [radio_limits](sim_commands_t& commands) {
-          return admit_commands(commands, radio_limits);
-        });
-        break;
-      case Channel::SimState:
-        add<sim_state_t>(route, channels, finite);
-        break;
-      case Channel::SimControl:
-        add<sim_control_t>(route, channels, finite);
-        break;
-      case Channel::SimControlAck:
-        add<sim_control_ack_t>(route, channels, finite);
-        break;
-      case Channel::SimGeometry:
-        add<field_geometry_t>(route, channels, finite);
-        break;
-    }
-  }
+  for_each_bridged_topic([&](const auto& topic) {
+    if (const Route* route = config.find(topic))
+      add(topic, *route, channels, admission(topic, radio_limits));
+  });
 }
 
 Bridge::~Bridge() {
@@ -253,12 +236,9 @@ int Bridge::take_dds() {
 }
 
 void Bridge::request_sim_geometry() {
-  sim_control_t request{};
-  request.request_id = 0;
-  request.sender = "ubersim_dds_bridge";
-  request.action = sim_control_t::REQUEST_GEOMETRY;
+  const sim_control_t request = geometry_request("ubersim_dds_bridge", 0);
   for (const auto& link : links_) {
-    if (link->route.channel == Channel::SimControl) {
+    if (link->route.channel == topics::kSimControl.name) {
       publish_lcm(*link, request);
       return;
     }
@@ -266,14 +246,14 @@ void Bridge::request_sim_geometry() {
   bus_.publish(sim_control_channel_, request);
 }
 
-const RouteStats& Bridge::stats(Channel channel, Direction direction) const {
+const RouteStats& Bridge::stats(std::string_view channel, Direction direction) const {
   for (const auto& link : links_) {
     if (link->route.channel != channel) continue;
     if (direction == Direction::LcmToDds) return link->to_dds;
     if (direction == Direction::DdsToLcm) return link->to_lcm;
   }
   throw std::invalid_argument(std::string("no ") + direction_name(direction) + " route for " +
-                              base_channel_name(channel));
+                              std::string(channel));
 }
 
 std::vector<std::string> Bridge::describe_routes() const {

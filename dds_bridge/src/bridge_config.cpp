@@ -5,6 +5,7 @@
 #include <set>
 
 #include "ubersim/config_paths.hpp"
+#include "ubersim/dds_bridge/bridged_topics.hpp"
 
 namespace ubersim::dds {
 namespace {
@@ -52,14 +53,14 @@ bool carries_dds_to_lcm(Direction direction) {
   return direction == Direction::DdsToLcm || direction == Direction::Both;
 }
 
-const Route* BridgeConfig::find(Channel channel) const {
+const Route* BridgeConfig::find(std::string_view channel) const {
   for (const Route& route : routes)
     if (route.channel == channel) return &route;
   return nullptr;
 }
 
-std::string default_topic(Channel channel) {
-  std::string topic = base_channel_name(channel);
+std::string default_topic(std::string_view channel) {
+  std::string topic(channel);
   std::transform(topic.begin(), topic.end(), topic.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return topic;
@@ -75,8 +76,8 @@ BridgeConfig load_bridge_config(const ConfigFile& config, const std::string& nam
   out.radio_limits = config.string(kRadioLimitsKey, "cmdragons02");
 
   std::set<std::string> known{kTopicPrefixKey, kRadioLimitsKey};
-  for (Channel channel : kAllChannels) {
-    const std::string key = base_channel_name(channel);
+  for (const std::string_view channel : kBridgedChannels) {
+    const std::string key(channel);
     known.insert(key);
     if (!config.has(key)) continue;
     const std::vector<std::string> values = config.strings(key);
@@ -93,15 +94,15 @@ BridgeConfig load_bridge_config(const ConfigFile& config, const std::string& nam
   for (const std::string& key : config.keys()) {
     if (known.count(key) == 0) {
       std::string channels;
-      for (Channel channel : kAllChannels)
-        channels += std::string(" ") + base_channel_name(channel);
+      for (const std::string_view channel : kBridgedChannels)
+        channels += " " + std::string(channel);
       config.fail(key, "unknown key; expected TOPIC_PREFIX, RADIO_LIMITS or a channel:" + channels);
     }
   }
   std::set<std::string> topics;
   for (const Route& route : out.routes) {
     if (!topics.insert(route.topic).second)
-      config.fail(base_channel_name(route.channel),
+      config.fail(std::string(route.channel),
                   "topic '" + route.topic + "' is used by another channel");
   }
   config.require_all_used();

@@ -16,6 +16,7 @@
 #include "ubersim/process_host.hpp"
 #include "ubersim/process_main.hpp"
 #include "ubersim/radio/radio_profile.hpp"
+#include "ubersim/topics.hpp"
 
 namespace {
 
@@ -56,7 +57,7 @@ int run(const Options& options) {
   dds::Bridge bridge(config, host.channels(), limits, participant.get(), host.bus());
   log_start(options, config, bridge);
 
-  const dds::Route* geometry = config.find(Channel::SimGeometry);
+  const dds::Route* geometry = config.find(topics::kSimGeometry);
   if (geometry != nullptr && dds::carries_lcm_to_dds(geometry->direction))
     bridge.request_sim_geometry();
   // DDS's samples wait in Cyclone's reader cache; its listener signals wake_fd.
@@ -64,7 +65,7 @@ int run(const Options& options) {
   // A relay cannot know what its DDS readers need: with SIM_STATE bridged it
   // asks physics for every step, as DDS stacks got before states came on
   // demand, or for --truth-rate (docs/dds_bridge.md, docs/sync.md).
-  const dds::Route* state_route = config.find(Channel::SimState);
+  const dds::Route* state_route = config.find(topics::kSimState);
   if (state_route != nullptr && dds::carries_lcm_to_dds(state_route->direction)) {
     if (options.truth_rate > 0) {
       host.truth_demand().periodic(options.truth_rate);

@@ -4,26 +4,6 @@
 
 namespace ubersim::dds {
 
-TopicUse topic_use(Channel channel) {
-  switch (channel) {
-    case Channel::Vision:
-    case Channel::SimState:
-      return TopicUse::Stream;
-    case Channel::VisionGeometry:
-    case Channel::SimGeometry:
-      return TopicUse::Geometry;
-    case Channel::RadioYellow:
-    case Channel::RadioBlue:
-    case Channel::RadioFeedbackYellow:
-    case Channel::RadioFeedbackBlue:
-    case Channel::SimCommands:
-    case Channel::SimControl:
-    case Channel::SimControlAck:
-      return TopicUse::Command;
-  }
-  return TopicUse::Command;
-}
-
 const char* topic_use_name(TopicUse use) {
   switch (use) {
     case TopicUse::Geometry:

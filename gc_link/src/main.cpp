@@ -1,6 +1,7 @@
 // ubersim_gc_link: the official ssl-game-controller referees a sync-mode game
 // through its CI port, with simulation time as its clock (docs/official_gc.md).
-// Exit status: 0 game over (or stopped by a signal), 1 the GC failed, 2 bad usage.
+// Exit status: 0 game over (or stopped by a signal), 1 the GC failed, 2 bad usage or a config
+// error.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <fstream>
@@ -9,11 +10,13 @@
 #include <ubersim/sim_control_ack_t.hpp>
 
 #include "ubersim/cli.hpp"
+#include "ubersim/field_side.hpp"
 #include "ubersim/gc_link/ci_client.hpp"
 #include "ubersim/gc_link/gc_link.hpp"
 #include "ubersim/gc_link/gc_process.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/process_host.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/sim_link.hpp"
 #include "ubersim/topics.hpp"
@@ -56,9 +59,10 @@ class Runner {
   }
 
   int run() {
+    // The game config first: its error ends the run at once (exit 2), not after physics answered.
+    const auto rules = referee::load_game_config(options_.common.config_root(), options_.game);
     referee::SimLink sim(host_.bus(), host_.channels(), "ubersim_gc_link");
     field_ = sim.geometry(ms(options_.timeout_s));
-    const auto rules = referee::load_game_config(options_.common.config_root(), options_.game);
     start_gc(rules);
     link_.emplace(link_options(rules), field_,
                   [this](const std::string& type) { return radii_(type); });
@@ -110,7 +114,7 @@ class Runner {
     o.setup.blue_keeper = rules.keeper_blue;
     o.setup.division_a = field_.field_length > 10.5;
     o.setup.first_kickoff = rules.first_kickoff;
-    o.setup.sides.yellow_defends = options_.yellow_defends == "positive" ? 1 : -1;
+    o.setup.sides.yellow_defends = parse_defended_side(options_.yellow_defends);
     o.detectors = rules;
     o.tick_period = options_.tick_period;
     return o;
@@ -185,9 +189,7 @@ class Runner {
   std::chrono::steady_clock::time_point wall_start_ = std::chrono::steady_clock::now();
 };
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int parse_and_run(int argc, char** argv) {
   Options o;
   CLI::App app{
       "ubersim_gc_link: the official ssl-game-controller referees a sync-mode game through its "
@@ -219,7 +221,7 @@ int main(int argc, char** argv) {
   app.add_option("--yellow-name", o.yellow_name, "team name")->capture_default_str();
   app.add_option("--blue-name", o.blue_name, "team name")->capture_default_str();
   app.add_option("--yellow-defends", o.yellow_defends, "side yellow defends")
-      ->check(CLI::IsMember({"negative", "positive"}))
+      ->check(CLI::IsMember(kDefendedSides))
       ->capture_default_str();
   app.add_option("--events", o.events_file, "write the event log (JSON lines) here");
   app.add_flag("--keep-running", o.keep_running, "do not exit when the game is over");
@@ -229,12 +231,13 @@ int main(int argc, char** argv) {
     return 2;
   }
   setup_logging("gc_link", o.common.verbosity());
-  try {
-    ProcessHost host(o.common, "gc_link");
-    Runner runner(o, host);
-    return runner.run();
-  } catch (const std::exception& error) {
-    std::cerr << "ubersim_gc_link: " << error.what() << "\n";
-    return 1;
-  }
+  ProcessHost host(o.common, "gc_link");
+  Runner runner(o, host);
+  return runner.run();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ubersim::run_main("ubersim_gc_link", [&] { return parse_and_run(argc, argv); });
 }

@@ -11,13 +11,7 @@ PhysicsConfig load_physics_config(const ConfigFile& config, const std::string& n
   PhysicsConfig p;
   p.name = name;
   p.step_rate = config.real_in("STEP_RATE", 10.0, 100000.0);
-  const std::string solver = config.string("SOLVER");
-  if (solver == "quickstep")
-    p.solver = Solver::QuickStep;
-  else if (solver == "exact")
-    p.solver = Solver::Exact;
-  else
-    config.fail("SOLVER", "expected 'quickstep' or 'exact', got '" + solver + "'");
+  p.solver = config.choice("SOLVER", kSolverNames);
   p.solver_iterations = static_cast<int>(config.integer_in("SOLVER_ITERATIONS", 1, 1000));
   p.solver_sor = config.real_in("SOLVER_SOR", 0.1, 2.0);
   p.erp = config.real_in("ERP", 0.0, 1.0);

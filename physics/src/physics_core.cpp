@@ -62,6 +62,7 @@ void PhysicsCore::on_sync_horizon(const sync_horizon_t& h) {
   horizon_ = h.horizon;
   if (!std::isnan(h.answered_until)) answered_until_ = h.answered_until;
   horizon_heard_ = true;
+  horizon_held_by_ = h.held_by;
   horizon_waiting_for_ = h.waiting_for;
 }
 
@@ -99,6 +100,8 @@ void PhysicsCore::expire_demand(Clock::time_point wall) {
 PhysicsCore::HorizonBound PhysicsCore::horizon_bound() const {
   if (referee_horizon_ < horizon_) return {HorizonBound::By::Referee, {}};
   if (!horizon_heard_) return {};
+  if (horizon_held_by_ == sync_horizon_t::HELD_BY_REGISTRATION)
+    return {HorizonBound::By::Registration, {}};
   return {HorizonBound::By::Horizon, horizon_waiting_for_};
 }
 

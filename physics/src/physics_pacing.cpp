@@ -29,12 +29,14 @@ std::string horizon_bound_name(const PhysicsCore::HorizonBound& bound) {
   switch (bound.by) {
     case PhysicsCore::HorizonBound::By::NoHorizonYet:
       return "the radio emulator (no SIM_SYNC_HORIZON yet)";
+    case PhysicsCore::HorizonBound::By::Registration:
+      return "the sync clients' registration";
     case PhysicsCore::HorizonBound::By::Referee:
       return "referee";
     case PhysicsCore::HorizonBound::By::Horizon:
       break;
   }
-  // What the radio emulator says it waits for: a client's name, "vision", "registration".
+  // Whom the radio emulator says it waits for: a client's name or "vision".
   return bound.waiting_for.empty() ? "?" : bound.waiting_for;
 }
 
@@ -62,7 +64,7 @@ Turn IdleWait::turn(Clock::time_point now) {
 void StartGate::on_sync_horizon(const sync_horizon_t& horizon) {
   if (std::isnan(horizon.horizon)) return;
   // Until its clients registered, the radio emulator holds the start.
-  radio_ready_ = horizon.waiting_for != "registration";
+  radio_ready_ = horizon.held_by != sync_horizon_t::HELD_BY_REGISTRATION;
 }
 
 bool StartGate::open() const {

@@ -18,6 +18,7 @@
 #include "in_process_sim.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/config_paths.hpp"
+#include "ubersim/field_side.hpp"
 #include "ubersim/robot_config.hpp"
 #include "vector_sim.hpp"
 
@@ -75,14 +76,7 @@ double finite(double value, const char* name) {
 
 referee::FieldSides sides_from(const std::string& yellow_defends) {
   referee::FieldSides sides;
-  if (yellow_defends == "negative") {
-    sides.yellow_defends = -1;
-  } else if (yellow_defends == "positive") {
-    sides.yellow_defends = 1;
-  } else {
-    throw py::value_error("yellow_defends must be 'negative' or 'positive', got '" +
-                          yellow_defends + "'");
-  }
+  sides.yellow_defends = parse_defended_side(yellow_defends);  // ValueError for another word
   return sides;
 }
 
@@ -217,7 +211,7 @@ py::dict robot_type_dict(const InProcessSim& sim, const std::optional<std::strin
   const auto type = sim.world().setup().robot_types(name.value_or(sim.default_robot_type()));
   py::dict d;
   d["name"] = type->name;
-  d["drive"] = type->drive == DriveKind::Omni ? "omni" : "differential";
+  d["drive"] = enum_name(type->drive, kDriveKindNames);
   d["radius"] = type->radius;
   d["height"] = type->height;
   d["front_distance"] = type->front_distance;

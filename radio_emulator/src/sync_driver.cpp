@@ -4,12 +4,13 @@
 #include <spdlog/spdlog.h>
 
 #include <limits>
+#include <optional>
 
 namespace ubersim::radio {
 
 namespace {
 
-// What holds physics back when no client owes an answer: the next frame.
+// Who holds physics back when no client owes an answer: the next frame (the log's name).
 constexpr const char* kNextFrame = "vision";
 
 }  // namespace
@@ -106,7 +107,7 @@ void SyncDriver::publish_status(Clock::time_point now) {
   last_status_ = now;
 }
 
-std::string SyncDriver::hold(Clock::time_point now) {
+std::int8_t SyncDriver::hold(Clock::time_point now) {
   if (now >= next_hold_log_) {
     next_hold_log_ = now + std::chrono::seconds(5);
     spdlog::info("sync: physics holds: waiting for {}",
@@ -114,12 +115,13 @@ std::string SyncDriver::hold(Clock::time_point now) {
                           : std::to_string(options_.expected_clients - coordinator_.clients()) +
                                 " more client(s) on SYNC_CLIENT");
   }
-  return started_ ? kNextFrame : "registration";
+  return started_ ? sync_horizon_t::HELD_BY_NEXT_FRAME : sync_horizon_t::HELD_BY_REGISTRATION;
 }
 
 void SyncDriver::update(bool always_publish, Clock::time_point now) {
   double horizon = std::numeric_limits<double>::infinity();
   double answered_until = std::numeric_limits<double>::infinity();
+  std::int8_t held_by = sync_horizon_t::HELD_BY_NOTHING;
   std::string bound;
   if (!started_ && coordinator_.clients() >= options_.expected_clients) {
     started_ = true;
@@ -130,7 +132,8 @@ void SyncDriver::update(bool always_publish, Clock::time_point now) {
     // first frame, so that runs start alike.
     horizon = 0;
     answered_until = 0;
-    bound = hold(now);
+    held_by = hold(now);
+    if (held_by == sync_horizon_t::HELD_BY_NEXT_FRAME) bound = kNextFrame;
   } else {
     for (Team team : kTeams) {
       const double arrival = coordinator_.earliest_arrival(team);
@@ -139,21 +142,24 @@ void SyncDriver::update(bool always_publish, Clock::time_point now) {
       const double apply = emulator_.earliest_apply(team, arrival);
       if (apply < horizon) {
         horizon = apply;
-        bound = coordinator_.bound_by(team).value_or(kNextFrame);
+        const std::optional<std::string> client = coordinator_.bound_by(team);
+        held_by = client ? sync_horizon_t::HELD_BY_CLIENT : sync_horizon_t::HELD_BY_NEXT_FRAME;
+        bound = client.value_or(kNextFrame);
       }
     }
   }
-  if (!always_publish && horizon == horizon_.horizon && bound == horizon_.waiting_for &&
-      answered_until == horizon_.answered_until) {
+  if (!always_publish && horizon == horizon_.horizon && held_by == horizon_.held_by &&
+      bound == horizon_.waiting_for && answered_until == horizon_.answered_until) {
     return;
   }
-  if (!released_ && bound != "registration") {
+  if (!released_ && held_by != sync_horizon_t::HELD_BY_REGISTRATION) {
     released_ = true;
     if (before_release_) before_release_();
   }
   ++horizon_.sequence;
   horizon_.horizon = horizon;
   horizon_.answered_until = answered_until;
+  horizon_.held_by = held_by;
   horizon_.waiting_for = bound;
   horizon_.clients = coordinator_.clients();
   publish_horizon_(horizon_);

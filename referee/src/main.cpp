@@ -11,7 +11,9 @@
 #include "ubersim/angles.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
+#include "ubersim/field_side.hpp"
 #include "ubersim/logging.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/referee/auto_runner.hpp"
 #include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/scene_io.hpp"
@@ -65,7 +67,7 @@ int run_auto(const Options& o) {
   if (o.game_length > 0) a.game.game_length = o.game_length;
   if (o.yellow_name) a.game.yellow_name = *o.yellow_name;
   if (o.blue_name) a.game.blue_name = *o.blue_name;
-  a.sides.yellow_defends = o.yellow_defends == "positive" ? 1 : -1;
+  a.sides.yellow_defends = ubersim::parse_defended_side(o.yellow_defends);
   a.events_file = o.events_file;
   a.timeout_s = o.timeout_s;
   a.exit_at_end = !o.keep_running;
@@ -305,7 +307,7 @@ class Referee {
     request.x = options_.x;
     request.y = options_.y;
     FieldSides sides;
-    sides.yellow_defends = options_.yellow_defends == "positive" ? 1 : -1;
+    sides.yellow_defends = ubersim::parse_defended_side(options_.yellow_defends);
     const auto planned = plan_situation(request, before, field, sides);
     // Every robot is stopped in a set piece; the ball too.
     return send(place_request(before, planned, true, true));
@@ -342,7 +344,7 @@ void add_global_options(CLI::App& app, Options& o) {
       ->capture_default_str()
       ->check(ubersim::greater_than(0));
   app.add_option("--yellow-defends", o.yellow_defends, "which goal yellow defends")
-      ->check(CLI::IsMember({"negative", "positive"}))
+      ->check(CLI::IsMember(ubersim::kDefendedSides))
       ->capture_default_str();
 }
 
@@ -499,15 +501,10 @@ int run_subcommand(const CLI::App& app, const Options& o, const Actions& actions
   } catch (const CLI::ValidationError& error) {
     std::cerr << "referee: " << error.what() << "\n";
     return 2;
-  } catch (const std::exception& error) {
-    std::cerr << "referee: " << error.what() << "\n";
-    return 1;
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int parse_and_run(int argc, char** argv) {
   Options o;
   Actions actions;
   CLI::App app{"ubersim referee: set up the field and control the simulation"};
@@ -519,4 +516,10 @@ int main(int argc, char** argv) {
   add_auto_command(app, o);
   if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
   return run_subcommand(app, o, actions);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ubersim::run_main("referee", [&] { return parse_and_run(argc, argv); });
 }

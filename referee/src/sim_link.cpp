@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "ubersim/sim_control_requests.hpp"
 #include "ubersim/topics.hpp"
 
 namespace ubersim::referee {
@@ -47,14 +48,14 @@ sim_control_ack_t SimLink::request(sim_control_t control, std::chrono::milliseco
   ack_.reset();
   ubersim::publish(bus_, channels_, topics::kSimControl, control);
   wait_until([this] { return ack_.has_value(); }, timeout,
-             "waiting on " + channels_(Channel::SimControlAck));
+             "waiting on " + channel_name(channels_, topics::kSimControlAck));
   return *ack_;
 }
 
 sim_state_t SimLink::state(std::chrono::milliseconds timeout) {
   state_.reset();
   wait_until([this] { return state_.has_value(); }, timeout,
-             "waiting on " + channels_(Channel::SimState));
+             "waiting on " + channel_name(channels_, topics::kSimState));
   return *state_;
 }
 
@@ -64,17 +65,14 @@ field_geometry_t SimLink::geometry(std::chrono::milliseconds timeout) {
   // loses the request; it also publishes the geometry by itself now and then.
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (!geometry_) {
-    sim_control_t ask{};
-    ask.action = sim_control_t::REQUEST_GEOMETRY;
-    ask.request_id = next_request_id_++;
-    ask.sender = sender_;
-    ubersim::publish(bus_, channels_, topics::kSimControl, ask);
+    ubersim::publish(bus_, channels_, topics::kSimControl,
+                     geometry_request(sender_, next_request_id_++));
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     try {
       wait_until([this] { return geometry_.has_value(); },
                  std::min(left, std::chrono::milliseconds(500)),
-                 "waiting on " + channels_(Channel::SimGeometry));
+                 "waiting on " + channel_name(channels_, topics::kSimGeometry));
     } catch (const NoAnswer&) {
       if (std::chrono::steady_clock::now() >= deadline) throw;
     }

@@ -126,7 +126,8 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
   }
   if (options_.official_referee) {
     spdlog::info("official referee: Referee messages on {}:{} go to {}; ubersim sends none",
-                 options_.referee_address, options_.referee_port, channels_.referee());
+                 options_.referee_address, options_.referee_port,
+                 channel_name(channels_, topics::kReferee));
   } else {
     ubersim::subscribe(bus_, channels_, topics::kReferee,
                        [this](const referee_t& r) { on_referee(r); });
@@ -222,7 +223,7 @@ void SslBridge::on_referee_datagram(const std::vector<uint8_t>& bytes) {
           "no longer sent there; start the bridge with --official-referee (launch.sh --referee "
           "official) to forward that game controller to {} instead",
           referee.source_identifier(), options_.referee_address, options_.referee_port,
-          channels_.referee());
+          channel_name(channels_, topics::kReferee));
     }
     foreign_referee_heard_ = true;
     ++counters_["foreign referee packets heard"];
@@ -471,7 +472,7 @@ void SslBridge::log_destinations() const {
   }
   if (tracked_) spdlog::info("tracked frames at {} Hz of sim time", options_.tracked_rate);
   if (!options_.official_referee)
-    spdlog::info("referee messages come from {}", channels_.referee());
+    spdlog::info("referee messages come from {}", channel_name(channels_, topics::kReferee));
   if (options_.local_only) {
     spdlog::info("--local-only: SSL multicast stays on this host (lo, ttl 0)");
   }

@@ -2,8 +2,9 @@
 # Every program answers a bad command line the same way: exit 2 and one short
 # line on stderr that names the option and, for a number, its range in plain
 # numbers (never CLI11's 300-digit "largest double"); --help still exits 0.
-# Then a misspelt key in a real config folder: ubersim_physics names the
-# line of the typo and the key it meant.
+# Then a config error: every program that reads a config exits 2 on one,
+# naming the config; and a misspelt key in a real config folder:
+# ubersim_physics names the line of the typo and the key it meant.
 # Usage: test_command_line_errors.sh SOURCE_DIR NAME=PATH...  (the programs built)
 set -uo pipefail
 source_dir=$1
@@ -38,6 +39,22 @@ bad_args[ubersim_config_check]="nosuchkind x.cfg"
 expected[ubersim_config_check]="nosuchkind"
 bad_args[ubersim_log_compare]="--channels"
 expected[ubersim_log_compare]="--channels"
+bad_args[ubersim_gc_link]="--tick-period 5"
+expected[ubersim_gc_link]="--tick-period: 5 is not in [0.001, 1]"
+
+# A config that does not exist (or does not load) for each program that reads
+# one; the viewer, the demo team, the logger and log_compare read none.
+declare -A config_args
+config_args[ubersim_physics]="--scenario no_such_scenario --speed 0 --duration 0.01"
+config_args[ubersim_vision]="--profile no_such_profile"
+config_args[ubersim_radio]="--profile no_such_profile"
+config_args[ubersim_referee]="auto --game no_such_game"
+config_args[ubersim_gc_link]="--gc-address 127.0.0.1:1 --game no_such_game --timeout 1"
+config_args[ubersim_ssl_bridge]="--ball no_such_ball"
+config_args[ubersim_dds_bridge]="--config no_such_config"
+config_args[ubersim_config_check]="robots $source_dir/tests/data/bad_robot.cfg"
+declare -A config_named
+config_named[ubersim_config_check]="bad_robot.cfg:5"
 
 out=$(mktemp -d "${TMPDIR:-/tmp}/cli-errors-XXXXXX")
 for program_arg in "$@"; do
@@ -64,6 +81,19 @@ for program_arg in "$@"; do
   status=$?
   [ "$status" = 0 ] || fail "$name --help: exit $status, expected 0"
   grep -q -i "usage" "$out/stdout" || fail "$name --help: no usage on stdout"
+done
+
+# A config error: exit 2, and the error names the config.
+for program_arg in "$@"; do
+  name=${program_arg%%=*}
+  [ -n "${config_args[$name]+set}" ] || continue
+  # shellcheck disable=SC2086  # the arguments are words on purpose
+  timeout 20 "${program_arg#*=}" ${config_args[$name]} >"$out/stdout" 2>"$out/stderr" </dev/null
+  status=$?
+  named=${config_named[$name]:-no_such_}
+  echo "$name ${config_args[$name]} -> exit $status: $(head -c 300 "$out/stderr")"
+  [ "$status" = 2 ] || fail "$name with a config error: exit $status, expected 2"
+  grep -qF -- "$named" "$out/stderr" || fail "$name with a config error: no '$named' on stderr"
 done
 
 # A negative seed: CLI11 alone would wrap it into an unsigned seed and run.

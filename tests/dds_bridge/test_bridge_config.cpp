@@ -5,9 +5,10 @@
 #include "ubersim/config.hpp"
 #include "ubersim/dds_bridge/bridge_config.hpp"
 #include "ubersim/dds_bridge/qos.hpp"
+#include "ubersim/topics.hpp"
 
 namespace dds = ubersim::dds;
-using ubersim::Channel;
+namespace topics = ubersim::topics;
 using ubersim::ConfigError;
 using ubersim::ConfigFile;
 
@@ -33,20 +34,20 @@ TEST(BridgeConfig, ShippedDefaultBridgesWhatADdsControlStackNeeds) {
   const auto config = dds::load_bridge_config(UBERSIM_SOURCE_CONFIG_DIR, "default");
   EXPECT_EQ(config.topic_prefix, "rt/ubersim/");
   EXPECT_EQ(config.radio_limits, "cmdragons02");
-  const auto direction = [&](Channel channel) {
+  const auto direction = [&](std::string_view channel) {
     const dds::Route* route = config.find(channel);
     return route == nullptr ? dds::Direction::Off : route->direction;
   };
-  EXPECT_EQ(direction(Channel::Vision), dds::Direction::LcmToDds);
-  EXPECT_EQ(direction(Channel::SimState), dds::Direction::LcmToDds);
-  EXPECT_EQ(direction(Channel::SimGeometry), dds::Direction::LcmToDds);
-  EXPECT_EQ(direction(Channel::VisionGeometry), dds::Direction::LcmToDds);
-  EXPECT_EQ(direction(Channel::RadioYellow), dds::Direction::DdsToLcm);
-  EXPECT_EQ(direction(Channel::RadioBlue), dds::Direction::DdsToLcm);
-  EXPECT_EQ(direction(Channel::SimControl), dds::Direction::DdsToLcm);
-  EXPECT_EQ(direction(Channel::SimCommands), dds::Direction::Off);
-  EXPECT_EQ(config.find(Channel::Vision)->topic, "rt/ubersim/vision");
-  EXPECT_EQ(config.find(Channel::RadioBlue)->topic, "rt/ubersim/radio_blue");
+  EXPECT_EQ(direction(topics::kVision.name), dds::Direction::LcmToDds);
+  EXPECT_EQ(direction(topics::kSimState.name), dds::Direction::LcmToDds);
+  EXPECT_EQ(direction(topics::kSimGeometry.name), dds::Direction::LcmToDds);
+  EXPECT_EQ(direction(topics::kVisionGeometry.name), dds::Direction::LcmToDds);
+  EXPECT_EQ(direction(topics::kRadio.yellow.name), dds::Direction::DdsToLcm);
+  EXPECT_EQ(direction(topics::kRadio.blue.name), dds::Direction::DdsToLcm);
+  EXPECT_EQ(direction(topics::kSimControl.name), dds::Direction::DdsToLcm);
+  EXPECT_EQ(direction(topics::kSimCommands.name), dds::Direction::Off);
+  EXPECT_EQ(config.find(topics::kVision)->topic, "rt/ubersim/vision");
+  EXPECT_EQ(config.find(topics::kRadio.blue)->topic, "rt/ubersim/radio_blue");
 }
 
 TEST(BridgeConfig, TopicDefaultsToTheChannelNameAndCanBeNamed) {
@@ -56,10 +57,10 @@ TEST(BridgeConfig, TopicDefaultsToTheChannelNameAndCanBeNamed) {
       "SIM_STATE = both\n"
       "RADIO_BLUE = off\n");
   ASSERT_EQ(config.routes.size(), 2u);  // `off` is not a route
-  EXPECT_EQ(config.find(Channel::Vision)->topic, "rt/camera/detections");
-  EXPECT_EQ(config.find(Channel::SimState)->topic, "rt/sim_state");
-  EXPECT_EQ(config.find(Channel::SimState)->direction, dds::Direction::Both);
-  EXPECT_EQ(config.find(Channel::RadioBlue), nullptr);
+  EXPECT_EQ(config.find(topics::kVision)->topic, "rt/camera/detections");
+  EXPECT_EQ(config.find(topics::kSimState)->topic, "rt/sim_state");
+  EXPECT_EQ(config.find(topics::kSimState)->direction, dds::Direction::Both);
+  EXPECT_EQ(config.find(topics::kRadio.blue), nullptr);
   EXPECT_EQ(config.radio_limits, "cmdragons02");  // the default
 }
 
@@ -78,12 +79,12 @@ TEST(BridgeConfig, MistakesNameFileAndLine) {
 }
 
 TEST(BridgeConfig, QosFollowsTheUseOfEachChannel) {
-  EXPECT_EQ(dds::topic_use(Channel::Vision), dds::TopicUse::Stream);
-  EXPECT_EQ(dds::topic_use(Channel::SimState), dds::TopicUse::Stream);
-  EXPECT_EQ(dds::topic_use(Channel::SimGeometry), dds::TopicUse::Geometry);
-  EXPECT_EQ(dds::topic_use(Channel::VisionGeometry), dds::TopicUse::Geometry);
-  EXPECT_EQ(dds::topic_use(Channel::RadioYellow), dds::TopicUse::Command);
-  EXPECT_EQ(dds::topic_use(Channel::SimControl), dds::TopicUse::Command);
+  EXPECT_EQ(dds::topic_use(topics::kVision), dds::TopicUse::Stream);
+  EXPECT_EQ(dds::topic_use(topics::kSimState), dds::TopicUse::Stream);
+  EXPECT_EQ(dds::topic_use(topics::kSimGeometry), dds::TopicUse::Geometry);
+  EXPECT_EQ(dds::topic_use(topics::kVisionGeometry), dds::TopicUse::Geometry);
+  EXPECT_EQ(dds::topic_use(topics::kRadio.yellow), dds::TopicUse::Command);
+  EXPECT_EQ(dds::topic_use(topics::kSimControl), dds::TopicUse::Command);
   const auto stream = dds::qos_settings(dds::TopicUse::Stream);
   EXPECT_FALSE(stream.reliable);
   EXPECT_EQ(stream.writer_depth, 1);

@@ -14,16 +14,15 @@
 #include "child_process.hpp"
 #include "dds_test_support.hpp"
 #include "sample_messages.hpp"
-#include "ubersim/channels.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/dds_bridge/convert_geometry.hpp"
 #include "ubersim/dds_bridge/convert_sim_control.hpp"
 #include "ubersim/dds_bridge/echo_filter.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/topics.hpp"
 
 namespace dds = ubersim::dds;
 using dds::TopicUse;
-using ubersim::Channel;
 using ubersim::ChannelNames;
 using ubersim::MessageBus;
 using ubersim::Team;
@@ -74,7 +73,8 @@ class DdsBridgeProcess : public ::testing::Test {
     const bool ok = dds_test::pump_until(
         bus_, [&] { return received >= 0; }, kTimeout,
         [&] {
-          bus_.publish(channels_(Channel::Vision), dds_test::vision_frame(++number));
+          ubersim::publish(bus_, channels_, ubersim::topics::kVision,
+                           dds_test::vision_frame(++number));
           std::this_thread::sleep_for(std::chrono::milliseconds(20));
           dds_test::take_each<dds::DdsVisionFrame>(
               reader, [&](const dds::DdsVisionFrame& f) { received = f.frame_number; });
@@ -152,7 +152,7 @@ TEST_F(DdsBridgeProcess, LcmVisionFrameAppearsOnDdsWithIdenticalValues) {
   warm_up_vision(reader);
 
   const ubersim::vision_frame_t sent = dds_test::vision_frame(7, 3, 5);
-  bus_.publish(channels_(Channel::Vision), sent);
+  ubersim::publish(bus_, channels_, ubersim::topics::kVision, sent);
   int seen = 0;
   ASSERT_TRUE(dds_test::pump_until(
       bus_, [&] { return seen > 0; }, kTimeout,
@@ -198,11 +198,10 @@ TEST_F(DdsBridgeProcess, DdsRadioPacketAppearsOnRadioTeamWithIdenticalValues) {
   start_bridge();
   std::vector<ubersim::radio_packet_t> yellow;
   std::vector<ubersim::radio_packet_t> blue;
-  bus_.subscribe<ubersim::radio_packet_t>(
-      channels_.radio(Team::Yellow),
-      [&](const ubersim::radio_packet_t& p) { yellow.push_back(p); });
-  bus_.subscribe<ubersim::radio_packet_t>(
-      channels_.radio(Team::Blue), [&](const ubersim::radio_packet_t& p) { blue.push_back(p); });
+  ubersim::subscribe(bus_, channels_, ubersim::topics::kRadio.of(Team::Yellow),
+                     [&](const ubersim::radio_packet_t& p) { yellow.push_back(p); });
+  ubersim::subscribe(bus_, channels_, ubersim::topics::kRadio.of(Team::Blue),
+                     [&](const ubersim::radio_packet_t& p) { blue.push_back(p); });
 
   for (const Team team : ubersim::kTeams) {
     const std::string topic_name =
@@ -247,10 +246,10 @@ TEST_P(DdsBridgeEcho, NothingEchoesBack) {
                          : "default");
   int lcm_vision = 0;
   int lcm_radio = 0;
-  bus_.subscribe<ubersim::vision_frame_t>(channels_(Channel::Vision),
-                                          [&](const ubersim::vision_frame_t&) { ++lcm_vision; });
-  bus_.subscribe<ubersim::radio_packet_t>(channels_.radio(Team::Yellow),
-                                          [&](const ubersim::radio_packet_t&) { ++lcm_radio; });
+  ubersim::subscribe(bus_, channels_, ubersim::topics::kVision,
+                     [&](const ubersim::vision_frame_t&) { ++lcm_vision; });
+  ubersim::subscribe(bus_, channels_, ubersim::topics::kRadio.of(Team::Yellow),
+                     [&](const ubersim::radio_packet_t&) { ++lcm_radio; });
   // Participant A writes radio; B reads both topics, as a separate program would.
   const dds_entity_t a = dds_.new_participant();
   const dds_entity_t b = dds_.new_participant();
@@ -279,7 +278,7 @@ TEST_P(DdsBridgeEcho, NothingEchoesBack) {
     dds_radio +=
         dds_test::take_each<dds::DdsRadioPacket>(radio_reader, [](const dds::DdsRadioPacket&) {});
   };
-  bus_.publish(channels_(Channel::Vision), dds_test::vision_frame(1));
+  ubersim::publish(bus_, channels_, ubersim::topics::kVision, dds_test::vision_frame(1));
   const DdsRadioSample sample(0, 1);
   ASSERT_EQ(dds_write(radio_writer, &sample.packet), DDS_RETCODE_OK);
   ASSERT_TRUE(dds_test::pump_until(
@@ -307,11 +306,10 @@ INSTANTIATE_TEST_SUITE_P(ShippedConfigAndBothWays, DdsBridgeEcho, ::testing::Val
 TEST_F(DdsBridgeProcess, LateJoiningDdsSubscriberReceivesTheFieldGeometry) {
   // Stand in for physics: answer the bridge's geometry request on LCM.
   bool requested = false;
-  bus_.subscribe<ubersim::sim_control_t>(channels_(Channel::SimControl),
-                                         [&](const ubersim::sim_control_t& c) {
-                                           if (c.action == ubersim::sim_control_t::REQUEST_GEOMETRY)
-                                             requested = true;
-                                         });
+  ubersim::subscribe(bus_, channels_, ubersim::topics::kSimControl,
+                     [&](const ubersim::sim_control_t& c) {
+                       if (c.action == ubersim::sim_control_t::REQUEST_GEOMETRY) requested = true;
+                     });
   start_bridge();
   ASSERT_TRUE(dds_test::pump_until(
       bus_, [&] { return requested; }, kTimeout))
@@ -319,8 +317,8 @@ TEST_F(DdsBridgeProcess, LateJoiningDdsSubscriberReceivesTheFieldGeometry) {
       << bridge_log();
   const ubersim::field_geometry_t field = dds_test::field_geometry(0.25);
   const ubersim::vision_geometry_t vision = dds_test::vision_geometry(0.5);
-  bus_.publish(channels_(Channel::SimGeometry), field);
-  bus_.publish(channels_(Channel::VisionGeometry), vision);
+  ubersim::publish(bus_, channels_, ubersim::topics::kSimGeometry, field);
+  ubersim::publish(bus_, channels_, ubersim::topics::kVisionGeometry, vision);
 
   // An early subscriber confirms the bridge has written both.
   const dds_entity_t early = dds_.new_participant();
@@ -375,12 +373,12 @@ TEST_F(DdsBridgeProcess, BadSamplesAreDroppedAndCounted) {
   start_bridge();
   std::vector<ubersim::radio_packet_t> radio;
   std::vector<ubersim::sim_control_t> control;
-  bus_.subscribe<ubersim::radio_packet_t>(
-      channels_.radio(Team::Yellow), [&](const ubersim::radio_packet_t& p) { radio.push_back(p); });
-  bus_.subscribe<ubersim::sim_control_t>(channels_(Channel::SimControl),
-                                         [&](const ubersim::sim_control_t& c) {
-                                           if (c.sender == "dds test") control.push_back(c);
-                                         });
+  ubersim::subscribe(bus_, channels_, ubersim::topics::kRadio.of(Team::Yellow),
+                     [&](const ubersim::radio_packet_t& p) { radio.push_back(p); });
+  ubersim::subscribe(bus_, channels_, ubersim::topics::kSimControl,
+                     [&](const ubersim::sim_control_t& c) {
+                       if (c.sender == "dds test") control.push_back(c);
+                     });
   const dds_entity_t radio_writer = dds_test::make_writer(
       dds_.participant(),
       dds_test::make_topic<dds::DdsRadioPacket>(dds_.participant(), "rt/ubersim/radio_yellow"),
@@ -450,8 +448,8 @@ TEST_F(DdsBridgeProcess, BadSamplesAreDroppedAndCounted) {
 TEST_F(DdsBridgeProcess, SurvivesDdsPeersComingAndGoing) {
   start_bridge();
   std::vector<ubersim::radio_packet_t> radio;
-  bus_.subscribe<ubersim::radio_packet_t>(
-      channels_.radio(Team::Yellow), [&](const ubersim::radio_packet_t& p) { radio.push_back(p); });
+  ubersim::subscribe(bus_, channels_, ubersim::topics::kRadio.of(Team::Yellow),
+                     [&](const ubersim::radio_packet_t& p) { radio.push_back(p); });
   for (int round = 1; round <= 3; ++round) {
     // A control program starts, sends, and goes away (its participant deleted).
     const dds_entity_t program = dds_.new_participant();
@@ -475,7 +473,8 @@ TEST_F(DdsBridgeProcess, SurvivesDdsPeersComingAndGoing) {
     ASSERT_EQ(dds_delete(viewer), DDS_RETCODE_OK);
     ASSERT_EQ(dds_delete(program), DDS_RETCODE_OK);
     dds_test::pump_for(bus_, 0.2, [&] {
-      bus_.publish(channels_(Channel::Vision), dds_test::vision_frame(round));  // nobody listens
+      ubersim::publish(bus_, channels_, ubersim::topics::kVision,
+                       dds_test::vision_frame(round));  // nobody listens
     });
     ASSERT_TRUE(bridge_->running()) << bridge_log();
   }

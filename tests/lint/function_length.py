@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Lint as a test: no function in */src is longer than 100 lines.
+"""Lint as a test: no function in */src or tools/ is longer than 100 lines.
 
 A function's length is counted from the first line of its declaration
 (`template <...>` included) to its closing brace, both included. Lambdas count
@@ -13,7 +13,7 @@ tokens before it as a namespace or class (scanned inside), a function body
 or a literal that does not close) is an error, never a pass.
 
 Usage:
-  function_length.py SOURCE_DIR            check */src, exit 1 on a function over the limit
+  function_length.py SOURCE_DIR            check */src and tools/, exit 1 on a function over the limit
   function_length.py --list [--min N] FILE...   print every function of N lines or more
 
 The allow-list below names functions that are known to be too long and are
@@ -388,20 +388,29 @@ def functions_in(path, text=None):
 
 # ---- the check ----------------------------------------------------------------------
 
+# Where the checked code is: every part's src/, and tools/ (the demo team, the
+# report, the small programs), which are programs like the others.
+SOURCE_GLOBS = (os.path.join("*", "src"), "tools")
+
+
 def source_files(source_dir):
     files = []
-    for src in sorted(glob.glob(os.path.join(source_dir, "*", "src"))):
-        for root, _, names in os.walk(src):
+    folders = set()
+    for pattern in SOURCE_GLOBS:
+        folders.update(glob.glob(os.path.join(source_dir, pattern)))
+    for folder in sorted(folders):
+        for root, _, names in os.walk(folder):
             for name in sorted(names):
                 if name.endswith(SOURCE_SUFFIXES):
                     files.append(os.path.join(root, name))
-    return sorted(files)
+    return sorted(set(files))
 
 
 def check(source_dir):
     files = source_files(source_dir)
     if not files:
-        print(f"function_length: no source files under {source_dir}/*/src", file=sys.stderr)
+        print(f"function_length: no source files under {source_dir}/*/src or tools",
+              file=sys.stderr)
         return 1
     too_long = []
     allowed_seen = set()

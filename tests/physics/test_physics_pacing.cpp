@@ -66,9 +66,11 @@ sim_control_t control(std::int32_t action) {
   return request;
 }
 
+// A horizon held by a client of that name.
 sync_horizon_t horizon(double until, const std::string& waiting_for, double answered_until = 0) {
   sync_horizon_t h{};
   h.horizon = until;
+  h.held_by = sync_horizon_t::HELD_BY_CLIENT;
   h.waiting_for = waiting_for;
   h.answered_until = answered_until;
   return h;
@@ -269,12 +271,16 @@ TEST(PhysicsPacing, SyncStartsOnceTheVisionListensAndTheRadioHasItsClients) {
   pacing.start(t0, true);
   EXPECT_EQ(pacing.turn(t0).kind, Kind::Wait);
   pacing.on_vision_schedule(schedule_at(-1, -1), t0);
-  rig.core.on_sync_horizon(horizon(1.0, "registration"));
-  pacing.on_sync_horizon(horizon(1.0, "registration"));
+  sync_horizon_t registering = horizon(1.0, "");
+  registering.held_by = sync_horizon_t::HELD_BY_REGISTRATION;
+  rig.core.on_sync_horizon(registering);
+  pacing.on_sync_horizon(registering);
   EXPECT_EQ(pacing.turn(t0).kind, Kind::Wait) << "the radio waits for its clients";
   EXPECT_TRUE(rig.published().empty());
-  rig.core.on_sync_horizon(horizon(1.0, "demo_blue"));
-  pacing.on_sync_horizon(horizon(1.0, "demo_blue"));
+  // The hold is typed (held_by): a client may take any name, the one the
+  // reason had as a string before included.
+  rig.core.on_sync_horizon(horizon(1.0, "registration"));
+  pacing.on_sync_horizon(horizon(1.0, "registration"));
   const auto t1 = t0 + 1s;
   EXPECT_EQ(pacing.turn(t1).kind, Kind::Again);
   EXPECT_EQ(rig.published(), (std::vector<std::int64_t>{0}));

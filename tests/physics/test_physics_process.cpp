@@ -18,14 +18,13 @@
 #include <vector>
 
 #include "child_process.hpp"
-#include "ubersim/channels.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/topics.hpp"
 
 namespace {
 
 using namespace std::chrono_literals;
-using ubersim::Channel;
 using ubersim::test::ChildProcess;
 
 const std::string kPhysics = UBERSIM_PHYSICS_EXE;
@@ -33,15 +32,13 @@ const std::string kPhysics = UBERSIM_PHYSICS_EXE;
 class PhysicsProcess : public ::testing::Test {
  protected:
   PhysicsProcess() : bus_(ubersim::with_receive_buffer(ubersim::default_lcm_url())) {
-    bus_.subscribe<ubersim::sim_state_t>(
-        channels_(Channel::SimState),
+    ubersim::subscribe(
+        bus_, channels_, ubersim::topics::kSimState,
         [this](const ubersim::sim_state_t& s) { states_.push_back(s); }, 100000);
-    bus_.subscribe<ubersim::sim_control_ack_t>(
-        channels_(Channel::SimControlAck),
-        [this](const ubersim::sim_control_ack_t& a) { acks_.push_back(a); });
-    bus_.subscribe<ubersim::field_geometry_t>(
-        channels_(Channel::SimGeometry),
-        [this](const ubersim::field_geometry_t& g) { geometries_.push_back(g); });
+    ubersim::subscribe(bus_, channels_, ubersim::topics::kSimControlAck,
+                       [this](const ubersim::sim_control_ack_t& a) { acks_.push_back(a); });
+    ubersim::subscribe(bus_, channels_, ubersim::topics::kSimGeometry,
+                       [this](const ubersim::field_geometry_t& g) { geometries_.push_back(g); });
   }
 
   // Handles messages until `done` or the timeout; returns done().
@@ -64,7 +61,7 @@ class PhysicsProcess : public ::testing::Test {
 
   // Sends a request and waits for its acknowledgement.
   ubersim::sim_control_ack_t call(const ubersim::sim_control_t& r) {
-    bus_.publish(channels_(Channel::SimControl), r);
+    ubersim::publish(bus_, channels_, ubersim::topics::kSimControl, r);
     const bool got = pump_until([&] { return find_ack(r.request_id) != nullptr; });
     EXPECT_TRUE(got) << "no acknowledgement for request " << r.request_id;
     return got ? *find_ack(r.request_id) : ubersim::sim_control_ack_t{};
@@ -81,7 +78,7 @@ class PhysicsProcess : public ::testing::Test {
   bool wait_for_server() {
     for (int i = 0; i < 100; ++i) {
       auto r = request(ubersim::sim_control_t::PING);
-      bus_.publish(channels_(Channel::SimControl), r);
+      ubersim::publish(bus_, channels_, ubersim::topics::kSimControl, r);
       if (pump_until([&] { return find_ack(r.request_id) != nullptr; }, 100ms)) return true;
     }
     return false;
@@ -166,7 +163,7 @@ TEST_F(PhysicsProcess, AnswersControlStepsInLockstepAndExitsCleanly) {
   packet.commands = {forward, ghost};
   packet.num_commands = 2;
   const double x0 = robot(states_.back(), 0, 0)->x;
-  bus_.publish(channels_(Channel::SimCommands), packet);
+  ubersim::publish(bus_, channels_, ubersim::topics::kSimCommands, packet);
   // A ping after it: LCM keeps order on one socket, so the packet is in when
   // the ping is answered.
   call(request(ubersim::sim_control_t::PING));

@@ -4,23 +4,25 @@
 
 #include "radio_test_util.hpp"
 #include "ubersim/cli.hpp"
+#include "ubersim/topics.hpp"
 
 namespace radio_test {
 
 RadioDriver::RadioDriver(int robots_per_team)
     : bus_(ubersim::with_receive_buffer(ubersim::default_lcm_url())),
       robots_per_team_(robots_per_team) {
-  bus_.subscribe<ubersim::sim_commands_t>(
-      channels_(ubersim::Channel::SimCommands), [this](const ubersim::sim_commands_t& m) {
-        if (m.team == 1 && m.sequence < 0) {  // a ping coming back
-          last_ping_back_ = -m.sequence;
-          return;
-        }
-        if (m.team == 0 || m.team == 1) commands_[m.team].push_back(m);
-      });
+  ubersim::subscribe(bus_, channels_, ubersim::topics::kSimCommands,
+                     [this](const ubersim::sim_commands_t& m) {
+                       if (m.team == 1 && m.sequence < 0) {  // a ping coming back
+                         last_ping_back_ = -m.sequence;
+                         return;
+                       }
+                       if (m.team == 0 || m.team == 1) commands_[m.team].push_back(m);
+                     });
   for (int team = 0; team < 2; ++team) {
     bus_.subscribe<ubersim::radio_feedback_t>(
-        channels_.radio_feedback(static_cast<ubersim::Team>(team)),
+        ubersim::channel_name(channels_,
+                              ubersim::topics::kRadioFeedback.of(static_cast<ubersim::Team>(team))),
         [this, team](const ubersim::radio_feedback_t& m) {
           feedback_[team].push_back({m, last_state_time_});
         });
@@ -31,11 +33,12 @@ void RadioDriver::publish_state(std::int64_t step) {
   auto s = state(step * kStep, step, robots_per_team_);
   if (decorate) decorate(s);
   last_state_time_ = s.sim_time;
-  bus_.publish(channels_(ubersim::Channel::SimState), s);
+  ubersim::publish(bus_, channels_, ubersim::topics::kSimState, s);
 }
 
 void RadioDriver::send(int team, const ubersim::radio_packet_t& p) {
-  bus_.publish(channels_.radio(static_cast<ubersim::Team>(team)), p);
+  ubersim::publish(bus_, channels_, ubersim::topics::kRadio.of(static_cast<ubersim::Team>(team)),
+                   p);
 }
 
 void RadioDriver::publish_raw(const std::string& channel, const std::vector<std::uint8_t>& bytes) {

@@ -20,9 +20,9 @@
 
 #include "child_process.hpp"  // tests/support
 #include "radio_test_util.hpp"
-#include "ubersim/channels.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/topics.hpp"
 
 namespace {
 
@@ -68,14 +68,13 @@ class RadioPhysicsTest : public ::testing::Test {
 
     bus_ = std::make_unique<ubersim::MessageBus>(
         ubersim::with_receive_buffer(ubersim::default_lcm_url()));
-    bus_->subscribe<ubersim::sim_state_t>(channels_(ubersim::Channel::SimState),
-                                          [this](const ubersim::sim_state_t& s) { on_state(s); });
-    bus_->subscribe<ubersim::sim_commands_t>(
-        channels_(ubersim::Channel::SimCommands),
+    ubersim::subscribe(*bus_, channels_, ubersim::topics::kSimState,
+                       [this](const ubersim::sim_state_t& s) { on_state(s); });
+    ubersim::subscribe(
+        *bus_, channels_, ubersim::topics::kSimCommands,
         [this](const ubersim::sim_commands_t& m) { forwarded_[m.team].push_back(m); });
-    bus_->subscribe<ubersim::sim_control_ack_t>(
-        channels_(ubersim::Channel::SimControlAck),
-        [this](const ubersim::sim_control_ack_t& a) { acks_[a.request_id] = a; });
+    ubersim::subscribe(*bus_, channels_, ubersim::topics::kSimControlAck,
+                       [this](const ubersim::sim_control_ack_t& a) { acks_[a.request_id] = a; });
 
     physics_ = std::make_unique<ubersim::test::ChildProcess>(
         std::vector<std::string>{UBERSIM_PHYSICS_EXE, "--lockstep", "--scenario",
@@ -136,7 +135,7 @@ class RadioPhysicsTest : public ::testing::Test {
     request.action = action;
     request.step_count = step_count;
     request.speed_factor = 0;
-    bus_->publish(channels_(ubersim::Channel::SimControl), request);
+    ubersim::publish(*bus_, channels_, ubersim::topics::kSimControl, request);
     const std::int64_t id = request_id_;
     return wait([&] { return acks_.count(id) > 0; }, timeout_ms) && acks_[id].ok;
   }
@@ -147,7 +146,8 @@ class RadioPhysicsTest : public ::testing::Test {
   bool send_and_wait(int team, double vx, int timeout_ms = 30000) {
     auto p = radio_test::packet(team, ++sequence_[team], {0});
     p.commands[0].vx = vx;
-    bus_->publish(channels_.radio(static_cast<ubersim::Team>(team)), p);
+    ubersim::publish(*bus_, channels_, ubersim::topics::kRadio.of(static_cast<ubersim::Team>(team)),
+                     p);
     const std::int64_t sequence = sequence_[team];
     return wait(
         [&] { return !forwarded_[team].empty() && forwarded_[team].back().sequence == sequence; },

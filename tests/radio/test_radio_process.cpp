@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "radio_process_fixture.hpp"
+#include "ubersim/topics.hpp"
 
 using radio_test::packet;
 using radio_test::profile_text;
@@ -199,14 +200,19 @@ TEST_F(RadioProcessTest, BadInputIsCountedNeverForwardedAndNeverCrashesIt) {
     driver_->send(0, packet(0, 5000 + i, {2, 2}));  // robot 2 twice
     driver_->send(0, packet(0, 6000 + i, {42}));    // not on the field
     const std::vector<std::uint8_t> garbage{1, 2, 3, 4, 5, 6, 7};
-    driver_->publish_raw(driver_->channels().radio(ubersim::Team::Yellow), garbage);
-    driver_->publish_raw(driver_->channels()(ubersim::Channel::SimState), garbage);
+    driver_->publish_raw(ubersim::channel_name(driver_->channels(),
+                                               ubersim::topics::kRadio.of(ubersim::Team::Yellow)),
+                         garbage);
+    driver_->publish_raw(ubersim::channel_name(driver_->channels(), ubersim::topics::kSimState),
+                         garbage);
     // A well-formed header claiming -1 commands (used to throw out of LCM's decode).
     auto negative = packet(0, 7000 + i, {});
     std::vector<std::uint8_t> bytes(negative.getEncodedSize());
     negative.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
     std::fill(bytes.end() - 4, bytes.end(), 0xff);
-    driver_->publish_raw(driver_->channels().radio(ubersim::Team::Yellow), bytes);
+    driver_->publish_raw(ubersim::channel_name(driver_->channels(),
+                                               ubersim::topics::kRadio.of(ubersim::Team::Yellow)),
+                         bytes);
     if (i % 20 == 0) {
       ASSERT_TRUE(driver_->sync()) << "the emulator stopped answering";
     }

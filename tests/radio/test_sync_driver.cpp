@@ -41,13 +41,28 @@ ubersim::vision_schedule_t first_frame() {
   return s;
 }
 
+// A horizon's hold, typed reason and name: "registering", "next frame vision", "client a".
+std::string hold_of(const ubersim::sync_horizon_t& h) {
+  using ubersim::sync_horizon_t;
+  switch (h.held_by) {
+    case sync_horizon_t::HELD_BY_REGISTRATION:
+      return "registering" + h.waiting_for;
+    case sync_horizon_t::HELD_BY_NEXT_FRAME:
+      return "next frame " + h.waiting_for;
+    case sync_horizon_t::HELD_BY_CLIENT:
+      return "client " + h.waiting_for;
+    default:
+      return "nothing" + h.waiting_for;
+  }
+}
+
 // The driver of a yellow client ("a"), and what it says on the bus, in order:
-// "horizon:<waiting_for>", "status:<yellow drops>", "demand" (its before_release).
+// "horizon:<hold_of>", "status:<yellow drops>", "demand" (its before_release).
 struct Rig {
   explicit Rig(bool strict) : emulator(profiles(), 1) {
     using namespace ubersim;
     subscribe(bus, channels, topics::kSyncHorizon,
-              [this](const sync_horizon_t& h) { said.push_back("horizon:" + h.waiting_for); });
+              [this](const sync_horizon_t& h) { said.push_back("horizon:" + hold_of(h)); });
     subscribe(bus, channels, topics::kSyncStatus, [this](const sync_status_t& s) {
       said.push_back("status:" + std::to_string(s.drops[0]));
     });
@@ -84,15 +99,16 @@ TEST(SyncDriver, HoldsUntilRegisteredAndAnnouncesTheDemandRightBeforeTheRelease)
   Rig rig(false);
   const Clock::time_point t0 = Clock::now();
   ASSERT_TRUE(rig.driver->tick(t0));
-  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"status:0", "horizon:registration"}));
+  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"status:0", "horizon:registering"}));
   ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(50)));
   EXPECT_TRUE(rig.heard().empty()) << "nothing new, and less than 100 ms since the last horizon";
   ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(100)));
-  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"horizon:registration"})) << "the repeat";
+  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"horizon:registering"})) << "the repeat";
   rig.driver->on_client(client(0, "a"), t0 + milliseconds(120));
-  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"status:0", "demand", "horizon:vision"}));
+  EXPECT_EQ(rig.heard(),
+            (std::vector<std::string>{"status:0", "demand", "horizon:next frame vision"}));
   rig.driver->on_schedule(first_frame(), t0 + milliseconds(130));
-  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"horizon:a"})) << "once only: no demand";
+  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"horizon:client a"})) << "once only: no demand";
 }
 
 TEST(SyncDriver, OwnStallIsForgivenAndAClientPastTheTimeoutDropped) {
@@ -107,10 +123,10 @@ TEST(SyncDriver, OwnStallIsForgivenAndAClientPastTheTimeoutDropped) {
   ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(1100)));
   rig.heard();
   ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(1200))) << "0.4 s owed: in time";
-  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"horizon:a"}));
+  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"horizon:client a"}));
   ASSERT_TRUE(rig.driver->tick(t0 + milliseconds(1350))) << "0.55 s owed: dropped, run goes on";
   // No client left: nothing bounds the horizon.
-  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"status:1", "horizon:"}))
+  EXPECT_EQ(rig.heard(), (std::vector<std::string>{"status:1", "horizon:nothing"}))
       << "the drop goes out before the horizon that lets physics past it";
 }
 

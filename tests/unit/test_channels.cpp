@@ -2,44 +2,56 @@
 
 #include <set>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "ubersim/channels.hpp"
 #include "ubersim/cli.hpp"
+#include "ubersim/field_side.hpp"
 #include "ubersim/topics.hpp"
 
-using ubersim::Channel;
+using ubersim::channel_name;
 using ubersim::ChannelNames;
 using ubersim::Team;
+namespace topics = ubersim::topics;
 
 TEST(Channels, DefaultNamesMatchTheRealServers) {
   const ChannelNames names;
-  EXPECT_EQ(names(Channel::Vision), "VISION");
-  EXPECT_EQ(names.radio(Team::Yellow), "RADIO_YELLOW");
-  EXPECT_EQ(names.radio(Team::Blue), "RADIO_BLUE");
-  EXPECT_EQ(names.radio_feedback(Team::Blue), "RADIO_FEEDBACK_BLUE");
-  EXPECT_EQ(names(Channel::SimState), "SIM_STATE");
+  EXPECT_EQ(channel_name(names, topics::kVision), "VISION");
+  EXPECT_EQ(channel_name(names, topics::kRadio.of(Team::Yellow)), "RADIO_YELLOW");
+  EXPECT_EQ(channel_name(names, topics::kRadio.of(Team::Blue)), "RADIO_BLUE");
+  EXPECT_EQ(channel_name(names, topics::kRadioFeedback.of(Team::Blue)), "RADIO_FEEDBACK_BLUE");
+  EXPECT_EQ(channel_name(names, topics::kSimState), "SIM_STATE");
 }
 
 TEST(Channels, EveryChannelHasADistinctName) {
   const ChannelNames names;
   std::set<std::string> seen;
-  for (Channel channel : ubersim::kAllChannels) EXPECT_TRUE(seen.insert(names(channel)).second);
+  for (std::string_view base : topics::kAllNames) {
+    EXPECT_TRUE(seen.insert(names.resolve(base)).second) << base;
+  }
 }
 
 TEST(Channels, PrefixAppliesToEveryChannel) {
   const ChannelNames names("SIM2_", {});
-  for (Channel channel : ubersim::kAllChannels) {
-    EXPECT_EQ(names(channel), std::string("SIM2_") + ubersim::base_channel_name(channel));
+  for (std::string_view base : topics::kAllNames) {
+    EXPECT_EQ(names.resolve(base), "SIM2_" + std::string(base));
+  }
+}
+
+TEST(Channels, EveryChannelCanBeOverridden) {
+  for (std::string_view base : topics::kAllNames) {
+    const ChannelNames names("P_", {{std::string(base), "MINE"}});
+    EXPECT_EQ(names.resolve(base), "MINE");
   }
 }
 
 TEST(Channels, OverrideBeatsPrefix) {
   const ChannelNames names("P_", {{"VISION", "CAMERAS"}});
-  EXPECT_EQ(names(Channel::Vision), "CAMERAS");
-  EXPECT_EQ(names(Channel::SimState), "P_SIM_STATE");
+  EXPECT_EQ(channel_name(names, topics::kVision), "CAMERAS");
+  EXPECT_EQ(channel_name(names, topics::kSimState), "P_SIM_STATE");
 }
 
 TEST(Channels, BadOverridesAreRejected) {
@@ -93,19 +105,15 @@ static_assert(std::is_invocable_v<ubersim::Publisher<ubersim::sim_state_t>, uber
 static_assert(!std::is_invocable_v<ubersim::Publisher<ubersim::sim_state_t>, ubersim::referee_t>);
 }  // namespace typed_topics
 
-// Every channel has its topic, under the name the channel list gives it: the
-// README's table (printed from the topics) then lists every channel.
-TEST(Channels, EveryChannelHasATypedTopicOfTheSameName) {
+// Every topic has its row in the README's table (printed from the topics).
+TEST(Channels, EveryTopicHasARowInTheTable) {
   std::set<std::string> in_table;
   for (const auto& row : ubersim::topic_table()) in_table.insert(row.channels);
   std::string all;
   for (const auto& name : in_table) all += name + " ";
-  for (ubersim::Channel channel : ubersim::kAllChannels) {
-    const std::string quoted = std::string("`") + ubersim::base_channel_name(channel) + "`";
-    EXPECT_NE(all.find(quoted), std::string::npos) << quoted << " has no topic";
-  }
-  for (const char* extra : ubersim::kExtraChannels) {
-    EXPECT_NE(all.find(std::string("`") + extra + "`"), std::string::npos) << extra;
+  for (std::string_view base : topics::kAllNames) {
+    const std::string quoted = "`" + std::string(base) + "`";
+    EXPECT_NE(all.find(quoted), std::string::npos) << quoted << " has no row";
   }
   const ChannelNames channels("P_", {{"SIM_STATE", "TRUTH"}});
   EXPECT_EQ(ubersim::channel_name(channels, ubersim::topics::kSimState), "TRUTH");
@@ -134,4 +142,13 @@ TEST(Channels, PublisherSendsOnTheTopicsChannelInThisProcess) {
   feedback(ubersim::radio_feedback_t{});
   bus.handle_pending();
   EXPECT_EQ(heard, (std::vector<std::string>{"commands", "feedback"}));
+}
+
+// The side a team defends: one parser for every program and the Python module.
+TEST(DefendedSide, NegativeAndPositiveOnly) {
+  EXPECT_EQ(ubersim::parse_defended_side("negative"), -1);
+  EXPECT_EQ(ubersim::parse_defended_side("positive"), 1);
+  EXPECT_THROW(ubersim::parse_defended_side("Positive"), std::invalid_argument);
+  EXPECT_THROW(ubersim::parse_defended_side("-1"), std::invalid_argument);
+  EXPECT_THROW(ubersim::parse_defended_side(""), std::invalid_argument);
 }

@@ -13,6 +13,7 @@
 
 #include "ubersim/cli.hpp"
 #include "ubersim/process_host.hpp"
+#include "ubersim/topics.hpp"
 
 namespace {
 
@@ -172,7 +173,7 @@ TEST(ProcessHost, ASignalStopsTheRunCleanlyAndStopSetsTheStatus) {
 
 TEST(ProcessHost, TheTruthDemandGoesOutBeforeTheFirstWaitAndOnceASecond) {
   const ubersim::ChannelNames channels;
-  Listener listener(channels.extra(ubersim::kTruthDemandChannel));
+  Listener listener(ubersim::channel_name(channels, ubersim::topics::kTruthDemand));
   ProcessHost host(bus_url(), channels, "viewer");
   host.truth_demand().periodic(60);
   int turns = 0;
@@ -190,7 +191,7 @@ TEST(ProcessHost, TheTruthDemandGoesOutBeforeTheFirstWaitAndOnceASecond) {
 
 TEST(ProcessHost, AFollowedDemandGoesOutWhenItChanges) {
   const ubersim::ChannelNames channels;
-  Listener listener(channels.extra(ubersim::kTruthDemandChannel));
+  Listener listener(ubersim::channel_name(channels, ubersim::topics::kTruthDemand));
   ProcessHost host(bus_url(), channels, "radio");
   double instant = 0.5;
   host.truth_demand().follow(
@@ -220,7 +221,7 @@ TEST(ProcessHost, AFollowedDemandGoesOutWhenItChanges) {
 
 TEST(ProcessHost, ADemandRenewedOnAnnounceGoesOutOnlyWhenAnnounced) {
   const ubersim::ChannelNames channels;
-  Listener listener(channels.extra(ubersim::kTruthDemandChannel));
+  Listener listener(ubersim::channel_name(channels, ubersim::topics::kTruthDemand));
   ProcessHost host(bus_url(), channels, "vision");
   double instant = 0.5;
   ubersim::TruthDemandAnnouncer& demand = host.truth_demand();

@@ -14,6 +14,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/sync_client.hpp"
+#include "ubersim/topics.hpp"
 
 namespace {
 
@@ -64,7 +65,7 @@ std::vector<std::uint8_t> encoded(const ubersim::sync_client_t& message) {
 
 TEST(SyncClient, JoinsAtOnceSaysItAgainEverySecondAndSaysGoodbyeOnce) {
   const ubersim::ChannelNames channels;
-  Listener radio(channels.extra(ubersim::kSyncClientChannel));
+  Listener radio(ubersim::channel_name(channels, ubersim::topics::kSyncClient));
   ubersim::MessageBus bus(bus_url());
   SyncClient client(bus, channels, Team::Blue, "demo_blue");
   const Clock::time_point t0 = Clock::now();
@@ -93,7 +94,7 @@ TEST(SyncClient, JoinsAtOnceSaysItAgainEverySecondAndSaysGoodbyeOnce) {
 
 TEST(SyncClient, ADroppedClientFallsSilentWithoutAGoodbyeUntilItJoinsAgain) {
   const ubersim::ChannelNames channels;
-  Listener radio(channels.extra(ubersim::kSyncClientChannel));
+  Listener radio(ubersim::channel_name(channels, ubersim::topics::kSyncClient));
   ubersim::MessageBus bus(bus_url());
   SyncClient client(bus, channels, Team::Yellow, "ssl_bridge_yellow");
   const Clock::time_point t0 = Clock::now();
@@ -112,7 +113,7 @@ TEST(SyncClient, ADroppedClientFallsSilentWithoutAGoodbyeUntilItJoinsAgain) {
 
 TEST(SyncClient, SpeaksOnTheChannelTheCommandLineNames) {
   const ubersim::ChannelNames channels("SIM2_", {});
-  Listener other_set(ubersim::ChannelNames().extra(ubersim::kSyncClientChannel));
+  Listener other_set(ubersim::channel_name(ubersim::ChannelNames(), ubersim::topics::kSyncClient));
   Listener radio("SIM2_SYNC_CLIENT");
   ubersim::MessageBus bus(bus_url());
   SyncClient client(bus, channels, Team::Yellow, "demo_yellow");
@@ -127,7 +128,7 @@ TEST(SyncClient, SpeaksOnTheChannelTheCommandLineNames) {
 // the wakeups a second apart, goodbye when the run stops.
 TEST(SyncClient, OnAHostItRepeatsAfterWakeupsAndLeavesAtStop) {
   const ubersim::ChannelNames channels;
-  Listener radio(channels.extra(ubersim::kSyncClientChannel));
+  Listener radio(ubersim::channel_name(channels, ubersim::topics::kSyncClient));
   ProcessHost host(bus_url(), channels, "demo_yellow");
   SyncClient client(host.bus(), channels, Team::Yellow, "demo_yellow");
   client.join(host.now());

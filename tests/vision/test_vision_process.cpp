@@ -21,6 +21,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/robot_config.hpp"
+#include "ubersim/topics.hpp"
 #include "ubersim/vision_backpressure.hpp"
 #include "vision_test_support.hpp"
 
@@ -955,8 +956,8 @@ TEST_F(VisionProcess, AsFastAsPossibleAStateIsAcknowledgedEveryAckIntervalOfSimT
   ubersim::MessageBus spy(ubersim::with_receive_buffer(ubersim::default_lcm_url()));
   const ubersim::ChannelNames channels;
   std::vector<double> acknowledged;
-  spy.subscribe<ubersim::vision_schedule_t>(
-      channels.extra(ubersim::kVisionScheduleChannel), [&](const ubersim::vision_schedule_t& s) {
+  ubersim::subscribe(
+      spy, channels, ubersim::topics::kVisionSchedule, [&](const ubersim::vision_schedule_t& s) {
         if (s.step >= 0 && (acknowledged.empty() || s.t_state != acknowledged.back())) {
           acknowledged.push_back(s.t_state);
         }
@@ -992,13 +993,13 @@ TEST_F(VisionProcess, InRealTimeDemandsComeEveryFewFramesAndSchedulesOnlyAsRepet
   int demands = 0;
   int schedules = 0;
   int frames_listed = 0;
-  spy.subscribe<ubersim::truth_demand_t>(channels.extra(ubersim::kTruthDemandChannel),
-                                         [&](const ubersim::truth_demand_t&) { ++demands; });
-  spy.subscribe<ubersim::vision_schedule_t>(channels.extra(ubersim::kVisionScheduleChannel),
-                                            [&](const ubersim::vision_schedule_t& s) {
-                                              ++schedules;
-                                              frames_listed += s.num_frames;
-                                            });
+  ubersim::subscribe(spy, channels, ubersim::topics::kTruthDemand,
+                     [&](const ubersim::truth_demand_t&) { ++demands; });
+  ubersim::subscribe(spy, channels, ubersim::topics::kVisionSchedule,
+                     [&](const ubersim::vision_schedule_t& s) {
+                       ++schedules;
+                       frames_listed += s.num_frames;
+                     });
   const auto pace_start = std::chrono::steady_clock::now();
   constexpr std::int64_t kRealTimeSteps = 480;  // 2 s
   for (std::int64_t step = 0; step <= kRealTimeSteps; ++step) {
@@ -1050,14 +1051,14 @@ TEST_F(VisionProcess, TheDemandGoesOutBeforeTheScheduleThatNeedsIt) {
   // Listening before the child can speak; one socket, so in the order sent.
   ubersim::MessageBus spy(ubersim::with_receive_buffer(ubersim::default_lcm_url()));
   const ubersim::ChannelNames channels;
-  spy.subscribe<ubersim::truth_demand_t>(channels.extra(ubersim::kTruthDemandChannel),
-                                         [&](const ubersim::truth_demand_t& d) {
-                                           if (d.consumer == "vision") said.push_back({true, 0});
-                                         });
-  spy.subscribe<ubersim::vision_schedule_t>(channels.extra(ubersim::kVisionScheduleChannel),
-                                            [&](const ubersim::vision_schedule_t& s) {
-                                              said.push_back({false, s.step});
-                                            });
+  ubersim::subscribe(spy, channels, ubersim::topics::kTruthDemand,
+                     [&](const ubersim::truth_demand_t& d) {
+                       if (d.consumer == "vision") said.push_back({true, 0});
+                     });
+  ubersim::subscribe(spy, channels, ubersim::topics::kVisionSchedule,
+                     [&](const ubersim::vision_schedule_t& s) {
+                       said.push_back({false, s.step});
+                     });
   start(profile(base_keys()));
   const World world = [](double t) { return moving_robots(t, false); };
   lockstep(0, 60, world);

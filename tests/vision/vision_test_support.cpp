@@ -19,6 +19,7 @@
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/cli.hpp"
+#include "ubersim/topics.hpp"
 
 extern char** environ;
 
@@ -112,17 +113,16 @@ ubersim::field_geometry_t division_b_geometry() {
 }
 
 SimDriver::SimDriver() : bus_(ubersim::with_receive_buffer(ubersim::default_lcm_url())) {
-  bus_.subscribe<ubersim::vision_frame_t>(
-      channels_(ubersim::Channel::Vision),
-      std::function<void(const ubersim::vision_frame_t&)>(
-          [this](const ubersim::vision_frame_t& frame) { on_frame(frame); }),
-      100000);
-  bus_.subscribe<ubersim::vision_geometry_t>(
-      channels_(ubersim::Channel::VisionGeometry),
+  ubersim::subscribe(bus_, channels_, ubersim::topics::kVision,
+                     std::function<void(const ubersim::vision_frame_t&)>(
+                         [this](const ubersim::vision_frame_t& frame) { on_frame(frame); }),
+                     100000);
+  ubersim::subscribe(
+      bus_, channels_, ubersim::topics::kVisionGeometry,
       std::function<void(const ubersim::vision_geometry_t&)>(
           [this](const ubersim::vision_geometry_t& g) { geometries_.push_back(g); }));
-  bus_.subscribe<ubersim::sim_control_t>(
-      channels_(ubersim::Channel::SimControl),
+  ubersim::subscribe(
+      bus_, channels_, ubersim::topics::kSimControl,
       std::function<void(const ubersim::sim_control_t&)>([this](const ubersim::sim_control_t& c) {
         if (c.action == ubersim::sim_control_t::REQUEST_GEOMETRY) emulator_ready_ = true;
       }));
@@ -163,19 +163,20 @@ bool SimDriver::wait_for_emulator(const ubersim::field_geometry_t& geometry, dou
 }
 
 void SimDriver::publish_state(const ubersim::sim_state_t& state) {
-  bus_.publish(channels_(ubersim::Channel::SimState), state);
+  ubersim::publish(bus_, channels_, ubersim::topics::kSimState, state);
 }
 
 void SimDriver::publish_raw_state(const std::vector<std::uint8_t>& bytes) {
-  bus_.publish_encoded(channels_(ubersim::Channel::SimState), bytes.data(), bytes.size());
+  bus_.publish_encoded(ubersim::channel_name(channels_, ubersim::topics::kSimState), bytes.data(),
+                       bytes.size());
 }
 
 void SimDriver::publish_cameras(const ubersim::vision_cameras_t& cameras) {
-  bus_.publish(channels_.vision_cameras(), cameras);
+  ubersim::publish(bus_, channels_, ubersim::topics::kVisionCameras, cameras);
 }
 
 void SimDriver::publish_geometry(const ubersim::field_geometry_t& geometry) {
-  bus_.publish(channels_(ubersim::Channel::SimGeometry), geometry);
+  ubersim::publish(bus_, channels_, ubersim::topics::kSimGeometry, geometry);
 }
 
 void SimDriver::listen(double seconds) {

@@ -17,8 +17,10 @@
 #include "behaviour.hpp"
 #include "referee_rules.hpp"
 #include "ubersim/cli.hpp"
+#include "ubersim/field_side.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/process_host.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/sync_client.hpp"
 #include "ubersim/topics.hpp"
 
@@ -166,7 +168,7 @@ void add_options(CLI::App& app, Options& o) {
       ->capture_default_str();
   app.add_option("--defends", o.defends_text,
                  "negative | positive x goal (default: yellow negative, blue positive)")
-      ->check(CLI::IsMember({"negative", "positive"}));
+      ->check(CLI::IsMember(ubersim::kDefendedSides));
   app.add_option("--rate", o.rate, "commands per second of capture time (Hz)")
       ->capture_default_str()
       ->check(ubersim::greater_than(0));
@@ -179,9 +181,7 @@ void add_options(CLI::App& app, Options& o) {
                "(docs/sync.md)");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int parse_and_run(int argc, char** argv) {
   Options options;
   CLI::App app{"ubersim demo team: drives one team's robots from VISION over RADIO_<TEAM>"};
   add_options(app, options);
@@ -197,11 +197,12 @@ int main(int argc, char** argv) {
   const bool yellow = own == ubersim::Team::Yellow;
   options.team.defends = options.defends_text.empty()
                              ? (yellow ? -1 : 1)
-                             : (options.defends_text == "negative" ? -1 : 1);
-  try {
-    return run(options, own);
-  } catch (const std::exception& error) {
-    spdlog::error("{}", error.what());
-    return 1;
-  }
+                             : ubersim::parse_defended_side(options.defends_text);
+  return run(options, own);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ubersim::run_main("demo_team", [&] { return parse_and_run(argc, argv); });
 }

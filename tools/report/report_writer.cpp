@@ -359,8 +359,8 @@ void write_acceleration(std::ostream& md, const FidelityResults& results,
     md << fmt::format(
         "| {} | {} | {:.2f} m/s^2 | {:.3f} ({:.3f} .. {:.3f}) m/s^2 | {:.3f} ({:.3f}) m/s^2 | {} "
         "| ±5 % | {} |\n",
-        r.settings.robot_type, robot.model == DriveModel::Jointed ? "jointed" : "planar",
-        r.settings.acceleration, mean(truth), *std::min_element(truth.begin(), truth.end()),
+        r.settings.robot_type, enum_name(robot.model, kDriveModelNames), r.settings.acceleration,
+        mean(truth), *std::min_element(truth.begin(), truth.end()),
         *std::max_element(truth.begin(), truth.end()), mean(vision), standard_deviation(vision),
         worst_error(accel), verdict(accel.met()));
   }

@@ -12,6 +12,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/config_paths.hpp"
+#include "ubersim/topics.hpp"
 
 namespace ubersim::report {
 namespace {
@@ -42,7 +43,7 @@ SimRig::SimRig(const RigPaths& paths, const RigOptions& options)
   bus_ = std::make_unique<MessageBus>(with_receive_buffer(default_lcm_url()));
   truth_demand_ = std::make_unique<TruthDemandAnnouncer>(*bus_, channels_, sender_);
   truth_demand_->every_step();
-  bus_->subscribe<sim_state_t>(channels_(Channel::SimState), [this](const sim_state_t& s) {
+  ubersim::subscribe(*bus_, channels_, topics::kSimState, [this](const sim_state_t& s) {
     // Physics publishes a step's state again after a placement and, while idle
     // in lockstep, once a second of wall time: handlers see each step once, so
     // that what they record does not depend on the wall clock.
@@ -52,18 +53,17 @@ SimRig::SimRig(const RigPaths& paths, const RigOptions& options)
     dispatched_step_ = s.step;
     for (auto& handler : state_handlers_) handler(s);
   });
-  bus_->subscribe<vision_frame_t>(channels_(Channel::Vision), [this](const vision_frame_t& f) {
+  ubersim::subscribe(*bus_, channels_, topics::kVision, [this](const vision_frame_t& f) {
     if (f.camera_id == marker_camera_) {
       marker_time_ = std::max(marker_time_, f.t_capture);
       return;
     }
     for (auto& handler : frame_handlers_) handler(f);
   });
-  bus_->subscribe<sim_control_ack_t>(channels_(Channel::SimControlAck),
-                                     [this](const sim_control_ack_t& a) {
-                                       if (a.sender == sender_) acks_[a.request_id] = a;
-                                     });
-  bus_->subscribe<sim_commands_t>(channels_(Channel::SimCommands), [this](const sim_commands_t& c) {
+  ubersim::subscribe(*bus_, channels_, topics::kSimControlAck, [this](const sim_control_ack_t& a) {
+    if (a.sender == sender_) acks_[a.request_id] = a;
+  });
+  ubersim::subscribe(*bus_, channels_, topics::kSimCommands, [this](const sim_commands_t& c) {
     if (c.team == team_t::BLUE) ping_forwarded_ = c.sequence;
   });
 
@@ -167,7 +167,7 @@ bool SimRig::control(sim_control_t request, double timeout_s, sim_control_ack_t*
   request.sender = sender_;
   request.num_robots = static_cast<int32_t>(request.robots.size());
   const std::int64_t id = request.request_id;
-  bus_->publish(channels_(Channel::SimControl), request);
+  ubersim::publish(*bus_, channels_, topics::kSimControl, request);
   if (!wait([&] { return acks_.count(id) > 0; }, timeout_s)) return false;
   if (ack != nullptr) *ack = acks_[id];
   const bool ok = acks_[id].ok;
@@ -211,7 +211,7 @@ bool SimRig::ping_radio(double timeout_s) {
   stand_still.mode = robot_command_t::MODE_LOCAL_VELOCITY;
   ping.commands.push_back(stand_still);
   ping.num_commands = 1;
-  bus_->publish(channels_.radio(Team::Blue), ping);
+  ubersim::publish(*bus_, channels_, topics::kRadio.of(Team::Blue), ping);
   const std::int64_t sequence = ping.sequence;
   return wait([&] { return ping_forwarded_ >= sequence; }, timeout_s);
 }
@@ -221,7 +221,7 @@ void SimRig::send(radio_packet_t packet) {
   packet.sequence = ++yellow_sequence_;
   packet.num_commands = static_cast<int32_t>(packet.commands.size());
   for (auto& c : packet.commands) c.num_wheels = static_cast<int32_t>(c.wheel_speeds.size());
-  bus_->publish(channels_.radio(Team::Yellow), packet);
+  ubersim::publish(*bus_, channels_, topics::kRadio.of(Team::Yellow), packet);
   if (!ping_radio(kReplyTimeout)) fail("the radio emulator does not forward the blue ping");
 }
 

@@ -1,6 +1,7 @@
 // ubersim_config_check: loads config files with the schema of their kind and
 // prints the first error (file, line, what was expected) or "ok". The same
-// loaders the processes use, so a file that passes here loads there.
+// loaders the processes use, so a file that passes here loads there. Exit 0
+// when every file loads, 2 when one has an error (as every program on a config error).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include "ubersim/config_paths.hpp"
 #include "ubersim/field_config.hpp"
 #include "ubersim/json_string.hpp"
+#include "ubersim/process_main.hpp"
 #include "ubersim/robot_config.hpp"
 #include "ubersim/scenario_config.hpp"
 
@@ -37,9 +39,7 @@ void dump(const ubersim::ConfigFile& config) {
   std::cout << "}\n";
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int parse_and_run(int argc, char** argv) {
   CLI::App app{"Check ubersim config files against the schema of their kind"};
   std::string kind;
   std::vector<std::string> names;
@@ -73,5 +73,11 @@ int main(int argc, char** argv) {
       ++failures;
     }
   }
-  return failures == 0 ? 0 : 1;
+  return failures == 0 ? 0 : 2;  // a config error, as in every program
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ubersim::run_main("ubersim_config_check", [&] { return parse_and_run(argc, argv); });
 }

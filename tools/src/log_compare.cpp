@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ubersim/cli.hpp"
+#include "ubersim/process_main.hpp"
 
 namespace {
 
@@ -29,9 +30,7 @@ std::map<std::string, Messages> read_log(const std::string& path, const std::reg
   return out;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int parse_and_run(int argc, char** argv) {
   CLI::App app{"compare two LCM logs channel by channel (message bytes, in order)"};
   std::string first, second, pattern = ".*";
   app.add_option("first", first, "an lcm-logger log")->required();
@@ -66,4 +65,10 @@ int main(int argc, char** argv) {
     std::cerr << "ubersim_log_compare: " << error.what() << "\n";
     return 2;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ubersim::run_main("ubersim_log_compare", [&] { return parse_and_run(argc, argv); });
 }

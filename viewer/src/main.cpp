@@ -21,6 +21,7 @@
 #include "ubersim/logging.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/process_main.hpp"
+#include "ubersim/sim_control_requests.hpp"
 #include "ubersim/topics.hpp"
 #include "ubersim/viewer/json_encoding.hpp"
 #include "ubersim/viewer/viewer_model.hpp"
@@ -157,11 +158,7 @@ int run(const Options& options) {
   // Ask physics for the field at once rather than wait for its next periodic one.
   const Publisher<sim_control_t> control(host.bus(), host.channels(), topics::kSimControl);
   std::int64_t next_request_id = 1;
-  sim_control_t geometry_request{};
-  geometry_request.request_id = next_request_id++;
-  geometry_request.sender = "viewer";
-  geometry_request.action = sim_control_t::REQUEST_GEOMETRY;
-  control(geometry_request);
+  control(geometry_request("viewer", next_request_id++));
 
   ThrottledLog bad_request;
   host.after_wake([&](Clock::time_point) {

@@ -37,6 +37,7 @@
 #include "ubersim/config_paths.hpp"
 #include "ubersim/field_config.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/topics.hpp"
 #include "ubersim/vision/vision_emulator.hpp"
 
 namespace {
@@ -177,13 +178,13 @@ void measure_realtime(const std::string& profile_name,
 
   std::vector<double> delays, excess;
   bool ready = false;
-  listener.subscribe<ubersim::sim_control_t>(
-      channels(ubersim::Channel::SimControl),
+  ubersim::subscribe(
+      listener, channels, ubersim::topics::kSimControl,
       std::function<void(const ubersim::sim_control_t&)>([&](const ubersim::sim_control_t& c) {
         if (c.action == ubersim::sim_control_t::REQUEST_GEOMETRY) ready = true;
       }));
-  listener.subscribe<ubersim::vision_frame_t>(
-      channels(ubersim::Channel::Vision),
+  ubersim::subscribe(
+      listener, channels, ubersim::topics::kVision,
       std::function<void(const ubersim::vision_frame_t&)>([&](const ubersim::vision_frame_t& f) {
         const auto arrival = WallClock::now();
         const auto step = static_cast<std::int64_t>(std::llround(f.t_capture / kDt));
@@ -211,8 +212,8 @@ void measure_realtime(const std::string& profile_name,
     std::printf("  ubersim_vision did not come up\n");
     return;
   }
-  publisher.publish(channels(ubersim::Channel::SimGeometry),
-                    ubersim::load_field_config(config_dir, "division_a").to_message(0.0215));
+  ubersim::publish(publisher, channels, ubersim::topics::kSimGeometry,
+                   ubersim::load_field_config(config_dir, "division_a").to_message(0.0215));
 
   std::atomic<bool> done{false};
   std::thread driver([&] {
@@ -224,7 +225,7 @@ void measure_realtime(const std::string& profile_name,
       const sim_state_t state = game_state(step);
       sent[static_cast<std::size_t>(step)] = WallClock::now();
       last_sent.store(step, std::memory_order_release);
-      publisher.publish(channels(ubersim::Channel::SimState), state);
+      ubersim::publish(publisher, channels, ubersim::topics::kSimState, state);
     }
     done = true;
   });

@@ -11,6 +11,7 @@
 #include "ubersim/logging.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/robot_type_definition.hpp"
+#include "ubersim/sim_control_requests.hpp"
 #include "ubersim/topics.hpp"
 #include "ubersim/vision/vision_emulator.hpp"
 #include "ubersim/vision_backpressure.hpp"
@@ -323,11 +324,8 @@ void VisionShell::on_cameras(const vision_cameras_t& cameras) {
 }
 
 void VisionShell::request_geometry() {
-  sim_control_t request{};
-  request.request_id = 1;
-  request.sender = "ubersim_vision";
-  request.action = sim_control_t::REQUEST_GEOMETRY;
-  publish(host_.bus(), host_.channels(), topics::kSimControl, request);
+  publish(host_.bus(), host_.channels(), topics::kSimControl,
+          geometry_request("ubersim_vision", 1));
 }
 
 // What already waits in the socket (physics may have sent its last states

@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "ubersim/enum_names.hpp"
+
 namespace ubersim {
 
 // Every config problem: message already carries "file:line: ".
@@ -77,6 +79,15 @@ class ConfigFile {
   std::string where(const std::string& key) const;
   // A ConfigError located at `key`'s definition.
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+
+  // One word of an enumeration's table (enum_names.hpp); another word fails
+  // with the words it accepts.
+  template <class Enum, std::size_t N>
+  Enum choice(const std::string& key, const EnumNames<Enum, N>& names) const {
+    const std::string text = string(key);
+    if (const std::optional<Enum> value = parse_enum(text, names)) return *value;
+    fail(key, "expected " + enum_choices(names) + ", got '" + text + "'");
+  }
 
   // Throws ConfigError naming the first key (in file order) no accessor has read.
   void require_all_used() const;

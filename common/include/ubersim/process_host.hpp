@@ -4,8 +4,8 @@
 // short wiring block:
 //
 //   ProcessHost host(options.common, "viewer");
-//   host.bus().subscribe<sim_state_t>(host.channels()(Channel::SimState),
-//       [&](const sim_state_t& m) { model.on_sim_state(m, host.now()); });
+//   subscribe(host.bus(), host.channels(), topics::kSimState,
+//             [&](const sim_state_t& m) { model.on_sim_state(m, host.now()); });
 //   host.every(frame_period, [&](ProcessHost::Clock::time_point now) { ... });
 //   host.truth_demand().periodic(60);
 //   return host.run();

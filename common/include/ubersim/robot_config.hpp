@@ -11,6 +11,11 @@ namespace ubersim {
 
 enum class DriveKind { Omni, Differential };
 enum class DriveModel { Jointed, Planar };
+// Their words in a robot config (DRIVE, DRIVE_MODEL) and everywhere else.
+inline constexpr EnumNames<DriveKind, 2> kDriveKindNames{
+    {{"omni", DriveKind::Omni}, {"differential", DriveKind::Differential}}};
+inline constexpr EnumNames<DriveModel, 2> kDriveModelNames{
+    {{"jointed", DriveModel::Jointed}, {"planar", DriveModel::Planar}}};
 
 struct WheelConfig {
   double angle = 0;     // rad, direction from the robot centre to the wheel (0 = forward)

@@ -9,6 +9,7 @@
 // The channel table (README.md, "Processes and channels") is printed from
 // topic_table() by `ubersim_channels --markdown`; test_channel_table fails
 // when the README and this file disagree.
+#include <array>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -63,20 +64,41 @@ inline constexpr Topic<sim_state_t> kSimState{"SIM_STATE"};
 inline constexpr Topic<sim_control_t> kSimControl{"SIM_CONTROL"};
 inline constexpr Topic<sim_control_ack_t> kSimControlAck{"SIM_CONTROL_ACK"};
 inline constexpr Topic<field_geometry_t> kSimGeometry{"SIM_GEOMETRY"};
-inline constexpr Topic<vision_schedule_t> kVisionSchedule{kVisionScheduleChannel};
-inline constexpr Topic<sync_client_t> kSyncClient{kSyncClientChannel};
-inline constexpr Topic<sync_horizon_t> kSyncHorizon{kSyncHorizonChannel};
-inline constexpr Topic<sync_status_t> kSyncStatus{kSyncStatusChannel};
-inline constexpr Topic<referee_t> kReferee{kRefereeChannel};
-inline constexpr Topic<emulator_realism_t> kEmulatorRealism{kEmulatorRealismChannel};
-inline constexpr Topic<vision_cameras_t> kVisionCameras{kVisionCamerasChannel};
-inline constexpr Topic<truth_demand_t> kTruthDemand{kTruthDemandChannel};
+inline constexpr Topic<vision_schedule_t> kVisionSchedule{"SIM_VISION_SCHEDULE"};
+inline constexpr Topic<sync_client_t> kSyncClient{"SYNC_CLIENT"};
+inline constexpr Topic<sync_horizon_t> kSyncHorizon{"SIM_SYNC_HORIZON"};
+inline constexpr Topic<sync_status_t> kSyncStatus{"SIM_SYNC_STATUS"};
+inline constexpr Topic<referee_t> kReferee{"REFEREE"};
+inline constexpr Topic<emulator_realism_t> kEmulatorRealism{"EMULATOR_REALISM"};
+inline constexpr Topic<vision_cameras_t> kVisionCameras{"VISION_CAMERAS"};
+inline constexpr Topic<truth_demand_t> kTruthDemand{"SIM_TRUTH_DEMAND"};
+
+// Every topic's base name: what --channel NAME=OTHER may override.
+inline constexpr std::array<std::string_view, 19> kAllNames{kVision.name,
+                                                            kVisionGeometry.name,
+                                                            kRadio.yellow.name,
+                                                            kRadio.blue.name,
+                                                            kRadioFeedback.yellow.name,
+                                                            kRadioFeedback.blue.name,
+                                                            kSimCommands.name,
+                                                            kSimState.name,
+                                                            kSimControl.name,
+                                                            kSimControlAck.name,
+                                                            kSimGeometry.name,
+                                                            kVisionSchedule.name,
+                                                            kSyncClient.name,
+                                                            kSyncHorizon.name,
+                                                            kSyncStatus.name,
+                                                            kReferee.name,
+                                                            kEmulatorRealism.name,
+                                                            kVisionCameras.name,
+                                                            kTruthDemand.name};
 }  // namespace topics
 
 // The channel name a topic has in this process (prefix and overrides applied).
 template <class Msg>
 std::string channel_name(const ChannelNames& channels, const Topic<Msg>& topic) {
-  return channels.extra(std::string(topic.name).c_str());
+  return channels.resolve(topic.name);
 }
 
 template <class Msg>

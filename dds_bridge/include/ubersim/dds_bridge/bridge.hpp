@@ -16,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ubersim/channels.hpp"
@@ -55,8 +56,8 @@ class Bridge {
   // now, so that the geometry topic holds it for late DDS joiners at once.
   void request_sim_geometry();
 
-  // Per bridged channel and direction.
-  const RouteStats& stats(Channel channel, Direction direction) const;
+  // Per bridged channel (a topic's base name) and direction.
+  const RouteStats& stats(std::string_view channel, Direction direction) const;
   // One line per bridged channel and direction, for the log.
   std::vector<std::string> describe_routes() const;
   std::vector<std::string> summary() const;
@@ -65,7 +66,8 @@ class Bridge {
 
  private:
   template <class Lcm, class Admit>
-  void add(const Route& route, const ChannelNames& channels, Admit admit);
+  void add(const Topic<Lcm>& lcm_topic, const Route& route, const ChannelNames& channels,
+           Admit admit);
   template <class Lcm>
   void publish_lcm(Link& link, const Lcm& message);
 

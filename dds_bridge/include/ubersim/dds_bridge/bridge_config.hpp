@@ -10,10 +10,11 @@
 //
 // A channel with no key is not bridged. Any other key is an error.
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "ubersim/channels.hpp"
 #include "ubersim/config.hpp"
+#include "ubersim/topics.hpp"
 
 namespace ubersim::dds {
 
@@ -23,7 +24,7 @@ bool carries_lcm_to_dds(Direction direction);
 bool carries_dds_to_lcm(Direction direction);
 
 struct Route {
-  Channel channel = Channel::Vision;
+  std::string_view channel;  // the topic's base name (bridged_topics.hpp)
   Direction direction = Direction::Off;
   std::string topic;  // full DDS topic name, prefix included
 };
@@ -32,13 +33,17 @@ struct BridgeConfig {
   std::string name;
   std::string topic_prefix;
   std::string radio_limits;   // radio profile name (config/radio/<name>.cfg)
-  std::vector<Route> routes;  // channels that are bridged, in kAllChannels order
+  std::vector<Route> routes;  // channels that are bridged, in kBridgedTopics order
 
-  const Route* find(Channel channel) const;  // nullptr when not bridged
+  const Route* find(std::string_view channel) const;  // nullptr when not bridged
+  template <class Msg>
+  const Route* find(const Topic<Msg>& topic) const {
+    return find(topic.name);
+  }
 };
 
-// "vision" for Channel::Vision, "radio_yellow" for Channel::RadioYellow ...
-std::string default_topic(Channel channel);
+// "vision" for VISION, "radio_yellow" for RADIO_YELLOW ...
+std::string default_topic(std::string_view channel);
 
 // Reads every key (and rejects any other). Throws ConfigError naming file and line.
 BridgeConfig load_bridge_config(const ConfigFile& config, const std::string& name);

@@ -16,12 +16,25 @@
 // (ignore-local), so a sample the bridge writes never comes back to it.
 #include <dds/dds.h>
 
-#include "ubersim/channels.hpp"
+#include <type_traits>
+
+#include "ubersim/topics.hpp"
 
 namespace ubersim::dds {
 
 enum class TopicUse { Geometry, Command, Stream };
-TopicUse topic_use(Channel channel);
+// A topic's use follows from the message it carries.
+template <class Msg>
+constexpr TopicUse topic_use(const Topic<Msg>& /*topic*/) {
+  if constexpr (std::is_same_v<Msg, vision_frame_t> || std::is_same_v<Msg, sim_state_t>) {
+    return TopicUse::Stream;
+  } else if constexpr (std::is_same_v<Msg, vision_geometry_t> ||
+                       std::is_same_v<Msg, field_geometry_t>) {
+    return TopicUse::Geometry;
+  } else {
+    return TopicUse::Command;
+  }
+}
 const char* topic_use_name(TopicUse use);
 
 struct QosSettings {

@@ -8,6 +8,9 @@
 namespace ubersim::physics {
 
 enum class Solver { QuickStep, Exact };
+// Their words in a physics config (SOLVER).
+inline constexpr EnumNames<Solver, 2> kSolverNames{
+    {{"quickstep", Solver::QuickStep}, {"exact", Solver::Exact}}};
 
 struct PhysicsConfig {
   std::string name;

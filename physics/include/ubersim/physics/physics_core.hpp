@@ -111,9 +111,10 @@ class PhysicsCore {
   }
   // Sync mode: what holds physics at the horizon. The server names it.
   struct HorizonBound {
-    enum class By { NoHorizonYet, Horizon, Referee };
+    // Registration: the radio emulator's clients are still registering.
+    enum class By { NoHorizonYet, Registration, Horizon, Referee };
     By by = By::NoHorizonYet;
-    std::string waiting_for;  // By::Horizon: what SIM_SYNC_HORIZON says it waits for
+    std::string waiting_for;  // By::Horizon: whom SIM_SYNC_HORIZON names
   };
   HorizonBound horizon_bound() const;
   bool duration_reached() const;
@@ -160,6 +161,7 @@ class PhysicsCore {
   double referee_horizon_;     // s, from REFEREE (+inf without --sync-referee)
   // Whether a SIM_SYNC_HORIZON came, and what its sender said it waits for.
   bool horizon_heard_ = false;
+  std::int8_t horizon_held_by_ = sync_horizon_t::HELD_BY_NOTHING;
   std::string horizon_waiting_for_;
   double last_state_time_ = std::numeric_limits<double>::quiet_NaN();  // s, the last state out
   std::int64_t steps_ = 0;

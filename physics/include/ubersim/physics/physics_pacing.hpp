@@ -110,8 +110,8 @@ class IdleWait final : public Pacing {
 // Sync mode and --wait-for-vision publish the first state, and step, only once
 // the others are ready, so that every run starts alike: a vision emulator
 // listens (it has sent SIM_VISION_SCHEDULE) and, in sync mode, the radio
-// emulator has every client it expects (its horizon no longer waits for
-// "registration").
+// emulator has every client it expects (its horizon is no longer held by
+// HELD_BY_REGISTRATION).
 class StartGate final : public Pacing {
  public:
   StartGate(StepLoop& loop, const VisionLead& vision) : loop_(loop), vision_(vision) {}

@@ -17,7 +17,7 @@ struct ServerStats {
   double wall_seconds = 0;
   double drift = 0;  // s, sim time ahead of the real-time schedule at the end (paced modes)
   // Sync mode: wall time spent waiting at the horizon, by what bounded it
-  // (a client's name, "vision", "registration"), and how many waits.
+  // (a client's name, "vision", the sync clients' registration), and how many waits.
   std::map<std::string, double> sync_wait_seconds;
   std::map<std::string, std::int64_t> sync_waits;
   // Sync mode and --wait-for-vision: wall time from the first state to the

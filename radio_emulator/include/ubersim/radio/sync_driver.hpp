@@ -69,8 +69,8 @@ class SyncDriver {
 
  private:
   void update(bool always_publish, Clock::time_point now);
-  // The horizon while physics holds at the start: 0, bound by what it waits for.
-  std::string hold(Clock::time_point now);
+  // Why physics holds at the start (the horizon 0): registration or the first frame.
+  std::int8_t hold(Clock::time_point now);
   void forgive_own_stall(Clock::time_point now);
   void publish_status(Clock::time_point now);
 
