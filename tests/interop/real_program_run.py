@@ -280,6 +280,16 @@ def game_summary(events):
     return "\n".join(lines)
 
 
+def verdict(failures, folder):
+    """Prints the test's verdict; returns its exit status (the folder stays on a failure)."""
+    if failures:
+        print("FAIL:\n  " + "\n  ".join(failures) + f"\n(logs in {folder})")
+        return 1
+    remove_unless_kept(folder)
+    print("PASS")
+    return 0
+
+
 def remove_unless_kept(folder):
     """A passed run's logs go, unless UBERSIM_INTEROP_KEEP_LOGS=1."""
     if os.environ.get("UBERSIM_INTEROP_KEEP_LOGS") == "1":

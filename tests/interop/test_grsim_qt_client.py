@@ -131,12 +131,7 @@ def main():
         failures.append(str(error))
     finally:
         processes.stop_all()
-    if failures:
-        print("FAIL:\n  " + "\n  ".join(failures) + f"\n(logs in {folder})")
-        return 1
-    run.remove_unless_kept(folder)
-    print("PASS")
-    return 0
+    return run.verdict(failures, folder)
 
 
 if __name__ == "__main__":

@@ -104,12 +104,7 @@ def main():
         failures.append("the referee never started play")
     print(f"sampled {len(states)} states over "
           f"{(states[-1]['t'] - states[0]['t']) if len(states) > 1 else 0:.1f} s of sim time")
-    if failures:
-        print("FAIL:\n  " + "\n  ".join(failures) + f"\n(logs in {folder})")
-        return 1
-    run.remove_unless_kept(folder)
-    print("PASS")
-    return 0
+    return run.verdict(failures, folder)
 
 
 if __name__ == "__main__":

@@ -84,12 +84,7 @@ def main():
             failures.append(f"{team}: robot commands at {rate:.1f} per s, below "
                             f"{MIN_COMMAND_RATE} (team dropped?)")
     print(f"sampled {len(states)} states over {played:.1f} s of sim time")
-    if failures:
-        print("FAIL:\n  " + "\n  ".join(failures) + f"\n(logs in {folder})")
-        return 1
-    run.remove_unless_kept(folder)
-    print("PASS")
-    return 0
+    return run.verdict(failures, folder)
 
 
 if __name__ == "__main__":
