@@ -75,8 +75,11 @@ int run(int argc, char** argv) {
   ubersim::setup_logging("physics", common.verbosity());
   // Before anything else: a second physics on this bus stops here, naming the
   // first, before it loads a world or publishes (docs/physics.md, "One physics per bus").
+  if (check_bus) {
+    ubersim::physics::BusClaim::check(common.lcm_url, common.channel_prefix);
+    return 0;
+  }
   const auto claim = ubersim::physics::BusClaim::claim(common.lcm_url, common.channel_prefix);
-  if (check_bus) return 0;
   ubersim::physics::WorldSetup setup =
       ubersim::physics::load_world_setup(common.config_root(), scenario, physics_config);
   if (!field.empty()) {

@@ -109,6 +109,14 @@ BusClaim BusClaim::claim(const std::string& lcm_url, const std::string& channel_
   return BusClaim(fd);
 }
 
+void BusClaim::check(const std::string& lcm_url, const std::string& channel_prefix) {
+  const auto name = bus_claim_name(lcm_url, channel_prefix);
+  if (!name) return;
+  if (const auto holder = bus_claim_holder(*name)) {
+    throw BusTaken(taken_message(*parse_lcm_udpm_url(lcm_url), channel_prefix, holder));
+  }
+}
+
 BusClaim::BusClaim(BusClaim&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
 
 BusClaim& BusClaim::operator=(BusClaim&& other) noexcept {

@@ -78,11 +78,9 @@ int run(Options& options) {
   return host.run(std::chrono::milliseconds(50));
 }
 
-int parse_and_run(int argc, char** argv) {
-  Options options;
-  auto& b = options.bridge;
-  CLI::App app{"ubersim SSL protocol bridge: SSL-Vision out, SSL simulation protocol in"};
-  ubersim::add_common_options(app, options.common);
+// Where vision, referee messages and tracked frames go (docs/ssl_bridge.md, "Where the
+// multicast goes"); --local-only excludes every interface and TTL option.
+void add_multicast_options(CLI::App& app, ubersim::ssl::BridgeOptions& b) {
   auto* local_only = app.add_flag(
       "--local-only", b.local_only,
       "keep vision, tracked frames and referee messages on this host: sent on lo (127.0.0.1) "
@@ -101,6 +99,36 @@ int parse_and_run(int argc, char** argv) {
                      "comma-separated addresses of the interfaces vision packets leave on; "
                      "'default': the interface the kernel routes the group to")
           ->capture_default_str());
+  app.add_option("--referee-address", b.referee_address,
+                 "where REFEREE goes as SSL Referee messages (multicast group)")
+      ->capture_default_str();
+  app.add_option("--referee-port", b.referee_port, "referee messages port")->capture_default_str();
+  local_only->excludes(
+      app.add_option("--referee-ttl", b.referee_ttl, "referee multicast TTL (0: this host only)")
+          ->capture_default_str()
+          ->check(ubersim::in_range(0, 255)));
+  local_only->excludes(app.add_option("--referee-interface", b.referee_interface,
+                                      "interfaces referee messages leave on (and are listened "
+                                      "for on); default: --vision-interface's"));
+  app.add_option("--tracked-address", b.tracked_address, "tracked frames multicast group")
+      ->capture_default_str();
+  app.add_option("--tracked-port", b.tracked_port, "tracked frames port")
+      ->capture_default_str()
+      ->check(ubersim::in_range(1, 65535));
+  local_only->excludes(app.add_option("--tracked-ttl", b.tracked_ttl,
+                                      "tracked frames multicast TTL (0: this host only)")
+                           ->capture_default_str()
+                           ->check(ubersim::in_range(0, 255)));
+  local_only->excludes(app.add_option("--tracked-interface", b.tracked_interface,
+                                      "interfaces tracked frames leave on; default: "
+                                      "--vision-interface's"));
+  app.add_option("--tracked-rate", b.tracked_rate, "tracked frames per second of sim time")
+      ->capture_default_str()
+      ->check(ubersim::in_range(1.0, 1000.0));
+}
+
+// The simulation protocol's ports and its sync mode.
+void add_control_options(CLI::App& app, ubersim::ssl::BridgeOptions& b) {
   app.add_option("--listen-address", b.listen_address,
                  "address the simulation and robot control ports are bound to")
       ->capture_default_str();
@@ -117,37 +145,6 @@ int parse_and_run(int argc, char** argv) {
                  "seconds to wait for physics' acknowledgement before answering with an error")
       ->capture_default_str()
       ->check(ubersim::in_range(0.01, 60.0));
-  app.add_option("--referee-address", b.referee_address,
-                 "where REFEREE goes as SSL Referee messages (multicast group)")
-      ->capture_default_str();
-  app.add_option("--referee-port", b.referee_port, "referee messages port")->capture_default_str();
-  local_only->excludes(
-      app.add_option("--referee-ttl", b.referee_ttl, "referee multicast TTL (0: this host only)")
-          ->capture_default_str()
-          ->check(ubersim::in_range(0, 255)));
-  local_only->excludes(app.add_option("--referee-interface", b.referee_interface,
-                                      "interfaces referee messages leave on (and are listened "
-                                      "for on); default: --vision-interface's"));
-  app.add_flag("--official-referee", b.official_referee,
-               "the official ssl-game-controller referees: its Referee messages on the referee "
-               "address go to REFEREE, and ubersim sends none there");
-  app.add_flag("--tracked", b.tracked,
-               "also send SSL tracked frames (TrackerWrapperPacket) built from ground truth");
-  app.add_option("--tracked-address", b.tracked_address, "tracked frames multicast group")
-      ->capture_default_str();
-  app.add_option("--tracked-port", b.tracked_port, "tracked frames port")
-      ->capture_default_str()
-      ->check(ubersim::in_range(1, 65535));
-  local_only->excludes(app.add_option("--tracked-ttl", b.tracked_ttl,
-                                      "tracked frames multicast TTL (0: this host only)")
-                           ->capture_default_str()
-                           ->check(ubersim::in_range(0, 255)));
-  local_only->excludes(app.add_option("--tracked-interface", b.tracked_interface,
-                                      "interfaces tracked frames leave on; default: "
-                                      "--vision-interface's"));
-  app.add_option("--tracked-rate", b.tracked_rate, "tracked frames per second of sim time")
-      ->capture_default_str()
-      ->check(ubersim::in_range(1.0, 1000.0));
   app.add_flag("--sync", b.sync,
                "sync mode: each team's first RobotControl registers it as a sync client, then "
                "each RobotControl answers the oldest detection packet not answered yet "
@@ -157,7 +154,10 @@ int parse_and_run(int argc, char** argv) {
                  "it is dropped")
       ->capture_default_str()
       ->check(ubersim::in_range(0.01, 600.0));
-  auto& g = options.grsim;
+}
+
+// grSim's command port and the robot status it sends back.
+void add_grsim_options(CLI::App& app, ubersim::ssl::GrsimOptions& g) {
   app.add_option("--grsim-port", g.port,
                  "grSim's command port (grSim_Packet), on --listen-address; 0: off")
       ->capture_default_str()
@@ -175,6 +175,21 @@ int parse_and_run(int argc, char** argv) {
                  "(grSim: 1); 0: for ever")
       ->capture_default_str()
       ->check(ubersim::in_range(0.0, 3600.0));
+}
+
+int parse_and_run(int argc, char** argv) {
+  Options options;
+  auto& b = options.bridge;
+  CLI::App app{"ubersim SSL protocol bridge: SSL-Vision out, SSL simulation protocol in"};
+  ubersim::add_common_options(app, options.common);
+  add_multicast_options(app, b);
+  add_control_options(app, b);
+  app.add_flag("--official-referee", b.official_referee,
+               "the official ssl-game-controller referees: its Referee messages on the referee "
+               "address go to REFEREE, and ubersim sends none there");
+  app.add_flag("--tracked", b.tracked,
+               "also send SSL tracked frames (TrackerWrapperPacket) built from ground truth");
+  add_grsim_options(app, options.grsim);
   app.add_option("--robot-type", options.robot_type,
                  "robot config for robots added with present = true, and for wheel_velocity")
       ->capture_default_str();

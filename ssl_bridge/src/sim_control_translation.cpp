@@ -101,8 +101,26 @@ bool translate_robot(const TeleportRobot& in, const sim_state_t* state,
   return true;
 }
 
+// Whether a robot at (x, y) would overlap a robot other than `self` (as the
+// state has them, or as this request already places them).
+bool spot_taken(double x, double y, const robot_state_t& self, const sim_state_t& state,
+                const sim_control_t& place, double robot_radius) {
+  const double apart = 2 * robot_radius + 0.01;  // m
+  for (const robot_state_t& other : state.robots) {
+    if (other.team == self.team && other.robot_id == self.robot_id) continue;
+    if (std::hypot(other.x - x, other.y - y) < apart) return true;
+  }
+  for (const robot_placement_t& other : place.robots) {
+    if (other.team == self.team && other.robot_id == self.robot_id) continue;
+    if (std::hypot(other.x - x, other.y - y) < apart) return true;
+  }
+  return false;
+}
+
 // teleport_safely: robots that would overlap the ball at its new place are
-// pushed radially out of the way and stopped.
+// pushed radially out of the way and stopped, onto a spot no other robot
+// holds (the nearest direction to straight out that is free; pushed onto
+// another robot, a standing robot would squeeze it into the ball).
 void clear_ball_target(double bx, double by, const sim_state_t* state,
                        const SimControlSettings& settings, sim_control_t& place) {
   if (state == nullptr) return;
@@ -119,10 +137,18 @@ void clear_ball_target(double bx, double by, const sim_state_t* state,
     p.robot_id = robot.robot_id;
     p.present = true;
     p.orientation = robot.orientation;
-    const double ux = distance > 1e-6 ? dx / distance : 1.0;
-    const double uy = distance > 1e-6 ? dy / distance : 0.0;
-    p.x = bx + ux * clearance;
-    p.y = by + uy * clearance;
+    const double out = distance > 1e-6 ? std::atan2(dy, dx) : 0.0;
+    constexpr int kTries = 12;  // straight out, then 15, 30, ... degrees either side
+    for (int i = 0; i < kTries; ++i) {
+      const double turn = (i + 1) / 2 * (M_PI / 12) * (i % 2 == 0 ? 1 : -1);
+      p.x = bx + std::cos(out + turn) * clearance;
+      p.y = by + std::sin(out + turn) * clearance;
+      if (!spot_taken(p.x, p.y, robot, *state, place, settings.robot_radius)) break;
+      if (i == kTries - 1) {  // nowhere free nearby: straight out, as before
+        p.x = bx + std::cos(out) * clearance;
+        p.y = by + std::sin(out) * clearance;
+      }
+    }
     place.robots.push_back(p);
   }
 }

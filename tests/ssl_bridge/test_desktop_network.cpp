@@ -141,6 +141,8 @@ class DesktopNetwork : public ::testing::Test {
         referee.stage = ubersim::referee_t::STAGE_FIRST_HALF;
         referee.command = ubersim::referee_t::STOP;
         referee.command_counter = i;
+        referee.sim_time =
+            t;  // packet_timestamp: one per message (the listener finds duplicates by it)
         bus_.publish("REFEREE", referee);
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(16));

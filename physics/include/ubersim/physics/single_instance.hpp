@@ -42,6 +42,9 @@ class BusClaim {
   // Claims the bus of lcm_url and channel_prefix. Throws BusTaken if another
   // process holds it, std::runtime_error if the socket cannot be made.
   static BusClaim claim(const std::string& lcm_url, const std::string& channel_prefix);
+  // Throws BusTaken if another process holds that claim, without claiming it: a
+  // check (--check-bus) that ran beside a starting physics must never take its bus.
+  static void check(const std::string& lcm_url, const std::string& channel_prefix);
 
   BusClaim(BusClaim&& other) noexcept;
   BusClaim& operator=(BusClaim&& other) noexcept;
