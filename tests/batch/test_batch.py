@@ -206,8 +206,8 @@ class BatchTest(unittest.TestCase):
 
     @unittest.skipUnless(REAL_GC, "UBERSIM_SSL_GC does not name the ssl-game-controller binary")
     def test_official_referee_with_the_real_game_controller(self):
-        games = self.official_games(REAL_GC, 24, 4)
-        # Seed 4: the demo teams score once, and the GC decides it is a goal.
+        games = self.official_games(REAL_GC, 24, 3)
+        # Seed 3: the demo teams score once, and the GC decides it is a goal.
         self.assertEqual(games[0]["yellow_goals"], "1")
         self.assertIn("GOAL:1", games[0]["event_types"])
 
