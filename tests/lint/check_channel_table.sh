@@ -6,8 +6,10 @@
 set -uo pipefail
 readme=$1/README.md
 printed=$("$2" --markdown) || { echo "check_channel_table: $2 --markdown failed"; exit 1; }
+# The table and the paragraph printed under it (the DDS bridge's channels).
 in_readme=$(awk '/^\| channel \| type \| publisher \| subscribers \| rate \|$/ { on = 1 }
-                 on && !/^\|/ { exit }
+                 on && !/^\|/ { after++ }
+                 on && after == 3 { exit }
                  on { print }' "$readme")
 if [ "$printed" != "$in_readme" ]; then
   echo "check_channel_table: README.md's channel table differs from ubersim_channels --markdown"

@@ -139,15 +139,41 @@ class Publisher {
   std::string channel_;
 };
 
+// A program of this tree that publishes or reads channels. Each row of the
+// channel table lists them, and test_channel_wiring checks the lists against
+// the programs' code (tests/lint/channel_wiring.py): a use of a topic in the
+// code that a row does not list, or a row's entry the code does not have, fails.
+enum class Program {
+  Physics,
+  VisionEmulator,
+  RadioEmulator,
+  Referee,
+  GcLink,
+  SslBridge,
+  Viewer,
+  DemoTeam,
+  ReportRig,
+};
+// A program in a row, with a note for the reader ("in sync mode").
+struct Role {
+  Program program;
+  std::string_view note = {};
+};
+
 // One row of the channel table: who publishes and reads a topic, and how often.
 struct TopicRow {
-  std::string channels;  // "`RADIO_YELLOW`, `RADIO_BLUE`"
-  std::string type;      // the LCM type's name
-  std::string publishers;
-  std::string subscribers;
+  std::string base_name;  // the first channel's base name: RADIO_YELLOW for the pair
+  std::string channels;   // "`RADIO_YELLOW`, `RADIO_BLUE`"
+  std::string type;       // the LCM type's name
+  std::vector<Role> publishers;
+  std::vector<Role> readers;
   std::string rate;
 };
 std::vector<TopicRow> topic_table();
+// The program's id in `ubersim_channels --wiring` (channel_wiring.py's names).
+std::string_view program_id(Program program);
+// One line per program and channel ("VISION reads viewer"), for test_channel_wiring.
+std::string topic_table_wiring();
 // The table as Markdown, the form README.md holds.
 std::string topic_table_markdown();
 
