@@ -522,7 +522,7 @@ void bind_vector_sim(py::module_& m) {
       .def_property_readonly("threads", &VectorSim::threads);
 }
 
-// For the tests: ODE's random seed is per thread (physics/src/ode_random.cpp),
+// For the tests: ODE's random seed is per thread (physics/model/src/ode_random.cpp),
 // as seen from inside this module, where libode is loaded by Python.
 bool ode_random_is_per_thread() {
   dRandSetSeed(3);

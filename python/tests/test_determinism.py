@@ -76,7 +76,7 @@ def test_a_vector_world_is_the_sim_with_its_seed():
 
 def test_odes_random_generator_is_per_thread():
     # QuickStep's constraint shuffling must not be shared between threads
-    # (physics/src/ode_random.cpp); checked from inside the module.
+    # (physics/model/src/ode_random.cpp); checked from inside the module.
     assert ubersim._ubersim._ode_random_is_per_thread()
 
 

@@ -28,6 +28,7 @@
 #include <ubersim/team_t.hpp>
 #include <vector>
 
+#include "grsim_packet.hpp"
 #include "temp_folder.hpp"
 #include "ubersim/child_process.hpp"
 #include "ubersim/cli.hpp"
@@ -79,23 +80,6 @@ class Sender {
   sockaddr_in to_{};
 };
 
-std::string command_packet(bool yellow, uint32_t id, float forward) {
-  grSim_Packet packet;
-  grSim_Commands* commands = packet.mutable_commands();
-  commands->set_timestamp(0);
-  commands->set_isteamyellow(yellow);
-  grSim_Robot_Command* robot = commands->add_robot_commands();
-  robot->set_id(id);
-  robot->set_kickspeedx(0);
-  robot->set_kickspeedz(0);
-  robot->set_veltangent(forward);
-  robot->set_velnormal(0);
-  robot->set_velangular(0);
-  robot->set_spinner(false);
-  robot->set_wheelsspeed(false);
-  return packet.SerializeAsString();
-}
-
 ubersim::sim_state_t state_with_robots() {
   ubersim::sim_state_t state{};
   for (int8_t team : {int8_t{ubersim::team_t::YELLOW}, int8_t{ubersim::team_t::BLUE}}) {
@@ -140,7 +124,7 @@ class Harness {
     for (int i = 0; i < count; ++i) {
       waiting_ = 0.5 + 0.001 * static_cast<double>(++probe_number_ % 400);
       sent_ = Clock::now();
-      probe_.send(command_packet(false, 0, static_cast<float>(waiting_)));
+      probe_.send(ubersim::test::grsim_forward_command(false, 0, static_cast<float>(waiting_)));
       // The next probe after this one's answer (at most 0.25 s) and 20 ms.
       const auto next = sent_ + std::chrono::milliseconds(20);
       const auto give_up = sent_ + std::chrono::milliseconds(250);
@@ -183,7 +167,8 @@ long flood(int port, int rate, const std::atomic<bool>& stop) {
   Sender sender(port);
   std::vector<std::string> packets;
   for (int i = 0; i < 20; ++i) {
-    packets.push_back(command_packet(i % 2 == 1, static_cast<uint32_t>(1 + i % 10), 0.1f));
+    packets.push_back(
+        ubersim::test::grsim_forward_command(i % 2 == 1, static_cast<uint32_t>(1 + i % 10), 0.1f));
   }
   const auto start = Clock::now();
   long sent = 0;

@@ -32,7 +32,7 @@ import sys
 # The DDS bridge carries whichever channels its routes name, both ways, so it
 # has no fixed wiring to check (the table says so under its rows).
 PROGRAMS = {
-    "physics": ["physics/src", "physics/include"],
+    "physics": ["physics/model", "physics/server"],
     "vision_emulator": ["vision_emulator/src", "vision_emulator/include"],
     "radio_emulator": ["radio_emulator/src", "radio_emulator/include"],
     "referee": ["referee/src", "referee/include"],

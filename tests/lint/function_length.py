@@ -13,7 +13,7 @@ tokens before it as a namespace or class (scanned inside), a function body
 or a literal that does not close) is an error, never a pass.
 
 Usage:
-  function_length.py SOURCE_DIR            check */src and tools/, exit 1 on a function over the limit
+  function_length.py SOURCE_DIR            check */src, */*/src and tools/, exit 1 on a function over the limit
   function_length.py --list [--min N] FILE...   print every function of N lines or more
 
 The allow-list below names functions that are known to be too long and are
@@ -388,9 +388,10 @@ def functions_in(path, text=None):
 
 # ---- the check ----------------------------------------------------------------------
 
-# Where the checked code is: every part's src/, and tools/ (the demo team, the
-# report, the small programs), which are programs like the others.
-SOURCE_GLOBS = (os.path.join("*", "src"), "tools")
+# Where the checked code is: every part's src/ (physics has two parts, model/
+# and server/, each with its src/), and tools/ (the demo team, the report, the
+# small programs), which are programs like the others.
+SOURCE_GLOBS = (os.path.join("*", "src"), os.path.join("*", "*", "src"), "tools")
 
 
 def source_files(source_dir):

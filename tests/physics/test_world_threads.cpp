@@ -1,6 +1,6 @@
 // Worlds stepped at the same time on several threads (the Python VectorSim)
 // share nothing: ODE's random generator is per thread
-// (physics/src/ode_random.cpp) and each world has its own threading
+// (physics/model/src/ode_random.cpp) and each world has its own threading
 // implementation (world.hpp), so their runs stay reproducible and ODE's
 // process-wide job list is never raced on.
 #include <gtest/gtest.h>

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "child_process.hpp"
+#include "grsim_packet.hpp"
 #include "ssl_client.hpp"
 
 namespace {
@@ -190,23 +191,6 @@ TEST_F(SslBridgeSimulation, TeleportDriveAndFeedbackThroughTheSslProtocols) {
 
 namespace {
 
-std::string grsim_command(uint32_t id, float forward) {
-  grSim_Packet packet;
-  grSim_Commands* commands = packet.mutable_commands();
-  commands->set_timestamp(0);
-  commands->set_isteamyellow(false);
-  grSim_Robot_Command* robot = commands->add_robot_commands();
-  robot->set_id(id);
-  robot->set_kickspeedx(0);
-  robot->set_kickspeedz(0);
-  robot->set_veltangent(forward);
-  robot->set_velnormal(0);
-  robot->set_velangular(0);
-  robot->set_spinner(false);
-  robot->set_wheelsspeed(false);
-  return packet.SerializeAsString();
-}
-
 // The blue robot's x (mm) in the newest frame: reads what waits for 150 ms.
 std::optional<double> newest_x(ssl_test::VisionReceiver& vision, uint32_t id) {
   std::optional<double> x;
@@ -252,11 +236,11 @@ TEST_F(SslBridgeSimulation, GrsimPacketsPlaceAndDriveARobotThatStopsAfterTheTeam
   // Driven at 1 m/s for 0.8 s, one packet every 10 ms.
   const auto drive_end = Clock::now() + std::chrono::milliseconds(800);
   while (Clock::now() < drive_end) {
-    grsim.send(grsim_command(2, 1.0f));
+    grsim.send(ubersim::test::grsim_forward_command(false, 2, 1.0f));
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   // Then one packet at 0.5 m/s and silence: it keeps going for the hold.
-  grsim.send(grsim_command(2, 0.5f));
+  grsim.send(ubersim::test::grsim_forward_command(false, 2, 0.5f));
   const auto silent_from = Clock::now();
   const std::optional<double> x_silent = newest_x(vision_rx_, 2);
   ASSERT_TRUE(x_silent.has_value());
@@ -291,7 +275,7 @@ TEST_F(SslBridgeSimulation, GrsimPacketsPlaceAndDriveARobotThatStopsAfterTheTeam
   at_kicker.mutable_replacement()->mutable_ball()->set_vy(0);
   team.send(ports_.grsim, at_kicker.SerializeAsString());
   grSim_Packet spin;
-  spin.ParseFromString(grsim_command(2, 0.0f));
+  spin.ParseFromString(ubersim::test::grsim_forward_command(false, 2, 0.0f));
   spin.mutable_commands()->mutable_robot_commands(0)->set_spinner(true);
   bool infrared = false;
   const auto end = Clock::now() + std::chrono::seconds(5);

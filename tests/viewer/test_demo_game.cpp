@@ -24,6 +24,7 @@
 
 #include "cdp_client.hpp"
 #include "e2e_support.hpp"
+#include "latest_message.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/message_bus.hpp"
 
@@ -211,34 +212,13 @@ TEST_F(DemoGameInBrowser, AfterAGoalTheScoreShowsItAndPlayResumesWithAKickOff) {
   EXPECT_EQ(score(resumed, "yellow"), yellow_before + 1) << "the goal counted once";
 }
 
-// The newest REFEREE message.
-class RefereeListener {
- public:
-  RefereeListener() : bus_(ubersim::with_receive_buffer(ubersim::default_lcm_url())) {
-    bus_.subscribe<ubersim::referee_t>("REFEREE",
-                                       [this](const ubersim::referee_t& r) { latest_ = r; });
-  }
-  bool wait_for(const std::function<bool(const ubersim::referee_t&)>& done, double timeout_s) {
-    const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-    while (std::chrono::steady_clock::now() < deadline) {
-      bus_.wait_and_handle(20);
-      if (latest_ && done(*latest_)) return true;
-    }
-    return false;
-  }
-  const std::optional<ubersim::referee_t>& latest() const { return latest_; }
-
- private:
-  ubersim::MessageBus bus_;
-  std::optional<ubersim::referee_t> latest_;
-};
+using RefereeListener = ubersim::test::LatestMessage<ubersim::referee_t>;
 
 // --repeat-games: when a game is over the demo does not end; a new game starts
 // at 0 : 0. Short games at 4x real time.
 TEST(DemoGame, ANewGameStartsWhenOneIsOver) {
   e2e::TempDir dir;
-  RefereeListener referee;
+  RefereeListener referee("REFEREE");
   std::vector<std::string> options = kDemoOptions;
   options.insert(options.end(), {"--game-length", "2", "--speed", "4", "--seed", "6"});
   e2e::Launch launch(options, dir);

@@ -17,6 +17,7 @@
 
 #include "cdp_client.hpp"
 #include "e2e_support.hpp"
+#include "latest_message.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/message_bus.hpp"
 
@@ -24,28 +25,7 @@ namespace {
 
 using nlohmann::json;
 
-// The newest SIM_STATE physics published.
-class StateListener {
- public:
-  StateListener() : bus_(ubersim::with_receive_buffer(ubersim::default_lcm_url())) {
-    bus_.subscribe<ubersim::sim_state_t>("SIM_STATE",
-                                         [this](const ubersim::sim_state_t& s) { latest_ = s; });
-  }
-  bool wait_for(const std::function<bool(const ubersim::sim_state_t&)>& done, double timeout_s) {
-    const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-    while (std::chrono::steady_clock::now() < deadline) {
-      bus_.wait_and_handle(20);
-      if (latest_ && done(*latest_)) return true;
-    }
-    return false;
-  }
-  const ubersim::sim_state_t& latest() const { return *latest_; }
-
- private:
-  ubersim::MessageBus bus_;
-  std::optional<ubersim::sim_state_t> latest_;
-};
+using StateListener = ubersim::test::LatestMessage<ubersim::sim_state_t>;
 
 bool port_open(int port) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
@@ -79,7 +59,7 @@ class ViewerBrowserTest : public ::testing::Test {
       return;
     }
     session = std::make_unique<Session>();
-    session->states = std::make_unique<StateListener>();
+    session->states = std::make_unique<StateListener>("SIM_STATE");
     session->launch = std::make_unique<e2e::Launch>(
         std::vector<std::string>{"--no-radio", "--viewer", "--viewer-port",
                                  std::to_string(session->port), "--seed", "3"},
@@ -180,7 +160,7 @@ class ViewerBrowserTest : public ::testing::Test {
 
 TEST_F(ViewerBrowserTest, PageDrawsFieldRobotsAndVisionDetections) {
   ASSERT_TRUE(states().wait_for([](const auto& s) { return s.num_robots > 0; }, 10));
-  const int robots = states().latest().num_robots;
+  const int robots = states().latest()->num_robots;
   EXPECT_EQ(robots, 12) << "division_b_6v6 puts 6 robots per team on the field";
   // Rates are measured over 1 s windows: wait for the first complete one too.
   const json shown = wait_for_page(
@@ -202,7 +182,7 @@ TEST_F(ViewerBrowserTest, PauseButtonPausesPhysicsAndRobotsAreDrawnWhereTheyAre)
   click_element("pause-button");
   ASSERT_TRUE(states().wait_for([](const auto& s) { return s.paused; }, 10))
       << "physics did not pause after the page's Pause button";
-  const double paused_at = states().latest().sim_time;
+  const double paused_at = states().latest()->sim_time;
   wait_for_page(
       "document.getElementById('sim-paused').textContent + ' ' + "
       "viewerState.frame.state.sim_time",
@@ -215,7 +195,7 @@ TEST_F(ViewerBrowserTest, PauseButtonPausesPhysicsAndRobotsAreDrawnWhereTheyAre)
 
   // Paused, the world stands still: what the page drew must be SIM_STATE's robots.
   const json drawn = browser().evaluate("viewerState.robotsDrawn");
-  const auto& truth = states().latest();
+  const auto& truth = *states().latest();
   ASSERT_EQ(drawn.size(), truth.robots.size());
   for (const auto& robot : truth.robots) {
     const std::string team = robot.team == 0 ? "yellow" : "blue";
@@ -241,8 +221,8 @@ TEST_F(ViewerBrowserTest, PauseButtonPausesPhysicsAndRobotsAreDrawnWhereTheyAre)
 
 TEST_F(ViewerBrowserTest, DraggingTheBallPlacesItInPhysics) {
   ASSERT_TRUE(states().wait_for([](const auto& s) { return s.ball_present; }, 10));
-  const double ball_x = states().latest().ball.position[0];
-  const double ball_y = states().latest().ball.position[1];
+  const double ball_x = states().latest()->ball.position[0];
+  const double ball_y = states().latest()->ball.position[1];
   const double target_x = 1.2, target_y = -1.0;
   drag(ball_x, ball_y, target_x, target_y);
   // One CSS pixel is about 1 cm at this window size; the page sends where the mouse let go.
@@ -251,8 +231,8 @@ TEST_F(ViewerBrowserTest, DraggingTheBallPlacesItInPhysics) {
         return std::hypot(s.ball.position[0] - target_x, s.ball.position[1] - target_y) < 0.03;
       },
       10))
-      << "ball at " << states().latest().ball.position[0] << ", "
-      << states().latest().ball.position[1];
+      << "ball at " << states().latest()->ball.position[0] << ", "
+      << states().latest()->ball.position[1];
   wait_for_page(
       "viewerState.ballDrawn",
       [&](const json& v) {
@@ -264,7 +244,7 @@ TEST_F(ViewerBrowserTest, DraggingTheBallPlacesItInPhysics) {
 
 TEST_F(ViewerBrowserTest, DraggingARobotPlacesItInPhysics) {
   ASSERT_TRUE(states().wait_for([](const auto& s) { return s.num_robots > 0; }, 10));
-  const ubersim::robot_state_t robot = states().latest().robots.front();
+  const ubersim::robot_state_t robot = states().latest()->robots.front();
   const double target_x = -2.0, target_y = 1.5;
   drag(robot.x, robot.y, target_x, target_y);
   EXPECT_TRUE(states().wait_for(
