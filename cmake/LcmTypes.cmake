@@ -26,7 +26,7 @@ function(ubersim_generate_lcm_types)
   add_custom_command(
     OUTPUT ${bounds_header}
     COMMAND ${Python3_EXECUTABLE} ${bounds_generator} ${bounds_header} ${lcm_paths}
-    DEPENDS ${lcm_paths} ${bounds_generator} ${headers}
+    DEPENDS ${lcm_paths} ${bounds_generator} ${CMAKE_CURRENT_SOURCE_DIR}/lcm_schema.py ${headers}
     COMMENT "encoded bounds of the LCM message types"
     VERBATIM)
   add_custom_target(${ARG_TARGET}_gen DEPENDS ${headers} ${bounds_header})

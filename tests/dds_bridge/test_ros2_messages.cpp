@@ -18,6 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const fs::path kSource = UBERSIM_DDS_BRIDGE_SOURCE_DIR;
+const fs::path kGeneratedIdl = UBERSIM_DDS_GENERATED_IDL_DIR;  // from the .lcm files
 
 struct Message {
   std::vector<std::string> fields;     // "type name", ROS spelling
@@ -61,7 +62,7 @@ std::map<std::string, Message> parse_idl() {
   const std::regex member(R"((sequence<\s*([\w:]+)\s*>|[\w:]+)\s+(\w+)\s*(\[\s*(\d+)\s*\])?\s*;)");
   const std::regex constants(R"(module\s+(\w+)_Constants\s*\{([^}]*)\})");
   const std::regex constant(R"(const\s+(\w+)\s+(\w+)\s*=\s*(-?\d+)\s*;)");
-  for (const auto& entry : fs::directory_iterator(kSource / "idl" / "ubersim_msgs")) {
+  for (const auto& entry : fs::directory_iterator(kGeneratedIdl / "ubersim_msgs")) {
     const std::string text = strip_comments(read(entry.path()), "//");
     for (auto s = std::sregex_iterator(text.begin(), text.end(), structure);
          s != std::sregex_iterator(); ++s) {
@@ -114,7 +115,7 @@ std::map<std::string, Message> parse_msgs() {
 TEST(Ros2Messages, MsgFilesMatchTheIdlFieldForField) {
   const auto idl = parse_idl();
   const auto msgs = parse_msgs();
-  ASSERT_GE(idl.size(), 18u);  // every struct of the five IDL files was read
+  ASSERT_GE(idl.size(), 18u);  // every struct of the generated IDL was read
   for (const auto& [name, message] : idl) {
     const auto found = msgs.find(name);
     ASSERT_NE(found, msgs.end()) << "no ros2/ubersim_msgs/msg/" << name << ".msg";

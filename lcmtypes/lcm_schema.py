@@ -1,0 +1,80 @@
+"""Reads ubersim's .lcm files: the one parser behind every generator that derives code from the
+message definitions (gen_encoded_bounds.py, dds_bridge/gen_dds_bridge.py).
+
+parse_files(paths) -> {type name: Struct}; a Struct has `members` [(type, name, dims)] in
+declaration order (dims: the array sizes, numbers or the names of count members) and `constants`
+[(type, name, value)].
+"""
+import re
+from dataclasses import dataclass, field
+
+
+class LcmSyntaxError(Exception):
+    pass
+
+
+@dataclass
+class Struct:
+    name: str
+    path: str
+    members: list = field(default_factory=list)
+    constants: list = field(default_factory=list)
+
+    def count_members(self):
+        """The members that only give the length of an array (num_* in ubersim)."""
+        return {dim for _, _, dims in self.members for dim in dims if not dim.isdigit()}
+
+
+def strip_comments(text):
+    text = re.sub(r"/\*.*?\*/", " ", text, flags=re.S)
+    return re.sub(r"//[^\n]*", " ", text)
+
+
+def parse_constant(statement, where):
+    match = re.fullmatch(r"const\s+(\w+)\s+([A-Za-z_]\w*)\s*=\s*(-?[\w.]+)", statement)
+    if not match:
+        raise LcmSyntaxError(f"{where}: cannot read constant '{statement}'")
+    return match.group(1), match.group(2), match.group(3)
+
+
+def parse_members(body, where):
+    members, constants = [], []
+    for statement in body.split(";"):
+        statement = " ".join(statement.split())
+        if not statement:
+            continue
+        if statement.startswith("const "):
+            constants.append(parse_constant(statement, where))
+            continue
+        match = re.fullmatch(r"([A-Za-z_][\w.]*)\s+(.+)", statement)
+        if not match:
+            raise LcmSyntaxError(f"{where}: cannot read member '{statement}'")
+        type_name = match.group(1).split(".")[-1]
+        for declarator in match.group(2).split(","):
+            declarator = declarator.replace(" ", "")
+            name_match = re.fullmatch(r"([A-Za-z_]\w*)((?:\[[\w]+\])*)", declarator)
+            if not name_match:
+                raise LcmSyntaxError(f"{where}: cannot read member '{declarator}'")
+            dims = re.findall(r"\[([\w]+)\]", name_match.group(2))
+            members.append((type_name, name_match.group(1), dims))
+    return members, constants
+
+
+def parse_file(path):
+    with open(path, encoding="utf-8") as f:
+        text = strip_comments(f.read())
+    structs = {}
+    for match in re.finditer(r"struct\s+([A-Za-z_]\w*)\s*\{(.*?)\}", text, flags=re.S):
+        name = match.group(1)
+        members, constants = parse_members(match.group(2), f"{path}: struct {name}")
+        structs[name] = Struct(name, path, members, constants)
+    if not structs:
+        raise LcmSyntaxError(f"{path}: no struct found")
+    return structs
+
+
+def parse_files(paths):
+    structs = {}
+    for path in paths:
+        structs.update(parse_file(path))
+    return structs
