@@ -359,23 +359,30 @@ def lcm_hash(name, structs, memo):
 
 
 def visit_body(name, structs):
+    # Walks the parsed members itself (not members_of), so that the tests that
+    # fill messages through it also catch a member the conversions leave out.
     lines = []
-    for m in members_of(structs[name], structs):
-        path = f'prefix + "{m.name}"'
-        kind = ("Kind::kReal" if m.type in REALS else "Kind::kBoolean" if m.type == "boolean"
-                else "Kind::kText" if m.type == "string" else "Kind::kInteger")
-        if m.is_struct and m.count:
-            lines.append(f"    for (std::size_t i = 0; i < message.{m.name}.size(); ++i)")
-            lines.append(f"      LcmFields<{m.type}>::visit(message.{m.name}[i], "
-                         f"element({path}, i) + \".\", visit);")
-        elif m.is_struct:
-            lines.append(f'    LcmFields<{m.type}>::visit(message.{m.name}, {path} + ".", visit);')
-        elif m.count or m.fixed:
-            size = f"message.{m.name}.size()" if m.count else str(m.fixed)
+    struct = structs[name]
+    counts = struct.count_members()
+    for type_name, member, dims in struct.members:
+        if member in counts:
+            continue
+        path = f'prefix + "{member}"'
+        kind = ("Kind::kReal" if type_name in REALS else "Kind::kBoolean" if type_name == "boolean"
+                else "Kind::kText" if type_name == "string" else "Kind::kInteger")
+        size = (f"message.{member}.size()" if dims and not dims[0].isdigit()
+                else dims[0] if dims else None)
+        if size and type_name in structs:
             lines.append(f"    for (std::size_t i = 0; i < {size}; ++i)")
-            lines.append(f"      visit(element({path}, i), message.{m.name}[i], {kind});")
+            lines.append(f"      LcmFields<{type_name}>::visit(message.{member}[i], "
+                         f"element({path}, i) + \".\", visit);")
+        elif type_name in structs:
+            lines.append(f'    LcmFields<{type_name}>::visit(message.{member}, {path} + ".", visit);')
+        elif size:
+            lines.append(f"    for (std::size_t i = 0; i < {size}; ++i)")
+            lines.append(f"      visit(element({path}, i), message.{member}[i], {kind});")
         else:
-            lines.append(f"    visit({path}, message.{m.name}, {kind});")
+            lines.append(f"    visit({path}, message.{member}, {kind});")
     return lines
 
 
