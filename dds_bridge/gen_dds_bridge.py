@@ -170,49 +170,41 @@ struct DdsTypeWith {{
 
 # ---------------------------------------------------------------- C++: conversions
 
-def to_dds_body(name, structs):
-    lines = []
-    for m in members_of(structs[name], structs):
-        f, t = f"from.{m.name}", f"to.{m.dds}"
-        if m.count and m.is_struct:
-            lines.append(f"  fill_sequence({t}, {f}, [](const {m.type}& a, Dds{dds_name(m.type)}& b) "
-                         "{ fill_dds(a, b); });")
-        elif m.count:
-            lines.append(f"  fill_sequence({t}, {f});")
-        elif m.fixed:
-            lines.append(f"  std::copy(std::begin({f}), std::end({f}), std::begin({t}));")
-        elif m.is_struct:
-            lines.append(f"  fill_dds({f}, {t});")
-        elif m.type == "string":
-            lines.append(f"  {t} = dds_string({f});")
-        elif m.type == "boolean":
-            lines.append(f"  {t} = {f} != 0;")
-        else:
-            lines.append(f"  {t} = {f};")
-    return lines
+# How a member is copied, per kind: (LCM -> DDS, DDS -> LCM); {f} is the source
+# member, {t} the target, {lcm} / {dds} the element type on each side.
+COPY_RULES = {
+    "struct sequence": (
+        "fill_sequence({t}, {f}, [](const {lcm}& a, {dds}& b) {{ fill_dds(a, b); }});",
+        "{t} = from_dds_sequence<{lcm}>({f}, [](const {dds}& a) {{ {lcm} b{{}}; fill_lcm(a, b); "
+        "return b; }});"),
+    "sequence": ("fill_sequence({t}, {f});", "{t} = from_dds_sequence({f});"),
+    "fixed array": ("std::copy(std::begin({f}), std::end({f}), std::begin({t}));",) * 2,
+    "struct": ("fill_dds({f}, {t});", "fill_lcm({f}, {t});"),
+    "string": ("{t} = dds_string({f});", "{t} = from_dds_string({f});"),
+    "boolean": ("{t} = {f} != 0;", "{t} = {f} ? 1 : 0;"),
+    "number": ("{t} = {f};",) * 2,
+}
 
 
-def from_dds_body(name, structs):
+def copy_kind(m):
+    if m.count:
+        return "struct sequence" if m.is_struct else "sequence"
+    if m.fixed:
+        return "fixed array"
+    if m.is_struct:
+        return "struct"
+    return m.type if m.type in ("string", "boolean") else "number"
+
+
+def copy_body(name, structs, to_dds):
     lines = []
     for m in members_of(structs[name], structs):
-        f, t = f"from.{m.dds}", f"to.{m.name}"
-        if m.count and m.is_struct:
-            lines.append(f"  {t} = from_dds_sequence<{m.type}>({f}, [](const Dds{dds_name(m.type)}& a) "
-                         f"{{ {m.type} b{{}}; fill_lcm(a, b); return b; }});")
-        elif m.count:
-            lines.append(f"  {t} = from_dds_sequence({f});")
-        elif m.fixed:
-            lines.append(f"  std::copy(std::begin({f}), std::end({f}), std::begin({t}));")
-        elif m.is_struct:
-            lines.append(f"  fill_lcm({f}, {t});")
-        elif m.type == "string":
-            lines.append(f"  {t} = from_dds_string({f});")
-        elif m.type == "boolean":
-            lines.append(f"  {t} = {f} ? 1 : 0;")
-        else:
-            lines.append(f"  {t} = {f};")
-        if m.count:
-            lines.append(f"  to.{m.count} = count_of({t});")
+        rule = COPY_RULES[copy_kind(m)][0 if to_dds else 1]
+        source, target = (m.name, m.dds) if to_dds else (m.dds, m.name)
+        lines.append("  " + rule.format(f=f"from.{source}", t=f"to.{target}", lcm=m.type,
+                                        dds=f"Dds{dds_name(m.type)}"))
+        if m.count and not to_dds:
+            lines.append(f"  to.{m.count} = count_of(to.{m.name});")
     return lines
 
 
@@ -275,9 +267,9 @@ namespace ubersim::dds {{
     for n in types:
         d = f"Dds{dds_name(n)}"
         bodies.append(f"void fill_dds(const {n}& from, {d}& to) {{\n"
-                      + "\n".join(to_dds_body(n, structs)) + "\n}")
+                      + "\n".join(copy_body(n, structs, True)) + "\n}")
         bodies.append(f"void fill_lcm(const {d}& from, {n}& to) {{\n"
-                      + "\n".join(from_dds_body(n, structs)) + "\n}")
+                      + "\n".join(copy_body(n, structs, False)) + "\n}")
         if has_reals(n, structs, memo):
             bodies.append(f"void check_finite(FiniteCheck& check, const std::string& prefix, "
                           f"const {n}& message) {{\n" + "\n".join(finite_body(n, structs, memo))
