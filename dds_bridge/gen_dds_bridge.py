@@ -9,6 +9,8 @@ once, in lcmtypes/*.lcm:
             and DdsType<T>::descriptor() of each topic type.
   CONVERT   ubersim/dds_bridge/convert.hpp + convert.cpp: to_dds / from_dds of each topic type
             and non_finite_field (the first real number that is NaN/Inf, by its path).
+  ROS 2     ros2/ubersim_msgs/msg/<Name>.msg: the same types for a ROS 2 package, comments from
+            the .lcm.
   FIELDS    ubersim/dds_bridge/lcm_fields.hpp: LcmFields<Msg>::visit, every leaf field of a
             message by its path, and the LCM fingerprint computed from what this script read
             (the tests compare it with lcm-gen's, so a field this script missed shows).
@@ -133,6 +135,49 @@ def write_idl(types, structs):
             "module ubersim_msgs {\nmodule msg {\n\n"
             f"{constants}\nmodule dds_ {{\n\n{bodies}\n\n}};  // module dds_\n"
             "};  // module msg\n};  // module ubersim_msgs\n")
+
+
+# ---------------------------------------------------------------- ROS 2 .msg
+
+ROS_TYPES = {
+    "int8_t": "int8", "int16_t": "int16", "int32_t": "int32", "int64_t": "int64",
+    "float": "float32", "double": "float64", "boolean": "bool", "string": "string",
+    "byte": "uint8",
+}
+
+
+def all_constants(name, structs):
+    """(type, name, value, comment) of a type's constants, imported ones included."""
+    struct = structs[name]
+    out = [(t, n, v, struct.comments.get(n, "")) for t, n, v in struct.constants]
+    if name in IMPORTED_CONSTANTS:
+        source, prefix = IMPORTED_CONSTANTS[name]
+        out += [(t, prefix + n, v, structs[source].comments.get(n, ""))
+                for t, n, v in structs[source].constants]
+    return out
+
+
+def with_comment(text, comment):
+    return f"{text}  # {comment}" if comment else text
+
+
+def write_msg(name, structs):
+    struct = structs[name]
+    lines = [f"# {struct.doc} (ubersim {name}, lcmtypes/{os.path.basename(struct.path)})"
+             if struct.doc else f"# ubersim {name} (lcmtypes/{os.path.basename(struct.path)})"]
+    constants = all_constants(name, structs)
+    for t, n, v, comment in constants:
+        lines.append(with_comment(f"{ROS_TYPES[t]} {n}={v}", comment))
+    if constants:
+        lines.append("")
+    for m in members_of(struct, structs):
+        element = dds_name(m.type) if m.is_struct else ROS_TYPES[m.type]
+        suffix = "[]" if m.count else f"[{m.fixed}]" if m.fixed else ""
+        comment = struct.comments.get(m.name, "")
+        if m.dds != m.name:
+            comment = f"{comment} (LCM: {m.name})".strip()
+        lines.append(with_comment(f"{element}{suffix} {m.dds}", comment))
+    return "\n".join(lines) + "\n"
 
 
 # ---------------------------------------------------------------- C++: types
@@ -438,6 +483,7 @@ def main(argv):
         header, source = write_convert(types, roots, structs)
         types_header = write_types_header(types, roots)
         fields = write_fields(types, structs)
+        msgs = {name: write_msg(name, structs) for name in types}
     except LcmSyntaxError as error:
         print(f"gen_dds_bridge: {error}", file=sys.stderr)
         return 1
@@ -447,6 +493,8 @@ def main(argv):
     write(os.path.join(out, "include", "ubersim", "dds_bridge", "convert.hpp"), header)
     write(os.path.join(out, "include", "ubersim", "dds_bridge", "lcm_fields.hpp"), fields)
     write(os.path.join(out, "convert.cpp"), source)
+    for name, text in msgs.items():
+        write(os.path.join(out, "ros2", "ubersim_msgs", "msg", f"{dds_name(name)}.msg"), text)
     return 0
 
 

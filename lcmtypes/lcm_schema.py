@@ -19,6 +19,8 @@ class Struct:
     path: str
     members: list = field(default_factory=list)
     constants: list = field(default_factory=list)
+    doc: str = ""  # the comment lines just above `struct`, joined
+    comments: dict = field(default_factory=dict)  # member or constant name -> its line's comment
 
     def count_members(self):
         """The members that only give the length of an array (num_* in ubersim)."""
@@ -60,14 +62,45 @@ def parse_members(body, where):
     return members, constants
 
 
+def line_comments(raw):
+    """The comment at the end of each declaration (with the comment lines under it that are
+    indented past the declaration: its continuation), by the name it declares."""
+    declaration = re.compile(
+        r"^(\s*)(?:const\s+)?[\w.]+\s+([A-Za-z_]\w*)[^;/]*;\s*//\s*(.*?)\s*$")
+    continuation = re.compile(r"^(\s*)//\s*(.*?)\s*$")
+    comments, last, indent = {}, None, 0
+    for line in raw.splitlines():
+        match = declaration.match(line)
+        if match:
+            last, indent = match.group(2), len(match.group(1))
+            comments[last] = match.group(3)
+            continue
+        more = continuation.match(line)
+        if last and more and len(more.group(1)) > indent:
+            comments[last] += " " + more.group(2)
+        else:
+            last = None
+    return comments
+
+
+def struct_doc(raw, name):
+    lines = raw[:raw.index(f"struct {name}")].splitlines()
+    doc = []
+    while lines and lines[-1].strip().startswith("//"):
+        doc.insert(0, lines.pop().strip()[2:].strip())
+    return " ".join(doc)
+
+
 def parse_file(path):
     with open(path, encoding="utf-8") as f:
-        text = strip_comments(f.read())
+        raw = f.read()
+    text = strip_comments(raw)
     structs = {}
     for match in re.finditer(r"struct\s+([A-Za-z_]\w*)\s*\{(.*?)\}", text, flags=re.S):
         name = match.group(1)
         members, constants = parse_members(match.group(2), f"{path}: struct {name}")
-        structs[name] = Struct(name, path, members, constants)
+        structs[name] = Struct(name, path, members, constants, struct_doc(raw, name),
+                               line_comments(raw))
     if not structs:
         raise LcmSyntaxError(f"{path}: no struct found")
     return structs
