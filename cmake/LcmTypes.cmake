@@ -29,7 +29,17 @@ function(ubersim_generate_lcm_types)
     DEPENDS ${lcm_paths} ${bounds_generator} ${CMAKE_CURRENT_SOURCE_DIR}/lcm_schema.py ${headers}
     COMMENT "encoded bounds of the LCM message types"
     VERBATIM)
-  add_custom_target(${ARG_TARGET}_gen DEPENDS ${headers} ${bounds_header})
+  # Every leaf field of every type by its path, and the parser's fingerprint check
+  # (see gen_lcm_fields.py).
+  set(fields_header ${cpp_dir}/ubersim/lcm_fields.hpp)
+  set(fields_generator ${CMAKE_CURRENT_SOURCE_DIR}/gen_lcm_fields.py)
+  add_custom_command(
+    OUTPUT ${fields_header}
+    COMMAND ${Python3_EXECUTABLE} ${fields_generator} ${fields_header} ${lcm_paths}
+    DEPENDS ${lcm_paths} ${fields_generator} ${CMAKE_CURRENT_SOURCE_DIR}/lcm_schema.py ${headers}
+    COMMENT "field visitors of the LCM message types"
+    VERBATIM)
+  add_custom_target(${ARG_TARGET}_gen DEPENDS ${headers} ${bounds_header} ${fields_header})
   add_library(${ARG_TARGET} INTERFACE)
   add_dependencies(${ARG_TARGET} ${ARG_TARGET}_gen)
   target_include_directories(${ARG_TARGET} SYSTEM INTERFACE ${cpp_dir})

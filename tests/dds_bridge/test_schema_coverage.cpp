@@ -1,8 +1,9 @@
 // The generated schema code (dds_bridge/gen_dds_bridge.py) covers every field
 // of every bridged .lcm type:
-//  * the generator read every member: the LCM fingerprint it computes from
-//    what it read equals lcm-gen's (Msg::getHash() hashes every member's name,
-//    type and dimensions);
+//  * the generator read every member: the LCM fingerprint computed from what
+//    its parser (lcmtypes/lcm_schema.py) read equals lcm-gen's (Msg::getHash()
+//    hashes every member's name, type and dimensions; test_lcm_fields checks
+//    every type, this the bridged ones);
 //  * to_dds/from_dds carry every field: messages with every leaf field set at
 //    random (strings, integers, booleans, reals incl. NaN payloads) come back
 //    with identical LCM encodings;
@@ -22,12 +23,12 @@
 #include "sample_messages.hpp"
 #include "ubersim/dds_bridge/convert.hpp"
 #include "ubersim/dds_bridge/echo_filter.hpp"
-#include "ubersim/dds_bridge/lcm_fields.hpp"
 #include "ubersim/dds_bridge/sample_checks.hpp"
+#include "ubersim/lcm_fields.hpp"
 
 namespace dds = ubersim::dds;
-using dds::Kind;
-using dds::LcmFields;
+using Kind = ubersim::FieldKind;
+using ubersim::LcmFields;
 
 namespace {
 

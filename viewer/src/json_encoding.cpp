@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <iterator>
+#include <type_traits>
+#include <ubersim/lcm_fields.hpp>
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/viewer/request_policy.hpp"
@@ -190,24 +192,19 @@ json encode_vision_frame(const vision_frame_t& frame) {
 }
 
 json encode_field_geometry(const field_geometry_t& f) {
-  return {{"name", f.name},
-          {"field_length", number(f.field_length)},
-          {"field_width", number(f.field_width)},
-          {"boundary_width", number(f.boundary_width)},
-          {"line_width", number(f.line_width)},
-          {"goal_width", number(f.goal_width)},
-          {"goal_depth", number(f.goal_depth)},
-          {"goal_height", number(f.goal_height)},
-          {"goal_wall_thickness", number(f.goal_wall_thickness)},
-          {"wall_height", number(f.wall_height)},
-          {"wall_thickness", number(f.wall_thickness)},
-          {"center_circle_radius", number(f.center_circle_radius)},
-          {"penalty_area_depth", number(f.penalty_area_depth)},
-          {"penalty_area_width", number(f.penalty_area_width)},
-          {"ball_radius", number(f.ball_radius)},
-          {"penalty_mark_distance", number(f.penalty_mark_distance)},
-          {"boundary_width_goal_line", number(f.boundary_width_goal_line)},
-          {"goal_substitution_area_width", number(f.goal_substitution_area_width)}};
+  // Every field of the message under its .lcm name (the page draws from them).
+  json out = json::object();
+  auto add = [&out](const std::string& name, const auto& value, FieldKind kind) {
+    if constexpr (std::is_arithmetic_v<std::decay_t<decltype(value)>>) {
+      if (kind == FieldKind::kReal) {
+        out[name] = number(value);
+        return;
+      }
+    }
+    out[name] = value;
+  };
+  LcmFields<field_geometry_t>::visit(f, "", add);
+  return out;
 }
 
 json encode_cameras(const vision_geometry_t& geometry) {
