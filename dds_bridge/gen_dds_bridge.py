@@ -27,7 +27,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "lcmtypes"))
-from lcm_schema import LcmSyntaxError, parse_files  # noqa: E402
+from lcm_schema import LcmSyntaxError, dependency_order, parse_files  # noqa: E402
 
 IDL_TYPES = {
     "int8_t": "int8", "int16_t": "int16", "int32_t": "int32", "int64_t": "int64",
@@ -75,27 +75,6 @@ class Member:
 def members_of(struct, structs):
     counts = struct.count_members()
     return [Member(struct, t, n, d, structs) for t, n, d in struct.members if n not in counts]
-
-
-def closure(roots, structs):
-    """The bridged types, each after the types it contains."""
-    ordered = []
-
-    def visit(name, stack):
-        if name in ordered:
-            return
-        if name not in structs:
-            raise LcmSyntaxError(f"unknown type {name}")
-        if name in stack:
-            raise LcmSyntaxError(f"recursive type {name}")
-        for type_name, _, _ in structs[name].members:
-            if type_name in structs:
-                visit(type_name, stack + (name,))
-        ordered.append(name)
-
-    for root in roots:
-        visit(root, ())
-    return ordered
 
 
 # ---------------------------------------------------------------- IDL
@@ -370,7 +349,7 @@ def main(argv):
     roots = args.roots.split(",")
     try:
         structs = parse_files(args.lcm_files)
-        types = closure(roots, structs)
+        types = dependency_order(structs, roots)
         idl = write_idl(types, structs)
         header, source = write_convert(types, roots, structs)
         types_header = write_types_header(types, roots)

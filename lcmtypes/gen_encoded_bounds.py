@@ -13,7 +13,7 @@ Usage: gen_encoded_bounds.py OUTPUT.hpp a.lcm b.lcm ...
 """
 import sys
 
-from lcm_schema import LcmSyntaxError, parse_files
+from lcm_schema import LcmSyntaxError, run_generator
 
 PRIMITIVE_SIZES = {
     "int8_t": 1, "byte": 1, "boolean": 1, "int16_t": 2, "int32_t": 4, "int64_t": 8,
@@ -191,30 +191,19 @@ struct EncodedBounds<{type}> {{
 }};"""
 
 
-def main(argv):
-    if len(argv) < 3:
-        print(__doc__, file=sys.stderr)
-        return 2
-    output, paths = argv[1], argv[2:]
-    try:
-        structs = {name: struct.members for name, struct in parse_files(paths).items()}
-        memo = {}
-        names = sorted(structs)
-        walkers = [walker(name, structs[name], structs, memo) for name in names]
-        traits = [TRAIT.format(type=name, min_size=min_size(name, structs, memo)) for name in names]
-    except LcmSyntaxError as error:
-        print(f"gen_encoded_bounds: {error}", file=sys.stderr)
-        return 1
-    text = HEADER.format(
+def generate(parsed):
+    structs = {name: struct.members for name, struct in parsed.items()}
+    memo = {}
+    names = sorted(structs)
+    walkers = [walker(name, structs[name], structs, memo) for name in names]
+    traits = [TRAIT.format(type=name, min_size=min_size(name, structs, memo)) for name in names]
+    return HEADER.format(
         includes="\n".join(f'#include "ubersim/{name}.hpp"' for name in names),
         declarations="\n".join(f"inline bool walk_{name}(Reader& r);" for name in names),
         walkers="\n\n".join(walkers),
         traits="\n\n".join(traits),
         type_list=", ".join(names))
-    with open(output, "w", encoding="utf-8") as f:
-        f.write(text)
-    return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(run_generator(sys.argv, __doc__, generate))

@@ -6,6 +6,7 @@ declaration order (dims: the array sizes, numbers or the names of count members)
 [(type, name, value)].
 """
 import re
+import sys
 from dataclasses import dataclass, field
 
 
@@ -111,3 +112,41 @@ def parse_files(paths):
     for path in paths:
         structs.update(parse_file(path))
     return structs
+
+
+def dependency_order(structs, roots=None):
+    """The types reachable from `roots` (default: all), each after the types it contains."""
+    ordered = []
+
+    def add(name, stack):
+        if name in ordered:
+            return
+        if name not in structs:
+            raise LcmSyntaxError(f"unknown type {name}")
+        if name in stack:
+            raise LcmSyntaxError(f"recursive type {name}")
+        for type_name, _, _ in structs[name].members:
+            if type_name in structs:
+                add(type_name, stack + (name,))
+        ordered.append(name)
+
+    for root in roots if roots is not None else sorted(structs):
+        add(root, ())
+    return ordered
+
+
+def run_generator(argv, usage, generate):
+    """The command line of a one-output generator: OUTPUT a.lcm b.lcm ...; `generate(structs)`
+    returns the output's text. Exit 2 on a bad command line, 1 on a schema it cannot read."""
+    if len(argv) < 3:
+        print(usage, file=sys.stderr)
+        return 2
+    output, paths = argv[1], argv[2:]
+    try:
+        text = generate(parse_files(paths))
+    except LcmSyntaxError as error:
+        print(f"{argv[0].rsplit('/', 1)[-1]}: {error}", file=sys.stderr)
+        return 1
+    with open(output, "w", encoding="utf-8") as f:
+        f.write(text)
+    return 0
