@@ -3,7 +3,8 @@
 visit) calls visit(path, field, kind) for every leaf field of a message (array elements one by
 one as "name[i]", nested types as "name.member", num_* counts left out: they follow their
 arrays), for code that treats every field alike (the viewer's JSON of a whole message, tests
-that fill or break every field). LcmFields<Msg>::kParsedHash is lcm-gen's fingerprint computed
+that fill or break every field); LcmFields<Msg>::kConstants, the type's constants by name (the
+viewer's names of referee commands and events). LcmFields<Msg>::kParsedHash is lcm-gen's fingerprint computed
 from what lcm_schema.py read: equal to Msg::getHash() exactly when it read every member's name,
 type and dimensions as lcm-gen did (tests/unit/test_lcm_fields.cpp), which is what lets every
 generator built on lcm_schema.py be trusted to see every field.
@@ -102,6 +103,7 @@ HEADER = """#pragma once
 // LcmFields<Msg>::visit(message, prefix, visit) calls visit(path, field, kind)
 // for every leaf field of a message (const or not), paths as "robots[3].body.position[1]";
 // kParsedHash: lcm-gen's fingerprint of what the generators' parser read.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -111,6 +113,12 @@ HEADER = """#pragma once
 namespace ubersim {{
 
 enum class FieldKind {{ kInteger, kReal, kBoolean, kText }};
+
+// One `const` of a .lcm type.
+struct LcmConstant {{
+  const char* name;
+  std::int64_t value;
+}};
 
 // "robots" and 3 -> "robots[3]".
 inline std::string indexed(const std::string& array, std::size_t i) {{
@@ -128,6 +136,7 @@ struct LcmFields;
 SPEC = """template <>
 struct LcmFields<{type}> {{
   static constexpr std::uint64_t kParsedHash = 0x{hash:016x}ULL;
+  static constexpr std::array<LcmConstant, {count}> kConstants{{{{{constants}}}}};
   // Message: {type} or const {type}.
   template <class Message, class Visit>
   static void visit(Message& message, const std::string& prefix, Visit& visit) {{
@@ -139,6 +148,8 @@ struct LcmFields<{type}> {{
 def generate(structs):
     memo = {}
     specs = [SPEC.format(type=name, hash=lcm_hash(name, structs, memo),
+                         count=len(structs[name].constants),
+                         constants=", ".join(f'{{"{n}", {v}}}' for _, n, v in structs[name].constants),
                          body="\n".join(visit_body(name, structs)))
              for name in dependency_order(structs)]
     return HEADER.format(

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <iterator>
+#include <string_view>
 #include <type_traits>
 #include <ubersim/lcm_fields.hpp>
 #include <ubersim/team_t.hpp>
@@ -69,62 +70,27 @@ std::string stage_text(int stage) {
   return "STAGE " + std::to_string(stage);
 }
 
-std::string command_text(int command) {
-  switch (command) {
-    case referee_t::HALT:
-      return "HALT";
-    case referee_t::STOP:
-      return "STOP";
-    case referee_t::NORMAL_START:
-      return "NORMAL_START";
-    case referee_t::FORCE_START:
-      return "FORCE_START";
-    case referee_t::PREPARE_KICKOFF_YELLOW:
-      return "PREPARE_KICKOFF_YELLOW";
-    case referee_t::PREPARE_KICKOFF_BLUE:
-      return "PREPARE_KICKOFF_BLUE";
-    case referee_t::PREPARE_PENALTY_YELLOW:
-      return "PREPARE_PENALTY_YELLOW";
-    case referee_t::PREPARE_PENALTY_BLUE:
-      return "PREPARE_PENALTY_BLUE";
-    case referee_t::DIRECT_FREE_YELLOW:
-      return "DIRECT_FREE_YELLOW";
-    case referee_t::DIRECT_FREE_BLUE:
-      return "DIRECT_FREE_BLUE";
-    case referee_t::TIMEOUT_YELLOW:
-      return "TIMEOUT_YELLOW";
-    case referee_t::TIMEOUT_BLUE:
-      return "TIMEOUT_BLUE";
-    case referee_t::BALL_PLACEMENT_YELLOW:
-      return "BALL_PLACEMENT_YELLOW";
-    case referee_t::BALL_PLACEMENT_BLUE:
-      return "BALL_PLACEMENT_BLUE";
-    default:
-      return "COMMAND " + std::to_string(command);
+// The name of Msg's .lcm constant with that value, leaving out those whose
+// names begin with `skip`; nullptr when there is none.
+template <class Msg>
+const char* constant_name(std::int64_t value, std::string_view skip = {}) {
+  for (const LcmConstant& constant : LcmFields<Msg>::kConstants) {
+    if (!skip.empty() && std::string_view(constant.name).substr(0, skip.size()) == skip) continue;
+    if (constant.value == value) return constant.name;
   }
+  return nullptr;
+}
+
+// referee_t's command constants (its others are the STAGE_*s) and
+// referee_event_t's, by their .lcm names; a number not there is shown as one.
+std::string command_text(int command) {
+  const char* name = constant_name<referee_t>(command, "STAGE_");
+  return name != nullptr ? name : "COMMAND " + std::to_string(command);
 }
 
 std::string event_type_text(int type) {
-  switch (type) {
-    case referee_event_t::NO_PROGRESS_IN_GAME:
-      return "NO_PROGRESS_IN_GAME";
-    case referee_event_t::BALL_LEFT_FIELD_TOUCH_LINE:
-      return "BALL_LEFT_FIELD_TOUCH_LINE";
-    case referee_event_t::BALL_LEFT_FIELD_GOAL_LINE:
-      return "BALL_LEFT_FIELD_GOAL_LINE";
-    case referee_event_t::GOAL:
-      return "GOAL";
-    case referee_event_t::ATTACKER_DOUBLE_TOUCHED_BALL:
-      return "ATTACKER_DOUBLE_TOUCHED_BALL";
-    case referee_event_t::BOT_KICKED_BALL_TOO_FAST:
-      return "BOT_KICKED_BALL_TOO_FAST";
-    case referee_event_t::DEFENDER_IN_DEFENSE_AREA:
-      return "DEFENDER_IN_DEFENSE_AREA";
-    case referee_event_t::TOO_MANY_ROBOTS:
-      return "TOO_MANY_ROBOTS";
-    default:
-      return "EVENT " + std::to_string(type);
-  }
+  const char* name = constant_name<referee_event_t>(type);
+  return name != nullptr ? name : "EVENT " + std::to_string(type);
 }
 
 json encode_referee_team(std::int32_t score, std::int32_t fouls, std::int32_t goalkeeper) {
