@@ -79,6 +79,17 @@ def members_of(struct, structs):
 
 # ---------------------------------------------------------------- IDL
 
+def all_constants(name, structs):
+    """(type, name, value, comment) of a type's constants, imported ones included."""
+    struct = structs[name]
+    out = [(t, n, v, struct.comments.get(n, "")) for t, n, v in struct.constants]
+    if name in IMPORTED_CONSTANTS:
+        source, prefix = IMPORTED_CONSTANTS[name]
+        out += [(t, prefix + n, v, structs[source].comments.get(n, ""))
+                for t, n, v in structs[source].constants]
+    return out
+
+
 def idl_struct(name, structs):
     lines = [f"struct {dds_name(name)}_ {{"]
     for m in members_of(structs[name], structs):
@@ -94,13 +105,10 @@ def idl_struct(name, structs):
 
 
 def idl_constants(name, structs):
-    constants = [(t, n, v) for t, n, v in structs[name].constants]
-    if name in IMPORTED_CONSTANTS:
-        source, prefix = IMPORTED_CONSTANTS[name]
-        constants += [(t, prefix + n, v) for t, n, v in structs[source].constants]
+    constants = all_constants(name, structs)
     if not constants:
         return ""
-    body = "\n".join(f"  const {IDL_TYPES[t]} {n} = {v};" for t, n, v in constants)
+    body = "\n".join(f"  const {IDL_TYPES[t]} {n} = {v};" for t, n, v, _ in constants)
     return f"module {dds_name(name)}_Constants {{\n{body}\n}};\n"
 
 
@@ -121,17 +129,6 @@ ROS_TYPES = {
     "float": "float32", "double": "float64", "boolean": "bool", "string": "string",
     "byte": "uint8",
 }
-
-
-def all_constants(name, structs):
-    """(type, name, value, comment) of a type's constants, imported ones included."""
-    struct = structs[name]
-    out = [(t, n, v, struct.comments.get(n, "")) for t, n, v in struct.constants]
-    if name in IMPORTED_CONSTANTS:
-        source, prefix = IMPORTED_CONSTANTS[name]
-        out += [(t, prefix + n, v, structs[source].comments.get(n, ""))
-                for t, n, v in structs[source].constants]
-    return out
 
 
 def with_comment(text, comment):
