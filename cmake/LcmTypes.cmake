@@ -20,16 +20,22 @@ function(ubersim_generate_lcm_types)
     DEPENDS ${lcm_paths}
     COMMENT "lcm-gen: C++ message types"
     VERBATIM)
-  # The bounds every decode checks first (see gen_encoded_bounds.py for why).
-  set(bounds_header ${cpp_dir}/ubersim/encoded_bounds.hpp)
-  set(bounds_generator ${CMAKE_CURRENT_SOURCE_DIR}/gen_encoded_bounds.py)
-  add_custom_command(
-    OUTPUT ${bounds_header}
-    COMMAND ${Python3_EXECUTABLE} ${bounds_generator} ${bounds_header} ${lcm_paths}
-    DEPENDS ${lcm_paths} ${bounds_generator} ${headers}
-    COMMENT "encoded bounds of the LCM message types"
-    VERBATIM)
-  add_custom_target(${ARG_TARGET}_gen DEPENDS ${headers} ${bounds_header})
+  # Headers generated from the .lcm files by our own scripts (one parser,
+  # lcm_schema.py): encoded_bounds.hpp, the bounds every decode checks first,
+  # and lcm_fields.hpp, every field by its path (see each gen_<name>.py for why).
+  set(generated_headers "")
+  foreach(name encoded_bounds lcm_fields)
+    set(header ${cpp_dir}/ubersim/${name}.hpp)
+    set(generator ${CMAKE_CURRENT_SOURCE_DIR}/gen_${name}.py)
+    add_custom_command(
+      OUTPUT ${header}
+      COMMAND ${Python3_EXECUTABLE} ${generator} ${header} ${lcm_paths}
+      DEPENDS ${lcm_paths} ${generator} ${CMAKE_CURRENT_SOURCE_DIR}/lcm_schema.py ${headers}
+      COMMENT "${name}.hpp from the LCM message types"
+      VERBATIM)
+    list(APPEND generated_headers ${header})
+  endforeach()
+  add_custom_target(${ARG_TARGET}_gen DEPENDS ${headers} ${generated_headers})
   add_library(${ARG_TARGET} INTERFACE)
   add_dependencies(${ARG_TARGET} ${ARG_TARGET}_gen)
   target_include_directories(${ARG_TARGET} SYSTEM INTERFACE ${cpp_dir})

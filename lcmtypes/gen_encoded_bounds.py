@@ -11,8 +11,9 @@ derived from the schema at build time, so it cannot drift from the types.
 
 Usage: gen_encoded_bounds.py OUTPUT.hpp a.lcm b.lcm ...
 """
-import re
 import sys
+
+from lcm_schema import LcmSyntaxError, run_generator
 
 PRIMITIVE_SIZES = {
     "int8_t": 1, "byte": 1, "boolean": 1, "int16_t": 2, "int32_t": 4, "int64_t": 8,
@@ -20,46 +21,6 @@ PRIMITIVE_SIZES = {
 }
 INTEGER_TYPES = {"int8_t": 1, "int16_t": 2, "int32_t": 4, "int64_t": 8}
 STRING_MIN_SIZE = 5  # int32 length (which counts the terminating NUL) + the NUL itself
-
-
-class LcmSyntaxError(Exception):
-    pass
-
-
-def strip_comments(text):
-    text = re.sub(r"/\*.*?\*/", " ", text, flags=re.S)
-    return re.sub(r"//[^\n]*", " ", text)
-
-
-def parse_members(body, where):
-    members = []
-    for statement in body.split(";"):
-        statement = " ".join(statement.split())
-        if not statement or statement.startswith("const "):
-            continue
-        match = re.fullmatch(r"([A-Za-z_][\w.]*)\s+(.+)", statement)
-        if not match:
-            raise LcmSyntaxError(f"{where}: cannot read member '{statement}'")
-        type_name = match.group(1).split(".")[-1]
-        for declarator in match.group(2).split(","):
-            declarator = declarator.replace(" ", "")
-            name_match = re.fullmatch(r"([A-Za-z_]\w*)((?:\[[\w]+\])*)", declarator)
-            if not name_match:
-                raise LcmSyntaxError(f"{where}: cannot read member '{declarator}'")
-            dims = re.findall(r"\[([\w]+)\]", name_match.group(2))
-            members.append((type_name, name_match.group(1), dims))
-    return members
-
-
-def parse_file(path):
-    with open(path, encoding="utf-8") as f:
-        text = strip_comments(f.read())
-    structs = {}
-    for match in re.finditer(r"struct\s+([A-Za-z_]\w*)\s*\{(.*?)\}", text, flags=re.S):
-        structs[match.group(1)] = parse_members(match.group(2), f"{path}: struct {match.group(1)}")
-    if not structs:
-        raise LcmSyntaxError(f"{path}: no struct found")
-    return structs
 
 
 def min_size(type_name, structs, memo, stack=()):
@@ -230,32 +191,19 @@ struct EncodedBounds<{type}> {{
 }};"""
 
 
-def main(argv):
-    if len(argv) < 3:
-        print(__doc__, file=sys.stderr)
-        return 2
-    output, paths = argv[1], argv[2:]
-    structs = {}
-    try:
-        for path in paths:
-            structs.update(parse_file(path))
-        memo = {}
-        names = sorted(structs)
-        walkers = [walker(name, structs[name], structs, memo) for name in names]
-        traits = [TRAIT.format(type=name, min_size=min_size(name, structs, memo)) for name in names]
-    except LcmSyntaxError as error:
-        print(f"gen_encoded_bounds: {error}", file=sys.stderr)
-        return 1
-    text = HEADER.format(
+def generate(parsed):
+    structs = {name: struct.members for name, struct in parsed.items()}
+    memo = {}
+    names = sorted(structs)
+    walkers = [walker(name, structs[name], structs, memo) for name in names]
+    traits = [TRAIT.format(type=name, min_size=min_size(name, structs, memo)) for name in names]
+    return HEADER.format(
         includes="\n".join(f'#include "ubersim/{name}.hpp"' for name in names),
         declarations="\n".join(f"inline bool walk_{name}(Reader& r);" for name in names),
         walkers="\n\n".join(walkers),
         traits="\n\n".join(traits),
         type_list=", ".join(names))
-    with open(output, "w", encoding="utf-8") as f:
-        f.write(text)
-    return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(run_generator(sys.argv, __doc__, generate))

@@ -9,11 +9,7 @@
 #include <ubersim/sim_control_t.hpp>
 
 #include "ubersim/dds_bridge/bridged_topics.hpp"
-#include "ubersim/dds_bridge/convert_geometry.hpp"
-#include "ubersim/dds_bridge/convert_radio.hpp"
-#include "ubersim/dds_bridge/convert_sim_control.hpp"
-#include "ubersim/dds_bridge/convert_sim_state.hpp"
-#include "ubersim/dds_bridge/convert_vision.hpp"
+#include "ubersim/dds_bridge/convert.hpp"
 #include "ubersim/dds_bridge/dds_entity.hpp"
 #include "ubersim/dds_bridge/echo_filter.hpp"
 #include "ubersim/dds_bridge/qos.hpp"

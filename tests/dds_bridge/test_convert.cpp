@@ -8,11 +8,7 @@
 #include <limits>
 
 #include "sample_messages.hpp"
-#include "ubersim/dds_bridge/convert_geometry.hpp"
-#include "ubersim/dds_bridge/convert_radio.hpp"
-#include "ubersim/dds_bridge/convert_sim_control.hpp"
-#include "ubersim/dds_bridge/convert_sim_state.hpp"
-#include "ubersim/dds_bridge/convert_vision.hpp"
+#include "ubersim/dds_bridge/convert.hpp"
 #include "ubersim/dds_bridge/echo_filter.hpp"
 
 namespace dds = ubersim::dds;

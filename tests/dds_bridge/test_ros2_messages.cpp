@@ -1,8 +1,11 @@
-// The ROS 2 interface package shipped for users (dds_bridge/ros2/ubersim_msgs)
-// must describe exactly the IDL the bridge is built from: same messages, same
-// fields in the same order with the matching ROS types, same constants. ROS 2
-// generates ubersim_msgs::msg::dds_::<Name>_ from those .msg files, so this is
-// what makes a ROS 2 node and the bridge agree on the wire.
+// The ROS 2 interface package for users (<build>/dds_bridge/generated/ros2/
+// ubersim_msgs: package.xml and CMakeLists.txt from dds_bridge/ros2, the .msg
+// files generated with the IDL from the .lcm files) must describe exactly the
+// IDL the bridge is built from: same messages, same fields in the same order
+// with the matching ROS types, same constants. ROS 2 generates
+// ubersim_msgs::msg::dds_::<Name>_ from those .msg files, so this is what makes
+// a ROS 2 node and the bridge agree on the wire. (The ROS spelling of each IDL
+// type is written here a second time, on purpose: a check of the generator.)
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -17,7 +20,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kSource = UBERSIM_DDS_BRIDGE_SOURCE_DIR;
+const fs::path kGenerated = UBERSIM_DDS_GENERATED_DIR;  // from the .lcm files
+const fs::path kPackage = kGenerated / "ros2" / "ubersim_msgs";
 
 struct Message {
   std::vector<std::string> fields;     // "type name", ROS spelling
@@ -61,7 +65,7 @@ std::map<std::string, Message> parse_idl() {
   const std::regex member(R"((sequence<\s*([\w:]+)\s*>|[\w:]+)\s+(\w+)\s*(\[\s*(\d+)\s*\])?\s*;)");
   const std::regex constants(R"(module\s+(\w+)_Constants\s*\{([^}]*)\})");
   const std::regex constant(R"(const\s+(\w+)\s+(\w+)\s*=\s*(-?\d+)\s*;)");
-  for (const auto& entry : fs::directory_iterator(kSource / "idl" / "ubersim_msgs")) {
+  for (const auto& entry : fs::directory_iterator(kGenerated / "idl" / "ubersim_msgs")) {
     const std::string text = strip_comments(read(entry.path()), "//");
     for (auto s = std::sregex_iterator(text.begin(), text.end(), structure);
          s != std::sregex_iterator(); ++s) {
@@ -90,7 +94,7 @@ std::map<std::string, Message> parse_msgs() {
   std::map<std::string, Message> out;
   const std::regex field(R"(^\s*([\w\[\]]+)\s+(\w+)\s*$)");
   const std::regex constant(R"(^\s*(\w+)\s+(\w+)\s*=\s*(-?\d+)\s*$)");
-  for (const auto& entry : fs::directory_iterator(kSource / "ros2" / "ubersim_msgs" / "msg")) {
+  for (const auto& entry : fs::directory_iterator(kPackage / "msg")) {
     Message& message = out[entry.path().stem().string()];
     std::stringstream lines(strip_comments(read(entry.path()), "#"));
     std::string line;
@@ -114,7 +118,7 @@ std::map<std::string, Message> parse_msgs() {
 TEST(Ros2Messages, MsgFilesMatchTheIdlFieldForField) {
   const auto idl = parse_idl();
   const auto msgs = parse_msgs();
-  ASSERT_GE(idl.size(), 18u);  // every struct of the five IDL files was read
+  ASSERT_GE(idl.size(), 18u);  // every struct of the generated IDL was read
   for (const auto& [name, message] : idl) {
     const auto found = msgs.find(name);
     ASSERT_NE(found, msgs.end()) << "no ros2/ubersim_msgs/msg/" << name << ".msg";
@@ -126,8 +130,9 @@ TEST(Ros2Messages, MsgFilesMatchTheIdlFieldForField) {
 }
 
 TEST(Ros2Messages, PackageGeneratesEveryMsgFile) {
-  const std::string cmake = read(kSource / "ros2" / "ubersim_msgs" / "CMakeLists.txt");
-  for (const auto& entry : fs::directory_iterator(kSource / "ros2" / "ubersim_msgs" / "msg"))
-    EXPECT_NE(cmake.find("msg/" + entry.path().filename().string()), std::string::npos)
-        << entry.path().filename();
+  EXPECT_TRUE(fs::exists(kPackage / "package.xml"));
+  const std::string cmake = read(kPackage / "CMakeLists.txt");
+  EXPECT_NE(cmake.find("rosidl_generate_interfaces(${PROJECT_NAME} ${msg_files})"),
+            std::string::npos);
+  EXPECT_NE(cmake.find("msg/*.msg"), std::string::npos);
 }

@@ -264,6 +264,14 @@ TEST(ViewerEncoding, RefereeWithUnknownNumbersNoNextCommandAndManyEvents) {
   r.command = referee_t::BALL_PLACEMENT_BLUE;
   EXPECT_EQ(encode_referee(r)["stage"], "POST_GAME");
   EXPECT_EQ(encode_referee(r)["command"], "BALL_PLACEMENT_BLUE");
+  // Command names come from referee_t's constants, its STAGE_*s left out
+  // (HALT and STAGE_FIRST_HALF_PRE are both 0).
+  r.command = referee_t::HALT;
+  EXPECT_EQ(encode_referee(r)["command"], "HALT");
+  r.command = referee_t::TIMEOUT_YELLOW;
+  EXPECT_EQ(encode_referee(r)["command"], "TIMEOUT_YELLOW");
+  r.events.back().type = referee_event_t::TOO_MANY_ROBOTS;
+  EXPECT_EQ(encode_referee(r)["events"][7]["type"], "TOO_MANY_ROBOTS");
 }
 
 // The teams' names, when referee_t has them (HasTeamNames); a template, so that

@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <iterator>
+#include <string_view>
+#include <type_traits>
+#include <ubersim/lcm_fields.hpp>
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/viewer/request_policy.hpp"
@@ -67,62 +70,27 @@ std::string stage_text(int stage) {
   return "STAGE " + std::to_string(stage);
 }
 
-std::string command_text(int command) {
-  switch (command) {
-    case referee_t::HALT:
-      return "HALT";
-    case referee_t::STOP:
-      return "STOP";
-    case referee_t::NORMAL_START:
-      return "NORMAL_START";
-    case referee_t::FORCE_START:
-      return "FORCE_START";
-    case referee_t::PREPARE_KICKOFF_YELLOW:
-      return "PREPARE_KICKOFF_YELLOW";
-    case referee_t::PREPARE_KICKOFF_BLUE:
-      return "PREPARE_KICKOFF_BLUE";
-    case referee_t::PREPARE_PENALTY_YELLOW:
-      return "PREPARE_PENALTY_YELLOW";
-    case referee_t::PREPARE_PENALTY_BLUE:
-      return "PREPARE_PENALTY_BLUE";
-    case referee_t::DIRECT_FREE_YELLOW:
-      return "DIRECT_FREE_YELLOW";
-    case referee_t::DIRECT_FREE_BLUE:
-      return "DIRECT_FREE_BLUE";
-    case referee_t::TIMEOUT_YELLOW:
-      return "TIMEOUT_YELLOW";
-    case referee_t::TIMEOUT_BLUE:
-      return "TIMEOUT_BLUE";
-    case referee_t::BALL_PLACEMENT_YELLOW:
-      return "BALL_PLACEMENT_YELLOW";
-    case referee_t::BALL_PLACEMENT_BLUE:
-      return "BALL_PLACEMENT_BLUE";
-    default:
-      return "COMMAND " + std::to_string(command);
+// The name of Msg's .lcm constant with that value, leaving out those whose
+// names begin with `skip`; nullptr when there is none.
+template <class Msg>
+const char* constant_name(std::int64_t value, std::string_view skip = {}) {
+  for (const LcmConstant& constant : LcmFields<Msg>::kConstants) {
+    if (!skip.empty() && std::string_view(constant.name).substr(0, skip.size()) == skip) continue;
+    if (constant.value == value) return constant.name;
   }
+  return nullptr;
+}
+
+// referee_t's command constants (its others are the STAGE_*s) and
+// referee_event_t's, by their .lcm names; a number not there is shown as one.
+std::string command_text(int command) {
+  const char* name = constant_name<referee_t>(command, "STAGE_");
+  return name != nullptr ? name : "COMMAND " + std::to_string(command);
 }
 
 std::string event_type_text(int type) {
-  switch (type) {
-    case referee_event_t::NO_PROGRESS_IN_GAME:
-      return "NO_PROGRESS_IN_GAME";
-    case referee_event_t::BALL_LEFT_FIELD_TOUCH_LINE:
-      return "BALL_LEFT_FIELD_TOUCH_LINE";
-    case referee_event_t::BALL_LEFT_FIELD_GOAL_LINE:
-      return "BALL_LEFT_FIELD_GOAL_LINE";
-    case referee_event_t::GOAL:
-      return "GOAL";
-    case referee_event_t::ATTACKER_DOUBLE_TOUCHED_BALL:
-      return "ATTACKER_DOUBLE_TOUCHED_BALL";
-    case referee_event_t::BOT_KICKED_BALL_TOO_FAST:
-      return "BOT_KICKED_BALL_TOO_FAST";
-    case referee_event_t::DEFENDER_IN_DEFENSE_AREA:
-      return "DEFENDER_IN_DEFENSE_AREA";
-    case referee_event_t::TOO_MANY_ROBOTS:
-      return "TOO_MANY_ROBOTS";
-    default:
-      return "EVENT " + std::to_string(type);
-  }
+  const char* name = constant_name<referee_event_t>(type);
+  return name != nullptr ? name : "EVENT " + std::to_string(type);
 }
 
 json encode_referee_team(std::int32_t score, std::int32_t fouls, std::int32_t goalkeeper) {
@@ -190,24 +158,19 @@ json encode_vision_frame(const vision_frame_t& frame) {
 }
 
 json encode_field_geometry(const field_geometry_t& f) {
-  return {{"name", f.name},
-          {"field_length", number(f.field_length)},
-          {"field_width", number(f.field_width)},
-          {"boundary_width", number(f.boundary_width)},
-          {"line_width", number(f.line_width)},
-          {"goal_width", number(f.goal_width)},
-          {"goal_depth", number(f.goal_depth)},
-          {"goal_height", number(f.goal_height)},
-          {"goal_wall_thickness", number(f.goal_wall_thickness)},
-          {"wall_height", number(f.wall_height)},
-          {"wall_thickness", number(f.wall_thickness)},
-          {"center_circle_radius", number(f.center_circle_radius)},
-          {"penalty_area_depth", number(f.penalty_area_depth)},
-          {"penalty_area_width", number(f.penalty_area_width)},
-          {"ball_radius", number(f.ball_radius)},
-          {"penalty_mark_distance", number(f.penalty_mark_distance)},
-          {"boundary_width_goal_line", number(f.boundary_width_goal_line)},
-          {"goal_substitution_area_width", number(f.goal_substitution_area_width)}};
+  // Every field of the message under its .lcm name (the page draws from them).
+  json out = json::object();
+  auto add = [&out](const std::string& name, const auto& value, FieldKind kind) {
+    if constexpr (std::is_arithmetic_v<std::decay_t<decltype(value)>>) {
+      if (kind == FieldKind::kReal) {
+        out[name] = number(value);
+        return;
+      }
+    }
+    out[name] = value;
+  };
+  LcmFields<field_geometry_t>::visit(f, "", add);
+  return out;
 }
 
 json encode_cameras(const vision_geometry_t& geometry) {

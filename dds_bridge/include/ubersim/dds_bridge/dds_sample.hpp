@@ -62,9 +62,11 @@ void fill_sequence(Sequence& sequence, const std::vector<Source>& source, Conver
   for (std::size_t i = 0; i < n; ++i) convert(source[i], sequence._buffer[i]);
 }
 
-template <class Sequence>
-void fill_sequence(Sequence& sequence, const std::vector<double>& source) {
-  fill_sequence(sequence, source, [](double from, double& to) { to = from; });
+// A sequence of numbers, element for element.
+template <class Sequence, class Number>
+void fill_sequence(Sequence& sequence, const std::vector<Number>& source) {
+  static_assert(std::is_arithmetic_v<Number>, "a sequence of numbers");
+  fill_sequence(sequence, source, [](Number from, auto& to) { to = from; });
 }
 
 // The elements of a received sequence, each converted.
@@ -78,8 +80,9 @@ std::vector<Target> from_dds_sequence(const Sequence& sequence, Convert convert)
 }
 
 template <class Sequence>
-std::vector<double> from_dds_sequence(const Sequence& sequence) {
-  return from_dds_sequence<double>(sequence, [](double value) { return value; });
+auto from_dds_sequence(const Sequence& sequence) {
+  using Number = std::remove_cv_t<std::remove_pointer_t<decltype(sequence._buffer)>>;
+  return from_dds_sequence<Number>(sequence, [](Number value) { return value; });
 }
 
 // The int32 element count LCM carries next to each array.

@@ -12,18 +12,10 @@
 // with the receiving process, which has the context for them.
 #include <cstddef>
 #include <string>
-#include <ubersim/field_geometry_t.hpp>
-#include <ubersim/radio_feedback_t.hpp>
-#include <ubersim/radio_packet_t.hpp>
-#include <ubersim/sim_commands_t.hpp>
-#include <ubersim/sim_control_ack_t.hpp>
-#include <ubersim/sim_control_t.hpp>
-#include <ubersim/sim_state_t.hpp>
-#include <ubersim/vision_frame_t.hpp>
-#include <ubersim/vision_geometry_t.hpp>
 #include <vector>
 
 #include "ubersim/channels.hpp"
+#include "ubersim/dds_bridge/convert.hpp"
 #include "ubersim/radio/radio_profile.hpp"
 
 namespace ubersim::dds {
@@ -39,15 +31,7 @@ struct Admission {
   std::vector<Finding> findings;
 };
 
-// "" when every real number is finite, else the first field that is not.
-std::string non_finite_field(const vision_frame_t& frame);
-std::string non_finite_field(const field_geometry_t& field);
-std::string non_finite_field(const vision_geometry_t& geometry);
-std::string non_finite_field(const radio_feedback_t& feedback);
-std::string non_finite_field(const sim_state_t& state);
-std::string non_finite_field(const sim_control_t& control);
-std::string non_finite_field(const sim_control_ack_t& ack);
-
+// non_finite_field(message): convert.hpp, generated from the .lcm files.
 template <class Msg>
 Admission admit(const Msg& message) {
   Admission admission;
