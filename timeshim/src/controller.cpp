@@ -110,6 +110,7 @@ Controller::Controller(ControllerOptions options)
   header.charge_ns = options_.charge_ns;
   header.yield_after_ns = options_.yield_after_ns;
   header.wake_signal = SIGRTMAX - 1;
+  header.deterministic = options_.deterministic ? 1 : 0;
   header.controller_pid = ::getpid();
   header.size = sizeof(Header);
   header.version = kVersion;
@@ -219,6 +220,13 @@ void Controller::wake_due() {
   for (auto& slot : header.threads) {
     if (slot.claim.load() == 0 || slot.deadline_ns.load() > now) continue;
     const auto state = static_cast<ThreadState>(slot.state.load());
+    if (state == ThreadState::DetBlocked) {
+      // Its deadline passed: it wants its turn (and sees no peer ended its wait).
+      auto blocked = static_cast<std::uint32_t>(ThreadState::DetBlocked);
+      slot.state.compare_exchange_strong(blocked,
+                                         static_cast<std::uint32_t>(ThreadState::WantToken));
+      continue;
+    }
     ThreadSlot* to_wake = &slot;
     if (state == ThreadState::WaitingCond || state == ThreadState::Timer) {
       const auto helper = helpers.find(slot.pid.load());

@@ -196,6 +196,10 @@ Controller::Scan Controller::scan() {
         if (!sleeps) result.all_waiting = false;  // waking a waiter now
         continue;
       }
+      if (sleeps && slot != slots.end() && slot->second.state == ThreadState::WantToken) {
+        suspects_.erase(tid);  // deterministic mode: waits for its turn (turns.cpp)
+        continue;
+      }
       if (sleeps && slot != slots.end() && is_shim_wait(slot->second.state)) {
         if (slot->second.deadline_ns <= now) {
           result.owed_wake = true;
@@ -253,6 +257,11 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
       const Scan second = scan();
       if (second.all_waiting && second.run_counts == first.run_counts &&
           segment.change_seq.load() == seq) {
+        // Deterministic mode: quiescent only when nobody wants to run.
+        if (options_.deterministic && give_turn()) {
+          backoff_ns = 20000;
+          continue;
+        }
         return Quiescence{GroupState::Quiescent, second.next_deadline};
       }
     }

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cerrno>
 
+#include "det_sync.hpp"
 #include "runtime.hpp"
 
 namespace shim = ubersim::timeshim::shim;
@@ -91,7 +92,7 @@ void ensure_helper() {
   pthread_attr_setdetachstate(&attributes, PTHREAD_CREATE_DETACHED);
   pthread_attr_setstacksize(&attributes, std::size_t{64} * 1024);
   pthread_t thread;
-  if (pthread_create(&thread, &attributes, run_helper, nullptr) == 0) {
+  if (real_pthread_create(&thread, &attributes, run_helper, nullptr) == 0) {
     pthread_setname_np(thread, "timeshim-helper");
   }
   pthread_attr_destroy(&attributes);
@@ -110,6 +111,7 @@ int real_cond_clockwait(pthread_cond_t* cond, pthread_mutex_t* mutex, clockid_t 
 }
 
 int cond_wait_until(pthread_cond_t* cond, pthread_mutex_t* mutex, std::int64_t deadline) {
+  if (shim::deterministic()) return shim::det_cond_wait(cond, mutex, deadline);
   const std::int64_t view_at_start = shim::view_now();
   if (deadline <= view_at_start) {
     shim::charge_call();
