@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -376,6 +377,101 @@ TEST(Timeshim, RerunsSeeTheSameSimTimesAlsoBesideACpuHog) {
     for (auto& hog : hogs) hog.join();
     EXPECT_FALSE(first.output.empty());
     EXPECT_EQ(first.output, second.output) << argv.back();
+  }
+}
+
+// Runs fn (a group run) beside a CPU hog on every core.
+template <typename Fn>
+GroupRun beside_cpu_hog(Fn&& fn) {
+  std::atomic<bool> hogging{true};
+  std::vector<std::thread> hogs;
+  for (unsigned i = 0; i < std::max(1U, std::thread::hardware_concurrency()); ++i) {
+    hogs.emplace_back([&hogging] {
+      while (hogging.load(std::memory_order_relaxed)) {
+      }
+    });
+  }
+  GroupRun run = fn();
+  hogging.store(false);
+  for (auto& hog : hogs) hog.join();
+  return run;
+}
+
+ControllerOptions deterministic_in(const TempDir& dir) {
+  ControllerOptions options = options_in(dir);
+  options.deterministic = true;
+  return options;
+}
+
+// The lengths of the runs of equal items in `items`, with the item of each.
+template <typename T>
+std::vector<std::pair<T, int>> runs_of(const std::vector<T>& items) {
+  std::vector<std::pair<T, int>> runs;
+  for (const T& item : items) {
+    if (runs.empty() || runs.back().first != item) runs.emplace_back(item, 0);
+    ++runs.back().second;
+  }
+  return runs;
+}
+
+TEST(Timeshim, DeterministicModeRunsThreadsOfProcessesInAFixedOrder) {
+  TempDir dir;
+  // Five threads of two processes write 30 letters each to one file, 10
+  // between sleeps, with CPU work between letters. In turns, each writes
+  // its 10 at once (without the mode the kernel interleaves them).
+  const std::vector<std::string> argv = {TIMESHIM_PROBE, "interleave"};
+  const GroupRun first = run_program(dir, argv, deterministic_in(dir));
+  ASSERT_EQ(first.exit_status, 0) << first.output;
+  const std::string letters = first.output.substr(0, first.output.find('\n'));
+  ASSERT_EQ(letters.size(), 150U) << first.output;
+  const auto runs = runs_of(std::vector<char>(letters.begin(), letters.end()));
+  ASSERT_EQ(runs.size(), 15U) << letters;
+  std::map<char, int> per_letter;
+  for (const auto& [letter, length] : runs) {
+    EXPECT_EQ(length, 10) << letters;
+    ++per_letter[letter];
+  }
+  EXPECT_EQ(per_letter, (std::map<char, int>{{'A', 3}, {'B', 3}, {'C', 3}, {'D', 3}, {'E', 3}}));
+  const GroupRun second =
+      beside_cpu_hog([&] { return run_program(dir, argv, deterministic_in(dir)); });
+  EXPECT_EQ(first.output, second.output);
+  EXPECT_TRUE(blocking_problems(second).empty()) << all_text(second.problems);
+}
+
+TEST(Timeshim, DeterministicModeRunsPythonThreadsAndAForkedChildInAFixedOrder) {
+  if (!have_python()) GTEST_SKIP() << "no /usr/bin/python3";
+  TempDir dir;
+  const std::vector<std::string> argv = {"/usr/bin/python3", TIMESHIM_DET_PY};
+  const GroupRun first = run_program(dir, argv, deterministic_in(dir));
+  ASSERT_EQ(first.exit_status, 0) << first.output;
+  // 5 threads (3 here, 2 in the child) print 15 lines each, 5 between sleeps:
+  // in turns, the 5 of each come together.
+  std::vector<std::string> names;
+  for (const auto& [label, value] : first.seen) {
+    if (label != "end") names.push_back(label);
+  }
+  ASSERT_EQ(names.size(), 75U) << first.output;
+  for (const auto& [name, length] : runs_of(names)) EXPECT_EQ(length, 5) << first.output;
+  EXPECT_DOUBLE_EQ(value_of(first.seen, "end"), 0.003);
+  const GroupRun second =
+      beside_cpu_hog([&] { return run_program(dir, argv, deterministic_in(dir)); });
+  EXPECT_EQ(first.output, second.output);
+}
+
+TEST(Timeshim, DeterministicModeKeepsTheSimTimesOfEveryWait) {
+  TempDir dir;
+  std::vector<std::vector<std::string>> programs = {{TIMESHIM_PROBE, "threads"},
+                                                    {TIMESHIM_PROBE, "fd_timeouts"},
+                                                    {TIMESHIM_PROBE, "cond_waits"},
+                                                    {TIMESHIM_PROBE, "forks"}};
+  if (have_python()) programs.push_back({"/usr/bin/python3", TIMESHIM_PROBE_PY});
+  for (const auto& argv : programs) {
+    const GroupRun plain = run_program(dir, argv, options_in(dir));
+    const GroupRun in_turns = run_program(dir, argv, deterministic_in(dir));
+    EXPECT_EQ(in_turns.exit_status, 0) << in_turns.output;
+    EXPECT_FALSE(plain.output.empty());
+    EXPECT_EQ(plain.output, in_turns.output) << argv.back();
+    EXPECT_TRUE(blocking_problems(in_turns).empty()) << all_text(in_turns.problems);
   }
 }
 

@@ -296,6 +296,40 @@ int exec_static(const char* path) {
   return 1;
 }
 
+// Threads of two processes write letters straight to stdout (one shared
+// file offset), 10 at a time between 1 ms sleeps, with CPU work between
+// letters: without the deterministic mode the kernel's scheduler interleaves
+// them; with it, each thread writes its 10 in its turn, in a fixed order.
+void write_letters(char letter) {
+  for (int i = 0; i < 30; ++i) {
+    if (write(1, &letter, 1) != 1) std::perror("write");
+    volatile unsigned work = 0;
+    for (unsigned k = 0; k < 300000; ++k) work = work + k;
+    if (i % 10 == 9) usleep(1000);
+  }
+}
+
+void letters_of_threads(const char* letters) {
+  std::vector<std::thread> writers;
+  for (const char* letter = letters; *letter != '\0'; ++letter) {
+    writers.emplace_back(write_letters, *letter);
+  }
+  for (auto& writer : writers) writer.join();
+}
+
+int interleave() {
+  const pid_t child = fork();
+  if (child == 0) {
+    letters_of_threads("DE");
+    _exit(0);
+  }
+  letters_of_threads("ABC");
+  int status = 0;
+  waitpid(child, &status, 0);
+  if (write(1, "\n", 1) != 1) return 1;
+  return 0;
+}
+
 // For the benchmark: the CPU time of one clock read (the process CPU clock
 // is the kernel's under the shim too).
 int clock_cost() {
@@ -327,7 +361,8 @@ int main(int argc, char** argv) {
       {"socket_wait", socket_wait}, {"busy_clock", busy_clock},
       {"raw_sleep", raw_sleep},     {"clock_cost", clock_cost},
       {"sleep_cost", sleep_cost},   {"receive_timeout", receive_timeout},
-      {"timer_fd", timer_fd},       {"cond_waits", cond_waits}};
+      {"timer_fd", timer_fd},       {"cond_waits", cond_waits},
+      {"interleave", interleave}};
   const auto mode = argc == 2 ? modes.find(argv[1]) : modes.end();
   if (mode == modes.end()) {
     std::fprintf(stderr, "usage: timeshim_probe MODE, one of:");

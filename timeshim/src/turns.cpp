@@ -4,8 +4,6 @@
 // an order that depends only on what the group did: first come (by the look
 // at which it was first seen wanting), then its place in the group (the
 // order threads and processes were created in), never the kernel's tid.
-#include <unistd.h>
-
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -26,9 +24,9 @@ ThreadSlot* holder_slot(Header& header, pid_t holder) {
   for (auto& slot : header.threads) {
     if (slot.claim.load() == 0 || slot.tid.load() != holder) continue;
     if (slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer)) continue;
-    const std::string task =
-        "/proc/" + std::to_string(slot.pid.load()) + "/task/" + std::to_string(holder);
-    return ::access(task.c_str(), F_OK) == 0 ? &slot : nullptr;
+    // A process that ended holding it is a zombie until its parent reaps it.
+    const auto sample = sample_thread(slot.pid.load(), holder);
+    return sample && sample->state != 'Z' && sample->state != 'X' ? &slot : nullptr;
   }
   return nullptr;
 }
