@@ -4,7 +4,10 @@
 //    per call, measured by the program itself);
 //  * sleeps through the controller: sim seconds per wall second of a program
 //    that does nothing but sleep 1 ms a thousand times, against the 1x of
-//    real time.
+//    real time;
+//  * the deterministic mode: the wall time of the same sleeps, and of five
+//    threads of two processes that compute and sleep (timeshim_probe
+//    interleave), in turns against the same under the shim without turns.
 // Usage: ubersim_timeshim_bench (run from the build tree).
 #include <sys/wait.h>
 #include <unistd.h>
@@ -50,12 +53,15 @@ std::string run_plain(const ubersim::test::TempFolder& dir, const char* mode) {
 }
 
 // Runs the probe mode under the shim; returns its output file and the wall seconds.
-std::string run_shimmed(const ubersim::test::TempFolder& dir, const char* mode, double* wall_s) {
+std::string run_shimmed(const ubersim::test::TempFolder& dir, const char* mode, double* wall_s,
+                        bool deterministic = false) {
   ControllerOptions options;
   options.segment_dir = dir.root().string();
   options.yield_after_ns = 0;  // the cost of the call itself, no pauses
+  options.deterministic = deterministic;
   Controller group(options);
-  const std::string output = dir.path(std::string(mode) + ".shim");
+  const std::string output =
+      dir.path(std::string(mode) + (deterministic ? ".turns" : ".shim"));
   const auto start = std::chrono::steady_clock::now();
   group.spawn({TIMESHIM_PROBE, mode}, output);
   while (group.run_until(kNoDeadline, std::chrono::seconds(5)).state != GroupState::Exited) {
@@ -75,6 +81,16 @@ int main() {
   const double sim_s = value_in(run_shimmed(dir, "sleep_cost", &wall_s), "end");
   std::printf("1000 sleeps of 1 ms through the controller: %.1fx real time (sim s per wall s)\n",
               sim_s / wall_s);
+  double turns_wall_s = 0;
+  run_shimmed(dir, "sleep_cost", &turns_wall_s, true);
+  std::printf("the same sleeps in deterministic mode: %.2fx the wall time\n",
+              turns_wall_s / wall_s);
+  run_shimmed(dir, "interleave", &wall_s);
+  run_shimmed(dir, "interleave", &turns_wall_s, true);
+  std::printf(
+      "5 threads of 2 processes computing and sleeping (probe interleave) in deterministic mode: "
+      "%.2fx the wall time\n",
+      turns_wall_s / wall_s);
   dir.succeeded();
   return 0;
 }
