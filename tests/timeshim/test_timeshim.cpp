@@ -202,6 +202,47 @@ TEST(Timeshim, TimedConditionAndSemaphoreWaitsEndInSimTime) {
   EXPECT_NEAR(value_of(run.seen, "notified"), 1.85, 1e-9);
 }
 
+TEST(Timeshim, TimedMutexLocksEndInSimTime) {
+  TempDir dir;
+  const GroupRun run = run_probe(dir, "timed_mutex");
+  ASSERT_EQ(run.exit_status, 0) << run.output;
+  // From the moment the holder has the mutex (until 2 s).
+  const double start = value_of(run.seen, "start");
+  EXPECT_NEAR(value_of(run.seen, "try_lock_for") - start, 0.3, 1e-9);
+  EXPECT_NEAR(value_of(run.seen, "try_lock_until_system") - start, 0.5, 1e-9);
+  EXPECT_NEAR(value_of(run.seen, "timedlock") - start, 0.75, 1e-9);
+  EXPECT_NEAR(value_of(run.seen, "locked"), 2.0, 1e-9);  // unlocked before its deadline
+  EXPECT_LT(run.wall_s, 1.5);
+}
+
+TEST(Timeshim, SendAndAcceptTimeoutsEndInSimTime) {
+  TempDir dir;
+  const GroupRun run = run_probe(dir, "socket_send_accept");
+  ASSERT_EQ(run.exit_status, 0) << run.output;
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "send_timed_out"), 1.25);
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "write_timed_out"), 2.5);
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "send_timeout"), 1.25);
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "accept_timed_out"), 3.25);
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "accepted"), 3.5);  // a connection before the deadline
+  EXPECT_LT(run.wall_s, 2.0);
+}
+
+TEST(Timeshim, PosixTimersAlarmsAndSignalWaitsRunOnSimTime) {
+  TempDir dir;
+  const GroupRun run = run_probe(dir, "signal_timers");
+  ASSERT_EQ(run.exit_status, 0) << run.output;
+  const Seen expected = {{"timer_signal", 0.5}, {"timer_signal", 0.75}, {"timer_signal", 1.0},
+                         {"timer_left", 0.25},  {"timer_thread", 1.5},  {"sigtimedwait", 1.9},
+                         {"epoll_pwait2", 2.0}, {"alarm_left", 2.0},    {"alarm", 4.0},
+                         {"setitimer", 4.5},    {"itimer_left", 0.25}};
+  ASSERT_EQ(run.seen.size(), expected.size()) << run.output;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(run.seen[i].first, expected[i].first);
+    EXPECT_NEAR(run.seen[i].second, expected[i].second, 1e-9) << run.seen[i].first;
+  }
+  EXPECT_LT(run.wall_s, 2.5);  // 4.5 s of sim time
+}
+
 TEST(Timeshim, ThreadsEachWaitTheirOwnSimTime) {
   TempDir dir;
   const GroupRun run = run_probe(dir, "threads");
@@ -463,7 +504,9 @@ TEST(Timeshim, DeterministicModeKeepsTheSimTimesOfEveryWait) {
   std::vector<std::vector<std::string>> programs = {{TIMESHIM_PROBE, "threads"},
                                                     {TIMESHIM_PROBE, "fd_timeouts"},
                                                     {TIMESHIM_PROBE, "cond_waits"},
-                                                    {TIMESHIM_PROBE, "forks"}};
+                                                    {TIMESHIM_PROBE, "forks"},
+                                                    {TIMESHIM_PROBE, "socket_send_accept"},
+                                                    {TIMESHIM_PROBE, "signal_timers"}};
   if (have_python()) programs.push_back({"/usr/bin/python3", TIMESHIM_PROBE_PY});
   for (const auto& argv : programs) {
     const GroupRun plain = run_program(dir, argv, options_in(dir));

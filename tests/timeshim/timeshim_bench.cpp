@@ -60,8 +60,7 @@ std::string run_shimmed(const ubersim::test::TempFolder& dir, const char* mode, 
   options.yield_after_ns = 0;  // the cost of the call itself, no pauses
   options.deterministic = deterministic;
   Controller group(options);
-  const std::string output =
-      dir.path(std::string(mode) + (deterministic ? ".turns" : ".shim"));
+  const std::string output = dir.path(std::string(mode) + (deterministic ? ".turns" : ".shim"));
   const auto start = std::chrono::steady_clock::now();
   group.spawn({TIMESHIM_PROBE, mode}, output);
   while (group.run_until(kNoDeadline, std::chrono::seconds(5)).state != GroupState::Exited) {

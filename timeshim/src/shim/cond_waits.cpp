@@ -12,6 +12,7 @@
 
 #include "det_sync.hpp"
 #include "runtime.hpp"
+#include "timers.hpp"
 
 namespace shim = ubersim::timeshim::shim;
 using ubersim::timeshim::futex_wait;
@@ -34,8 +35,9 @@ void fire_timer(ThreadSlot& slot, std::int64_t now) {
   // The next deadline first: a reader woken by the write may ask for it.
   slot.deadline_ns.store(interval > 0 ? deadline + static_cast<std::int64_t>(expirations) * interval
                                       : ubersim::timeshim::kNoDeadline);
-  const int fd = slot.timer_fd.load();
-  if (::write(fd, &expirations, sizeof(expirations)) < 0) {
+  if (slot.timer_kind.load() == static_cast<std::uint32_t>(ubersim::timeshim::TimerKind::Posix)) {
+    shim::fire_posix_timer(slot, expirations);
+  } else if (::write(slot.timer_fd.load(), &expirations, sizeof(expirations)) < 0) {
     // The counter is full; the program has not read it for 2^64 periods.
   }
   shim::notify();
