@@ -373,6 +373,31 @@ TEST(Timeshim, StaticProgramStartedByTheGroupIsNamed) {
   EXPECT_TRUE(named) << all_text(run.problems);
 }
 
+TEST(Timeshim, ProgramThatReadsTheClockWithoutLibcIsRefusedAtStart) {
+  TempDir dir;
+  Controller group(options_in(dir));
+  try {
+    group.spawn({TIMESHIM_GO_LIKE_PROBE});
+    ADD_FAILURE() << "spawn accepted a Go-like program";
+  } catch (const UnsupportedProgram& error) {
+    EXPECT_NE(std::string(error.what()).find("Go program"), std::string::npos) << error.what();
+  }
+}
+
+TEST(Timeshim, ProgramThatReadsTheClockWithoutLibcStartedByTheGroupIsNamed) {
+  TempDir dir;
+  const GroupRun run =
+      run_program(dir, {TIMESHIM_PROBE, "exec_static", TIMESHIM_GO_LIKE_PROBE}, options_in(dir));
+  EXPECT_EQ(run.exit_status, 0) << run.output;
+  bool named = false;
+  for (const auto& problem : run.problems) {
+    named =
+        named || (problem.text.find("sees wall time: it is a Go program") != std::string::npos &&
+                  problem.text.find("timeshim_go_like") != std::string::npos);
+  }
+  EXPECT_TRUE(named) << all_text(run.problems);
+}
+
 TEST(Timeshim, PythonProgramRunsOnSimTime) {
   if (!have_python()) GTEST_SKIP() << "no /usr/bin/python3";
   TempDir dir;
@@ -516,6 +541,32 @@ TEST(Timeshim, DeterministicModeKeepsTheSimTimesOfEveryWait) {
     EXPECT_EQ(plain.output, in_turns.output) << argv.back();
     EXPECT_TRUE(blocking_problems(in_turns).empty()) << all_text(in_turns.problems);
   }
+}
+
+TEST(Timeshim, DeterministicModeNamesAThreadThatBlocksHoldingTheToken) {
+  TempDir dir;
+  ControllerOptions options = deterministic_in(dir);
+  options.grace = std::chrono::milliseconds(300);
+  Controller group(options);
+  const std::string output = dir.path("output.txt");
+  group.spawn({TIMESHIM_PROBE, "raw_futex_wait"}, output);
+  // The main thread waits in a raw futex for a thread that cannot run.
+  std::vector<Problem> problems;
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (problems.empty() && std::chrono::steady_clock::now() < give_up) {
+    group.run_until(kNoDeadline, std::chrono::milliseconds(200));
+    problems = group.take_problems();
+  }
+  ASSERT_EQ(problems.size(), 1U) << all_text(problems);
+  EXPECT_NE(
+      problems[0].text.find("holds the deterministic mode's run token while blocked in futex"),
+      std::string::npos)
+      << problems[0].text;
+  EXPECT_NE(problems[0].text.find("timeshim_probe"), std::string::npos) << problems[0].text;
+  EXPECT_EQ(problems[0].tid, problems[0].pid);  // the main thread
+  // Without the mode the same program ends.
+  const GroupRun run = run_program(dir, {TIMESHIM_PROBE, "raw_futex_wait"}, options_in(dir));
+  EXPECT_EQ(run.exit_status, 0) << run.output;
 }
 
 TEST(Timeshim, RunnerRunsACommandOnSimTime) {

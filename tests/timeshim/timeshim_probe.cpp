@@ -3,6 +3,7 @@
 // one "label seconds" line each, so that a test can check them and compare
 // two runs.
 #include <arpa/inet.h>
+#include <linux/futex.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <pthread.h>
@@ -458,6 +459,26 @@ int signal_timers() {
   return 0;
 }
 
+// Waits for another thread with a raw futex (no libc call the shim sees):
+// fine with threads that run at once; in deterministic mode the waiter holds
+// the run token, the other thread never gets its turn, and the controller
+// must name the waiter.
+int raw_futex_wait() {
+  static std::atomic<std::uint32_t> flag{0};
+  std::thread setter([] {
+    flag.store(1);
+    syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&flag), FUTEX_WAKE_PRIVATE, 1, nullptr,
+            nullptr, 0);
+  });
+  while (flag.load() == 0) {
+    syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&flag), FUTEX_WAIT_PRIVATE, 0, nullptr,
+            nullptr, 0);
+  }
+  setter.join();
+  say("end", monotonic_s());
+  return 0;
+}
+
 // Threads of two processes write letters straight to stdout (one shared
 // file offset), 10 at a time between 1 ms sleeps, with CPU work between
 // letters: without the deterministic mode the kernel's scheduler interleaves
@@ -533,7 +554,8 @@ int main(int argc, char** argv) {
       {"interleave", interleave},
       {"timed_mutex", timed_mutex},
       {"socket_send_accept", socket_send_accept},
-      {"signal_timers", signal_timers}};
+      {"signal_timers", signal_timers},
+      {"raw_futex_wait", raw_futex_wait}};
   const auto mode = argc == 2 ? modes.find(argv[1]) : modes.end();
   if (mode == modes.end()) {
     std::fprintf(stderr, "usage: timeshim_probe MODE, one of:");

@@ -153,6 +153,9 @@ pid_t Controller::spawn(const std::vector<std::string>& argv, const std::string&
                              " is statically linked: LD_PRELOAD cannot load the time shim into it, "
                              "so it would run on wall time");
   }
+  if (const std::string why = clock_without_libc(program); !why.empty()) {
+    throw UnsupportedProgram(program + " would run on wall time under the time shim: " + why);
+  }
   std::vector<std::string> env_strings = environment();
   for (char** entry = environ; *entry != nullptr; ++entry) {
     if (!starts_with(*entry, "LD_PRELOAD=") &&
