@@ -14,6 +14,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <memory>
 
 #include "runtime.hpp"
 #include "timers.hpp"
@@ -67,15 +68,16 @@ struct ThreadCall {
 };
 
 void* call_timer_function(void* raw) {
-  const ThreadCall call = *static_cast<ThreadCall*>(raw);
-  delete static_cast<ThreadCall*>(raw);
-  call.function(call.value);
+  const std::unique_ptr<ThreadCall> call(static_cast<ThreadCall*>(raw));
+  call->function(call->value);
   return nullptr;
 }
 
 sigval value_of(const ThreadSlot& slot) {
   sigval value{};
-  value.sival_ptr = reinterpret_cast<void*>(slot.timer_value.load());
+  // The value the program gave, kept as an integer in the shared slot.
+  value.sival_ptr = reinterpret_cast<void*>(  // NOLINT(performance-no-int-to-ptr)
+      slot.timer_value.load());
   return value;
 }
 
@@ -88,7 +90,9 @@ timer_t create_sim_timer(clockid_t clock, const sigevent* event) {
   sim_clock(clock, &offset);
   ThreadSlot* slot = claim_other_slot();
   if (slot == nullptr) return nullptr;
-  const auto id = reinterpret_cast<timer_t>(kTag | index_of(*slot));
+  // An id, not an address: the tag and the slot's index.
+  const auto id = reinterpret_cast<timer_t>(  // NOLINT(performance-no-int-to-ptr)
+      kTag | index_of(*slot));
   slot->timer_kind.store(static_cast<std::uint32_t>(TimerKind::Posix));
   slot->timer_notify.store(event != nullptr ? event->sigev_notify : SIGEV_SIGNAL);
   slot->timer_signal.store(event != nullptr ? event->sigev_signo : SIGALRM);
@@ -159,13 +163,18 @@ void fire_posix_timer(ThreadSlot& slot, std::uint64_t expirations) {
     case SIGEV_THREAD: {
       // A new thread per expiry, as glibc does (the sigevent's thread
       // attributes are not kept: default ones, detached).
-      auto* call = new ThreadCall{reinterpret_cast<void (*)(sigval)>(slot.timer_function.load()),
-                                  value_of(slot)};
+      // The function's address in this process, kept as an integer in the slot.
+      auto call = std::make_unique<ThreadCall>(
+          ThreadCall{reinterpret_cast<void (*)(sigval)>(  // NOLINT(performance-no-int-to-ptr)
+                         slot.timer_function.load()),
+                     value_of(slot)});
       pthread_attr_t attributes;
       pthread_attr_init(&attributes);
       pthread_attr_setdetachstate(&attributes, PTHREAD_CREATE_DETACHED);
       pthread_t thread;
-      if (pthread_create(&thread, &attributes, call_timer_function, call) != 0) delete call;
+      if (pthread_create(&thread, &attributes, call_timer_function, call.get()) == 0) {
+        static_cast<void>(call.release());  // the thread owns it now
+      }
       pthread_attr_destroy(&attributes);
       break;
     }
