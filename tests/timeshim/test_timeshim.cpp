@@ -543,13 +543,13 @@ TEST(Timeshim, DeterministicModeKeepsTheSimTimesOfEveryWait) {
   }
 }
 
-TEST(Timeshim, DeterministicModeNamesAThreadThatBlocksHoldingTheToken) {
+TEST(Timeshim, DeterministicModeNamesAThreadThatBlocksHoldingTheTokenAndGoesOn) {
   TempDir dir;
   ControllerOptions options = deterministic_in(dir);
   options.grace = std::chrono::milliseconds(300);
   Controller group(options);
   const std::string output = dir.path("output.txt");
-  group.spawn({TIMESHIM_PROBE, "raw_futex_wait"}, output);
+  const pid_t pid = group.spawn({TIMESHIM_PROBE, "raw_futex_wait"}, output);
   // The main thread waits in a raw futex for a thread that cannot run.
   std::vector<Problem> problems;
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
@@ -564,9 +564,10 @@ TEST(Timeshim, DeterministicModeNamesAThreadThatBlocksHoldingTheToken) {
       << problems[0].text;
   EXPECT_NE(problems[0].text.find("timeshim_probe"), std::string::npos) << problems[0].text;
   EXPECT_EQ(problems[0].tid, problems[0].pid);  // the main thread
-  // Without the mode the same program ends.
-  const GroupRun run = run_program(dir, {TIMESHIM_PROBE, "raw_futex_wait"}, options_in(dir));
+  // Named, the token is taken from it: the other thread runs, and the program ends.
+  const GroupRun run = run_to_end(group, pid, output);
   EXPECT_EQ(run.exit_status, 0) << run.output;
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "end"), 0.0);
 }
 
 TEST(Timeshim, RunnerRunsACommandOnSimTime) {

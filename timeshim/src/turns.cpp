@@ -52,16 +52,20 @@ bool Controller::give_turn() {
       // Asleep in a call that did not hand the token over: nobody else may
       // run until it returns. Waiting for input, that is right; waiting
       // for another thread of the group, it never returns.
-      if (!wanting.empty()) {
-        const pid_t pid = slot->pid.load();
-        const auto call = sample_syscall(pid, holder);
-        note_suspect(pid, holder,
-                     "holds the deterministic mode's run token while blocked in " +
-                         (call ? syscall_name(call->number) : std::string("an unknown call")) +
-                         ", a call the time shim does not hand the token over in: the group's "
-                         "other threads cannot run until it returns");
-      }
-      return false;
+      if (wanting.empty()) return false;
+      const pid_t pid = slot->pid.load();
+      const auto call = sample_syscall(pid, holder);
+      note_suspect(pid, holder,
+                   "holds the deterministic mode's run token while blocked in " +
+                       (call ? syscall_name(call->number) : std::string("an unknown call")) +
+                       ", a call the time shim does not hand the token over in; the token is "
+                       "taken from it so that the others can run (this run's interleaving is "
+                       "no longer fixed from here on)");
+      // Named: now the others run; it waits for a turn at its next call the
+      // shim sees.
+      if (!suspects_[holder].reported) return false;
+      suspects_.erase(holder);
+      segment.token_tid.compare_exchange_strong(holder, 0);
     }
   }
   if (wanting.empty()) return false;

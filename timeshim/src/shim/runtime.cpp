@@ -29,6 +29,7 @@ struct ThreadRecord {
   std::int64_t free_calls_used;
   std::uint32_t order_id;  // deterministic mode: its place in the order, when given before its slot
   bool has_order;
+  bool had_token;  // deterministic mode: it got the token and did not give it up
 };
 
 __attribute__((tls_model("initial-exec"))) thread_local ThreadRecord this_thread{};
@@ -283,6 +284,7 @@ void set_own_order(std::uint32_t order_id) {
 }
 
 void release_token() {
+  this_thread.had_token = false;
   if (!deterministic() || this_thread.slot == nullptr) return;
   std::int32_t tid = this_thread.tid;
   if (the_segment->token_tid.compare_exchange_strong(tid, 0)) notify_controller();
@@ -302,12 +304,29 @@ void wait_for_turn(ThreadSlot& slot) {
 }
 
 void acquire_token(ThreadSlot& slot, ShimCall call) {
-  if (!deterministic() || holds_token()) return;
-  const int saved = errno;
-  set_state(slot, ThreadState::WantToken, call, kNoDeadline);
-  wait_for_turn(slot);
-  errno = saved;
+  if (!deterministic()) return;
+  if (!holds_token()) {
+    const int saved = errno;
+    set_state(slot, ThreadState::WantToken, call, kNoDeadline);
+    wait_for_turn(slot);
+    errno = saved;
+  }
+  this_thread.had_token = true;
 }
+
+namespace {
+
+// The controller took the token from this thread while it was blocked in a
+// call that did not hand it over (turns.cpp): it waits for a turn now.
+void rejoin_turns() {
+  if (!this_thread.had_token || holds_token()) return;
+  this_thread.had_token = false;
+  ThreadSlot& slot = own_slot();
+  acquire_token(slot, ShimCall::BlockingCall);
+  set_state(slot, ThreadState::Running, ShimCall::None, kNoDeadline);
+}
+
+}  // namespace
 
 std::int64_t view_now() {
   const std::int64_t sim_now = the_segment->sim_now_ns.load();
@@ -316,6 +335,7 @@ std::int64_t view_now() {
 
 void charge_call() {
   the_segment->intercepted_calls.fetch_add(1, std::memory_order_relaxed);
+  if (the_segment->deterministic != 0) rejoin_turns();
   if (this_thread.free_calls_used < kFreeCalls) {
     ++this_thread.free_calls_used;
     return;
