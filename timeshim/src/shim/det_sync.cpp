@@ -58,23 +58,43 @@ int real_sem_trywait(sem_t* semaphore) {
 }
 
 // glibc's semaphore: {uint64 value and waiters, int private, int pad};
-// `private` is 0 (FUTEX_SHARED) for a process-shared one (sem_open, or
-// sem_init with pshared), which other processes map at other addresses.
+// `private` is 0 for a process-private one and FUTEX_PRIVATE_FLAG (128,
+// glibc's LLL_SHARED) for a process-shared one (sem_open, or sem_init with
+// pshared), which other processes map at other addresses.
 bool is_shared(const sem_t* semaphore) {
   int futex_private = 0;
   static_assert(sizeof(sem_t) >= 12);
   __builtin_memcpy(&futex_private, reinterpret_cast<const char*>(semaphore) + 8, sizeof(int));
-  return futex_private == 0;
+  return futex_private != 0;
 }
 
-// Makes `slot` (DetBlocked) want the token: a peer ended its wait.
-void make_ready(ThreadSlot& slot) {
+// This thread made another want the token since it last yielded: at its
+// next unlock or post it lets that one run first.
+__attribute__((tls_model("initial-exec"))) thread_local bool woke_someone = false;
+
+// Makes `slot` (DetBlocked) want the token: a peer ended its wait. Its place
+// in the queue is given now, by the token holder, ahead of whoever asks
+// later (the waker, when it yields).
+void make_ready(ThreadSlot& slot, Header& segment) {
   slot.det_signaled.store(1);
+  slot.ready_seq.store(segment.ready_counter.fetch_add(1) + 1);
   auto blocked = static_cast<std::uint32_t>(ThreadState::DetBlocked);
   if (slot.state.compare_exchange_strong(blocked,
                                          static_cast<std::uint32_t>(ThreadState::WantToken))) {
+    woke_someone = true;
     shim::notify();
   }
+}
+
+// After an unlock or post that woke a thread: the waker lets it run first,
+// as it would have on another core (a thread that releases and retakes a
+// lock in a loop, CPython's GIL among them, would otherwise keep it for ever).
+void yield_to_woken() {
+  if (!woke_someone || !shim::holds_token()) return;
+  woke_someone = false;
+  shim::release_token();
+  shim::acquire_token(shim::own_slot(), ShimCall::BlockingCall);
+  shim::set_state(shim::own_slot(), ThreadState::Running, ShimCall::None, kNoDeadline);
 }
 
 bool waits_for(const ThreadSlot& slot, DetObject object, const void* address, bool shared,
@@ -105,6 +125,7 @@ bool det_block(DetObject object, const void* address, bool shared, std::int64_t 
   slot.det_wait_seq.store(segment.det_wait_counter.fetch_add(1));
   segment.det_blocked.fetch_add(1);
   set_state(slot, ThreadState::DetBlocked, call, deadline);
+  woke_someone = false;  // those it woke run before it anyway
   release_token();
   wait_for_turn(slot);
   segment.det_blocked.fetch_sub(1);
@@ -123,12 +144,12 @@ void det_wake(DetObject object, const void* address, bool shared, bool only_firs
   for (auto& slot : segment.threads) {
     if (!waits_for(slot, object, address, shared, pid)) continue;
     if (!only_first) {
-      make_ready(slot);
+      make_ready(slot, segment);
     } else if (first == nullptr || slot.det_wait_seq.load() < first->det_wait_seq.load()) {
       first = &slot;
     }
   }
-  if (first != nullptr) make_ready(*first);
+  if (first != nullptr) make_ready(*first, segment);
 }
 
 int det_mutex_lock(pthread_mutex_t* mutex, std::int64_t deadline) {
@@ -269,6 +290,7 @@ __attribute__((visibility("default"))) int pthread_mutex_unlock(pthread_mutex_t*
   const int result = real_mutex_unlock(mutex);
   if (result == 0 && shim::deterministic()) {
     shim::det_wake(DetObject::Mutex, mutex, false, false);
+    yield_to_woken();
   }
   return result;
 }
@@ -307,6 +329,7 @@ __attribute__((visibility("default"))) int sem_post(sem_t* semaphore) noexcept {
   const int result = next(semaphore);
   if (result == 0 && shim::deterministic()) {
     shim::det_wake(DetObject::Sem, semaphore, is_shared(semaphore), false);
+    yield_to_woken();
   }
   return result;
 }
