@@ -1,7 +1,8 @@
 // ubersim_timeshim_bench: what the time shim costs, as ratios against a
 // baseline from the same run (docs/timeshim.md, "Cost"):
 //  * a clock read under the shim against the same read without it (CPU time
-//    per call, measured by the program itself);
+//    per call, measured by the program itself), and likewise an uncontended
+//    mutex lock and unlock, without and with the deterministic mode;
 //  * sleeps through the controller: sim seconds per wall second of a program
 //    that does nothing but sleep 1 ms a thousand times, against the 1x of
 //    real time;
@@ -41,6 +42,7 @@ double value_in(const std::string& path, const std::string& label) {
 // Runs the probe mode without the shim; returns its output file.
 std::string run_plain(const ubersim::test::TempFolder& dir, const char* mode) {
   const std::string output = dir.path(std::string(mode) + ".plain");
+  std::fflush(stdout);  // the child's freopen would print what is buffered again
   const pid_t pid = ::fork();
   if (pid == 0) {
     std::freopen(output.c_str(), "w", stdout);
@@ -77,6 +79,15 @@ int main() {
   const double plain = value_in(run_plain(dir, "clock_cost"), "ns_per_clock_read");
   const double shimmed = value_in(run_shimmed(dir, "clock_cost", &wall_s), "ns_per_clock_read");
   std::printf("clock read under the shim: %.2fx the CPU time of a plain one\n", shimmed / plain);
+  const double plain_lock = value_in(run_plain(dir, "mutex_cost"), "ns_per_lock_unlock");
+  const double shimmed_lock =
+      value_in(run_shimmed(dir, "mutex_cost", &wall_s), "ns_per_lock_unlock");
+  const double turns_lock =
+      value_in(run_shimmed(dir, "mutex_cost", &wall_s, true), "ns_per_lock_unlock");
+  std::printf(
+      "uncontended mutex lock and unlock under the shim: %.2fx the CPU time of a plain one, "
+      "%.2fx in deterministic mode\n",
+      shimmed_lock / plain_lock, turns_lock / plain_lock);
   const double sim_s = value_in(run_shimmed(dir, "sleep_cost", &wall_s), "end");
   std::printf("1000 sleeps of 1 ms through the controller: %.1fx real time (sim s per wall s)\n",
               sim_s / wall_s);
