@@ -378,6 +378,25 @@ __attribute__((visibility("default"))) int sigwait(const sigset_t* set, int* sig
   return handing_over([&] { return next(set, signal_number); });
 }
 
+// A signal takes effect at once on another core: the sender gives up its
+// turn, so that by the next turn the signal has been handled, or its target
+// has ended (and what ends with it, a pipe's last writer, shows), as on
+// every run.
+__attribute__((visibility("default"))) int kill(pid_t pid, int signal_number) noexcept {
+  static const auto next = real<int (*)(pid_t, int)>("kill");
+  const int result = next(pid, signal_number);
+  if (result == 0 && signal_number != 0) handing_over([] { return 0; });
+  return result;
+}
+
+__attribute__((visibility("default"))) int pthread_kill(pthread_t thread,
+                                                        int signal_number) noexcept {
+  static const auto next = real<int (*)(pthread_t, int)>("pthread_kill");
+  const int result = next(thread, signal_number);
+  if (result == 0 && signal_number != 0) handing_over([] { return 0; });
+  return result;
+}
+
 // A thread that yields (a spin wait for another thread) lets the others
 // that want to run have their turns first.
 __attribute__((visibility("default"))) int sched_yield() noexcept {

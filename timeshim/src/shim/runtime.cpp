@@ -62,12 +62,15 @@ void release_slot(void* slot_ptr) {
   notify_controller();
 }
 
-// A thread that ends gives up the run token it holds (deterministic mode).
+// A thread that ends holding the run token (deterministic mode) keeps it
+// and its slot to its very end: the controller takes both back once the
+// thread is gone (turns.cpp), so that nothing it still does (other
+// destructors, libc's cleanup) runs beside the next turn.
 void on_thread_exit(void* slot_ptr) {
   auto* slot = static_cast<ThreadSlot*>(slot_ptr);
-  if (slot != nullptr && the_segment != nullptr) {
-    std::int32_t tid = slot->tid.load();
-    the_segment->token_tid.compare_exchange_strong(tid, 0);
+  if (slot != nullptr && the_segment != nullptr && the_segment->deterministic != 0 &&
+      the_segment->token_tid.load() == slot->tid.load()) {
+    return;
   }
   release_slot(slot_ptr);
 }
