@@ -269,9 +269,13 @@ TEST(Timeshim, ForkedChildIsInTheGroup) {
   EXPECT_DOUBLE_EQ(value_of(run.seen, "reaped"), 2.0);
 }
 
-TEST(Timeshim, QuiescentWhileEveryThreadWaitsOnASocket) {
+// One thread in poll() with no timeout, one in a plain blocking recv(): both
+// wait for input, none for time; datagrams from outside wake them.
+void check_quiescent_on_sockets(bool deterministic) {
   TempDir dir;
-  Controller group(options_in(dir));
+  ControllerOptions options = options_in(dir);
+  options.deterministic = deterministic;
+  Controller group(options);
   const std::string output = dir.path("output.txt");
   const pid_t pid = group.spawn({TIMESHIM_PROBE, "socket_wait"}, output);
   // One thread in poll() with no timeout, one in a plain blocking recv():
@@ -308,6 +312,14 @@ TEST(Timeshim, QuiescentWhileEveryThreadWaitsOnASocket) {
   EXPECT_EQ(run.exit_status, 0) << run.output;
   EXPECT_DOUBLE_EQ(value_of(run.seen, "poll_woke"), 0.0);
   EXPECT_DOUBLE_EQ(value_of(run.seen, "received"), 5.0);
+}
+
+TEST(Timeshim, QuiescentWhileEveryThreadWaitsOnASocket) {
+  check_quiescent_on_sockets(false);
+}
+
+TEST(Timeshim, QuiescentWhileEveryThreadWaitsOnASocketInDeterministicMode) {
+  check_quiescent_on_sockets(true);
 }
 
 TEST(Timeshim, RunUntilStopsAtTheGivenSimTime) {
