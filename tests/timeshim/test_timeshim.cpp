@@ -70,6 +70,8 @@ struct GroupRun {
   double wall_s = 0;
   std::int64_t sim_ns = 0;
   std::uint64_t advances = 0;
+  std::uint64_t turns = 0;  // deterministic mode
+  std::uint64_t calls = 0;  // intercepted calls
   std::vector<Problem> problems;
 };
 
@@ -114,6 +116,8 @@ GroupRun run_to_end(Controller& group, pid_t pid, const std::string& output_path
   run.exit_status = group.exit_status(pid).value_or(-1);
   run.sim_ns = group.now_ns();
   run.advances = group.advances();
+  run.turns = group.turns();
+  run.calls = group.intercepted_calls();
   run.output = read_file(output_path);
   run.seen = parse(run.output);
   return run;
@@ -513,6 +517,9 @@ TEST(Timeshim, DeterministicModeRunsThreadsOfProcessesInAFixedOrder) {
   const GroupRun second =
       beside_cpu_hog([&] { return run_program(dir, argv, deterministic_in(dir)); });
   EXPECT_EQ(first.output, second.output);
+  // Not only what it wrote: the same turns, and the same calls in them.
+  EXPECT_EQ(first.turns, second.turns);
+  EXPECT_EQ(first.calls, second.calls);
   EXPECT_TRUE(blocking_problems(second).empty()) << all_text(second.problems);
 }
 
@@ -534,6 +541,8 @@ TEST(Timeshim, DeterministicModeRunsPythonThreadsAndAForkedChildInAFixedOrder) {
   const GroupRun second =
       beside_cpu_hog([&] { return run_program(dir, argv, deterministic_in(dir)); });
   EXPECT_EQ(first.output, second.output);
+  EXPECT_EQ(first.turns, second.turns);
+  EXPECT_EQ(first.calls, second.calls);
 }
 
 TEST(Timeshim, DeterministicModeKeepsTheSimTimesOfEveryWait) {

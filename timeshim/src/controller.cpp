@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/mman.h>
+#include <sys/personality.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -180,6 +181,9 @@ pid_t Controller::spawn(const std::vector<std::string>& argv, const std::string&
   const std::string exec_failed = "timeshim: cannot execute " + program + "\n";
   const pid_t pid = ::fork();
   if (pid == 0) {
+    // Deterministic mode: the same addresses on every run (what a program
+    // orders by address, a CPython set of objects, then orders alike).
+    if (options_.deterministic) ::personality(ADDR_NO_RANDOMIZE);
     if (output >= 0) {
       ::dup2(output, 1);
       ::dup2(output, 2);
