@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -69,6 +70,8 @@ struct GroupRun {
   double wall_s = 0;
   std::int64_t sim_ns = 0;
   std::uint64_t advances = 0;
+  std::uint64_t turns = 0;  // deterministic mode
+  std::uint64_t calls = 0;  // intercepted calls
   std::vector<Problem> problems;
 };
 
@@ -113,6 +116,8 @@ GroupRun run_to_end(Controller& group, pid_t pid, const std::string& output_path
   run.exit_status = group.exit_status(pid).value_or(-1);
   run.sim_ns = group.now_ns();
   run.advances = group.advances();
+  run.turns = group.turns();
+  run.calls = group.intercepted_calls();
   run.output = read_file(output_path);
   run.seen = parse(run.output);
   return run;
@@ -201,6 +206,47 @@ TEST(Timeshim, TimedConditionAndSemaphoreWaitsEndInSimTime) {
   EXPECT_NEAR(value_of(run.seen, "notified"), 1.85, 1e-9);
 }
 
+TEST(Timeshim, TimedMutexLocksEndInSimTime) {
+  TempDir dir;
+  const GroupRun run = run_probe(dir, "timed_mutex");
+  ASSERT_EQ(run.exit_status, 0) << run.output;
+  // From the moment the holder has the mutex (until 2 s).
+  const double start = value_of(run.seen, "start");
+  EXPECT_NEAR(value_of(run.seen, "try_lock_for") - start, 0.3, 1e-9);
+  EXPECT_NEAR(value_of(run.seen, "try_lock_until_system") - start, 0.5, 1e-9);
+  EXPECT_NEAR(value_of(run.seen, "timedlock") - start, 0.75, 1e-9);
+  EXPECT_NEAR(value_of(run.seen, "locked"), 2.0, 1e-9);  // unlocked before its deadline
+  EXPECT_LT(run.wall_s, 1.5);
+}
+
+TEST(Timeshim, SendAndAcceptTimeoutsEndInSimTime) {
+  TempDir dir;
+  const GroupRun run = run_probe(dir, "socket_send_accept");
+  ASSERT_EQ(run.exit_status, 0) << run.output;
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "send_timed_out"), 1.25);
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "write_timed_out"), 2.5);
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "send_timeout"), 1.25);
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "accept_timed_out"), 3.25);
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "accepted"), 3.5);  // a connection before the deadline
+  EXPECT_LT(run.wall_s, 2.0);
+}
+
+TEST(Timeshim, PosixTimersAlarmsAndSignalWaitsRunOnSimTime) {
+  TempDir dir;
+  const GroupRun run = run_probe(dir, "signal_timers");
+  ASSERT_EQ(run.exit_status, 0) << run.output;
+  const Seen expected = {{"timer_signal", 0.5}, {"timer_signal", 0.75}, {"timer_signal", 1.0},
+                         {"timer_left", 0.25},  {"timer_thread", 1.5},  {"sigtimedwait", 1.9},
+                         {"epoll_pwait2", 2.0}, {"alarm_left", 2.0},    {"alarm", 4.0},
+                         {"setitimer", 4.5},    {"itimer_left", 0.25}};
+  ASSERT_EQ(run.seen.size(), expected.size()) << run.output;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(run.seen[i].first, expected[i].first);
+    EXPECT_NEAR(run.seen[i].second, expected[i].second, 1e-9) << run.seen[i].first;
+  }
+  EXPECT_LT(run.wall_s, 2.5);  // 4.5 s of sim time
+}
+
 TEST(Timeshim, ThreadsEachWaitTheirOwnSimTime) {
   TempDir dir;
   const GroupRun run = run_probe(dir, "threads");
@@ -227,9 +273,13 @@ TEST(Timeshim, ForkedChildIsInTheGroup) {
   EXPECT_DOUBLE_EQ(value_of(run.seen, "reaped"), 2.0);
 }
 
-TEST(Timeshim, QuiescentWhileEveryThreadWaitsOnASocket) {
+// One thread in poll() with no timeout, one in a plain blocking recv(): both
+// wait for input, none for time; datagrams from outside wake them.
+void check_quiescent_on_sockets(bool deterministic) {
   TempDir dir;
-  Controller group(options_in(dir));
+  ControllerOptions options = options_in(dir);
+  options.deterministic = deterministic;
+  Controller group(options);
   const std::string output = dir.path("output.txt");
   const pid_t pid = group.spawn({TIMESHIM_PROBE, "socket_wait"}, output);
   // One thread in poll() with no timeout, one in a plain blocking recv():
@@ -266,6 +316,14 @@ TEST(Timeshim, QuiescentWhileEveryThreadWaitsOnASocket) {
   EXPECT_EQ(run.exit_status, 0) << run.output;
   EXPECT_DOUBLE_EQ(value_of(run.seen, "poll_woke"), 0.0);
   EXPECT_DOUBLE_EQ(value_of(run.seen, "received"), 5.0);
+}
+
+TEST(Timeshim, QuiescentWhileEveryThreadWaitsOnASocket) {
+  check_quiescent_on_sockets(false);
+}
+
+TEST(Timeshim, QuiescentWhileEveryThreadWaitsOnASocketInDeterministicMode) {
+  check_quiescent_on_sockets(true);
 }
 
 TEST(Timeshim, RunUntilStopsAtTheGivenSimTime) {
@@ -331,6 +389,31 @@ TEST(Timeshim, StaticProgramStartedByTheGroupIsNamed) {
   EXPECT_TRUE(named) << all_text(run.problems);
 }
 
+TEST(Timeshim, ProgramThatReadsTheClockWithoutLibcIsRefusedAtStart) {
+  TempDir dir;
+  Controller group(options_in(dir));
+  try {
+    group.spawn({TIMESHIM_GO_LIKE_PROBE});
+    ADD_FAILURE() << "spawn accepted a Go-like program";
+  } catch (const UnsupportedProgram& error) {
+    EXPECT_NE(std::string(error.what()).find("Go program"), std::string::npos) << error.what();
+  }
+}
+
+TEST(Timeshim, ProgramThatReadsTheClockWithoutLibcStartedByTheGroupIsNamed) {
+  TempDir dir;
+  const GroupRun run =
+      run_program(dir, {TIMESHIM_PROBE, "exec_static", TIMESHIM_GO_LIKE_PROBE}, options_in(dir));
+  EXPECT_EQ(run.exit_status, 0) << run.output;
+  bool named = false;
+  for (const auto& problem : run.problems) {
+    named =
+        named || (problem.text.find("sees wall time: it is a Go program") != std::string::npos &&
+                  problem.text.find("timeshim_go_like") != std::string::npos);
+  }
+  EXPECT_TRUE(named) << all_text(run.problems);
+}
+
 TEST(Timeshim, PythonProgramRunsOnSimTime) {
   if (!have_python()) GTEST_SKIP() << "no /usr/bin/python3";
   TempDir dir;
@@ -377,6 +460,135 @@ TEST(Timeshim, RerunsSeeTheSameSimTimesAlsoBesideACpuHog) {
     EXPECT_FALSE(first.output.empty());
     EXPECT_EQ(first.output, second.output) << argv.back();
   }
+}
+
+// Runs fn (a group run) beside a CPU hog on every core.
+template <typename Fn>
+GroupRun beside_cpu_hog(Fn&& fn) {
+  std::atomic<bool> hogging{true};
+  std::vector<std::thread> hogs;
+  for (unsigned i = 0; i < std::max(1U, std::thread::hardware_concurrency()); ++i) {
+    hogs.emplace_back([&hogging] {
+      while (hogging.load(std::memory_order_relaxed)) {
+      }
+    });
+  }
+  GroupRun run = fn();
+  hogging.store(false);
+  for (auto& hog : hogs) hog.join();
+  return run;
+}
+
+ControllerOptions deterministic_in(const TempDir& dir) {
+  ControllerOptions options = options_in(dir);
+  options.deterministic = true;
+  return options;
+}
+
+// The lengths of the runs of equal items in `items`, with the item of each.
+template <typename T>
+std::vector<std::pair<T, int>> runs_of(const std::vector<T>& items) {
+  std::vector<std::pair<T, int>> runs;
+  for (const T& item : items) {
+    if (runs.empty() || runs.back().first != item) runs.emplace_back(item, 0);
+    ++runs.back().second;
+  }
+  return runs;
+}
+
+TEST(Timeshim, DeterministicModeRunsThreadsOfProcessesInAFixedOrder) {
+  TempDir dir;
+  // Five threads of two processes write 30 letters each to one file, 10
+  // between sleeps, with CPU work between letters. In turns, each writes
+  // its 10 at once (without the mode the kernel interleaves them).
+  const std::vector<std::string> argv = {TIMESHIM_PROBE, "interleave"};
+  const GroupRun first = run_program(dir, argv, deterministic_in(dir));
+  ASSERT_EQ(first.exit_status, 0) << first.output;
+  const std::string letters = first.output.substr(0, first.output.find('\n'));
+  ASSERT_EQ(letters.size(), 150U) << first.output;
+  const auto runs = runs_of(std::vector<char>(letters.begin(), letters.end()));
+  ASSERT_EQ(runs.size(), 15U) << letters;
+  std::map<char, int> per_letter;
+  for (const auto& [letter, length] : runs) {
+    EXPECT_EQ(length, 10) << letters;
+    ++per_letter[letter];
+  }
+  EXPECT_EQ(per_letter, (std::map<char, int>{{'A', 3}, {'B', 3}, {'C', 3}, {'D', 3}, {'E', 3}}));
+  const GroupRun second =
+      beside_cpu_hog([&] { return run_program(dir, argv, deterministic_in(dir)); });
+  EXPECT_EQ(first.output, second.output);
+  // Not only what it wrote: the same turns, and the same calls in them.
+  EXPECT_EQ(first.turns, second.turns);
+  EXPECT_EQ(first.calls, second.calls);
+  EXPECT_TRUE(blocking_problems(second).empty()) << all_text(second.problems);
+}
+
+TEST(Timeshim, DeterministicModeRunsPythonThreadsAndAForkedChildInAFixedOrder) {
+  if (!have_python()) GTEST_SKIP() << "no /usr/bin/python3";
+  TempDir dir;
+  const std::vector<std::string> argv = {"/usr/bin/python3", TIMESHIM_DET_PY};
+  const GroupRun first = run_program(dir, argv, deterministic_in(dir));
+  ASSERT_EQ(first.exit_status, 0) << first.output;
+  // 5 threads (3 here, 2 in the child) print 15 lines each, 5 between sleeps:
+  // in turns, the 5 of each come together.
+  std::vector<std::string> names;
+  for (const auto& [label, value] : first.seen) {
+    if (label != "end" && label != "pool") names.push_back(label);
+  }
+  ASSERT_EQ(names.size(), 75U) << first.output;
+  for (const auto& [name, length] : runs_of(names)) EXPECT_EQ(length, 5) << first.output;
+  EXPECT_DOUBLE_EQ(value_of(first.seen, "pool"), 55.0);  // 0 + 1 + 4 + 9 + 16 + 25
+  const GroupRun second =
+      beside_cpu_hog([&] { return run_program(dir, argv, deterministic_in(dir)); });
+  EXPECT_EQ(first.output, second.output);
+  EXPECT_EQ(first.turns, second.turns);
+  EXPECT_EQ(first.calls, second.calls);
+}
+
+TEST(Timeshim, DeterministicModeKeepsTheSimTimesOfEveryWait) {
+  TempDir dir;
+  std::vector<std::vector<std::string>> programs = {{TIMESHIM_PROBE, "threads"},
+                                                    {TIMESHIM_PROBE, "fd_timeouts"},
+                                                    {TIMESHIM_PROBE, "cond_waits"},
+                                                    {TIMESHIM_PROBE, "forks"},
+                                                    {TIMESHIM_PROBE, "socket_send_accept"},
+                                                    {TIMESHIM_PROBE, "signal_timers"}};
+  if (have_python()) programs.push_back({"/usr/bin/python3", TIMESHIM_PROBE_PY});
+  for (const auto& argv : programs) {
+    const GroupRun plain = run_program(dir, argv, options_in(dir));
+    const GroupRun in_turns = run_program(dir, argv, deterministic_in(dir));
+    EXPECT_EQ(in_turns.exit_status, 0) << in_turns.output;
+    EXPECT_FALSE(plain.output.empty());
+    EXPECT_EQ(plain.output, in_turns.output) << argv.back();
+    EXPECT_TRUE(blocking_problems(in_turns).empty()) << all_text(in_turns.problems);
+  }
+}
+
+TEST(Timeshim, DeterministicModeNamesAThreadThatBlocksHoldingTheTokenAndGoesOn) {
+  TempDir dir;
+  ControllerOptions options = deterministic_in(dir);
+  options.grace = std::chrono::milliseconds(300);
+  Controller group(options);
+  const std::string output = dir.path("output.txt");
+  const pid_t pid = group.spawn({TIMESHIM_PROBE, "raw_futex_wait"}, output);
+  // The main thread waits in a raw futex for a thread that cannot run.
+  std::vector<Problem> problems;
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (problems.empty() && std::chrono::steady_clock::now() < give_up) {
+    group.run_until(kNoDeadline, std::chrono::milliseconds(200));
+    problems = group.take_problems();
+  }
+  ASSERT_EQ(problems.size(), 1U) << all_text(problems);
+  EXPECT_NE(
+      problems[0].text.find("holds the deterministic mode's run token while blocked in futex"),
+      std::string::npos)
+      << problems[0].text;
+  EXPECT_NE(problems[0].text.find("timeshim_probe"), std::string::npos) << problems[0].text;
+  EXPECT_EQ(problems[0].tid, problems[0].pid);  // the main thread
+  // Named, the token is taken from it: the other thread runs, and the program ends.
+  const GroupRun run = run_to_end(group, pid, output);
+  EXPECT_EQ(run.exit_status, 0) << run.output;
+  EXPECT_DOUBLE_EQ(value_of(run.seen, "end"), 0.0);
 }
 
 TEST(Timeshim, RunnerRunsACommandOnSimTime) {

@@ -3,6 +3,7 @@
 // one "label seconds" line each, so that a test can check them and compare
 // two runs.
 #include <arpa/inet.h>
+#include <linux/futex.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <pthread.h>
@@ -16,6 +17,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <condition_variable>
@@ -296,6 +298,221 @@ int exec_static(const char* path) {
   return 1;
 }
 
+// Timed mutex locks: a thread holds the mutex until 2 s; the timed locks
+// before fail at their sim deadlines, the last gets it when it is unlocked.
+int timed_mutex() {
+  std::timed_mutex mutex;
+  std::atomic<bool> held{false};
+  std::thread holder([&] {
+    std::lock_guard<std::timed_mutex> guard(mutex);
+    held.store(true);
+    sleep(2);
+  });
+  while (!held.load()) usleep(1000);
+  const double start = monotonic_s();
+  say("start", start);
+  say("try_lock_for", mutex.try_lock_for(std::chrono::milliseconds(300)) ? -1.0 : monotonic_s());
+  say("try_lock_until_system",
+      mutex.try_lock_until(std::chrono::system_clock::now() + std::chrono::milliseconds(200))
+          ? -1.0
+          : monotonic_s());
+  pthread_mutex_t plain = PTHREAD_MUTEX_INITIALIZER;
+  pthread_mutex_lock(&plain);
+  std::thread other([&] {
+    timespec deadline{};
+    clock_gettime(CLOCK_REALTIME, &deadline);
+    deadline.tv_nsec += 250000000;
+    if (deadline.tv_nsec >= 1000000000) {
+      deadline.tv_nsec -= 1000000000;
+      deadline.tv_sec += 1;
+    }
+    say("timedlock", pthread_mutex_timedlock(&plain, &deadline) == ETIMEDOUT ? monotonic_s() : -1);
+  });
+  other.join();
+  pthread_mutex_unlock(&plain);
+  say("locked", mutex.try_lock_for(std::chrono::seconds(10)) ? monotonic_s() : -1.0);
+  mutex.unlock();
+  holder.join();
+  return 0;
+}
+
+// Send timeouts (SO_SNDTIMEO) on a full socket, and accept with SO_RCVTIMEO.
+int socket_send_accept() {
+  int pair[2];
+  if (socketpair(AF_UNIX, SOCK_STREAM, 0, pair) != 0) return 1;
+  const int size = 4096;
+  setsockopt(pair[0], SOL_SOCKET, SO_SNDBUF, &size, sizeof(size));
+  char block[1024] = {};
+  while (send(pair[0], block, sizeof(block), MSG_DONTWAIT) > 0) {
+  }
+  const timeval send_timeout{1, 250000};
+  setsockopt(pair[0], SOL_SOCKET, SO_SNDTIMEO, &send_timeout, sizeof(send_timeout));
+  const ssize_t sent = send(pair[0], block, sizeof(block), 0);
+  say("send_timed_out", sent < 0 && errno == EAGAIN ? monotonic_s() : -1.0);
+  const ssize_t written = write(pair[0], block, sizeof(block));
+  say("write_timed_out", written < 0 && errno == EAGAIN ? monotonic_s() : -1.0);
+  timeval seen{};
+  socklen_t length = sizeof(seen);
+  getsockopt(pair[0], SOL_SOCKET, SO_SNDTIMEO, &seen, &length);
+  say("send_timeout", static_cast<double>(seen.tv_sec) + static_cast<double>(seen.tv_usec) * 1e-6);
+  const int listener = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (bind(listener, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0) return 1;
+  listen(listener, 4);
+  socklen_t address_length = sizeof(address);
+  getsockname(listener, reinterpret_cast<sockaddr*>(&address), &address_length);
+  const timeval accept_timeout{0, 750000};
+  setsockopt(listener, SOL_SOCKET, SO_RCVTIMEO, &accept_timeout, sizeof(accept_timeout));
+  const int none = accept(listener, nullptr, nullptr);
+  say("accept_timed_out", none < 0 && errno == EAGAIN ? monotonic_s() : -1.0);
+  std::thread connector([address] {
+    usleep(250000);
+    const int client = socket(AF_INET, SOCK_STREAM, 0);
+    if (connect(client, reinterpret_cast<const sockaddr*>(&address), sizeof(address)) != 0)
+      std::perror("connect");
+    close(client);
+  });
+  const int accepted = accept(listener, nullptr, nullptr);
+  say("accepted", accepted >= 0 ? monotonic_s() : -1.0);
+  connector.join();
+  return 0;
+}
+
+std::atomic<int> alarms{0};
+void on_alarm(int /*signal*/) {
+  alarms.fetch_add(1);
+}
+
+// POSIX timers (SIGEV_SIGNAL, SIGEV_THREAD), sigtimedwait, epoll_pwait2,
+// alarm and setitimer.
+int signal_timers() {
+  sigset_t usr1{};
+  sigemptyset(&usr1);
+  sigaddset(&usr1, SIGUSR1);
+  pthread_sigmask(SIG_BLOCK, &usr1, nullptr);
+  sigevent event{};
+  event.sigev_notify = SIGEV_SIGNAL;
+  event.sigev_signo = SIGUSR1;
+  event.sigev_value.sival_int = 42;
+  timer_t timer{};
+  if (timer_create(CLOCK_MONOTONIC, &event, &timer) != 0) return 1;
+  itimerspec every{};
+  every.it_value.tv_nsec = 500000000;
+  every.it_interval.tv_nsec = 250000000;
+  timer_settime(timer, 0, &every, nullptr);
+  for (int i = 0; i < 3; ++i) {
+    siginfo_t info{};
+    if (sigwaitinfo(&usr1, &info) != SIGUSR1 || info.si_value.sival_int != 42) return 1;
+    say("timer_signal", monotonic_s());
+  }
+  itimerspec left{};
+  timer_gettime(timer, &left);
+  say("timer_left", static_cast<double>(left.it_value.tv_nsec) * 1e-9);
+  timer_delete(timer);
+  // A SIGEV_THREAD timer calls its function in a thread at 1.5 s.
+  static std::mutex mutex;
+  static std::condition_variable called;
+  static double called_at = -1;
+  event.sigev_notify = SIGEV_THREAD;
+  event.sigev_notify_function = [](sigval) {
+    std::lock_guard<std::mutex> guard(mutex);
+    called_at = monotonic_s();
+    called.notify_all();
+  };
+  timer_create(CLOCK_REALTIME, &event, &timer);
+  itimerspec once{};
+  once.it_value.tv_nsec = 500000000;
+  timer_settime(timer, 0, &once, nullptr);
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    called.wait(lock, [] { return called_at >= 0; });
+  }
+  say("timer_thread", called_at);
+  timer_delete(timer);
+  const timespec wait_for{0, 400000000};
+  siginfo_t info{};
+  say("sigtimedwait",
+      sigtimedwait(&usr1, &info, &wait_for) < 0 && errno == EAGAIN ? monotonic_s() : -1.0);
+  const int epoll = epoll_create1(0);
+  epoll_event got[1];
+  const timespec epoll_wait_for{0, 100000000};
+  say("epoll_pwait2",
+      epoll_pwait2(epoll, got, 1, &epoll_wait_for, nullptr) == 0 ? monotonic_s() : -1.0);
+  signal(SIGALRM, on_alarm);
+  alarm(2);
+  say("alarm_left", alarm(2));
+  while (alarms.load() == 0) pause();
+  say("alarm", monotonic_s());
+  itimerval periodic{};
+  periodic.it_value.tv_usec = 250000;
+  periodic.it_interval.tv_usec = 250000;
+  setitimer(ITIMER_REAL, &periodic, nullptr);
+  sigset_t none{};
+  sigemptyset(&none);
+  while (alarms.load() < 3) sigsuspend(&none);
+  say("setitimer", monotonic_s());
+  itimerval now_left{};
+  getitimer(ITIMER_REAL, &now_left);
+  say("itimer_left", static_cast<double>(now_left.it_value.tv_usec) * 1e-6);
+  return 0;
+}
+
+// Waits for another thread with a raw futex (no libc call the shim sees):
+// fine with threads that run at once; in deterministic mode the waiter holds
+// the run token, the other thread never gets its turn, and the controller
+// must name the waiter.
+int raw_futex_wait() {
+  static std::atomic<std::uint32_t> flag{0};
+  std::thread setter([] {
+    flag.store(1);
+    syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&flag), FUTEX_WAKE_PRIVATE, 1, nullptr,
+            nullptr, 0);
+  });
+  while (flag.load() == 0) {
+    syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&flag), FUTEX_WAIT_PRIVATE, 0, nullptr,
+            nullptr, 0);
+  }
+  setter.join();
+  say("end", monotonic_s());
+  return 0;
+}
+
+// Threads of two processes write letters straight to stdout (one shared
+// file offset), 10 at a time between 1 ms sleeps, with CPU work between
+// letters: without the deterministic mode the kernel's scheduler interleaves
+// them; with it, each thread writes its 10 in its turn, in a fixed order.
+void write_letters(char letter) {
+  for (int i = 0; i < 30; ++i) {
+    if (write(1, &letter, 1) != 1) std::perror("write");
+    volatile unsigned work = 0;
+    for (unsigned k = 0; k < 300000; ++k) work = work + k;
+    if (i % 10 == 9) usleep(1000);
+  }
+}
+
+void letters_of_threads(const char* letters) {
+  std::vector<std::thread> writers;
+  for (const char* letter = letters; *letter != '\0'; ++letter) {
+    writers.emplace_back(write_letters, *letter);
+  }
+  for (auto& writer : writers) writer.join();
+}
+
+int interleave() {
+  const pid_t child = fork();
+  if (child == 0) {
+    letters_of_threads("DE");
+    _exit(0);
+  }
+  letters_of_threads("ABC");
+  int status = 0;
+  waitpid(child, &status, 0);
+  if (write(1, "\n", 1) != 1) return 1;
+  return 0;
+}
+
 // For the benchmark: the CPU time of one clock read (the process CPU clock
 // is the kernel's under the shim too).
 int clock_cost() {
@@ -307,6 +524,25 @@ int clock_cost() {
   const double spent = static_cast<double>(end.tv_sec - start.tv_sec) * 1e9 +
                        static_cast<double>(end.tv_nsec - start.tv_nsec);
   say("ns_per_clock_read", spent / kCalls);
+  return 0;
+}
+
+// For the benchmark: the CPU time of an uncontended mutex lock and unlock
+// (the shim takes both over in deterministic mode, and passes them on
+// otherwise).
+int mutex_cost() {
+  constexpr long kPairs = 2000000;
+  pthread_mutex_t mutex = PTHREAD_MUTEX_INITIALIZER;
+  timespec start{}, end{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &start);
+  for (long i = 0; i < kPairs; ++i) {
+    pthread_mutex_lock(&mutex);
+    pthread_mutex_unlock(&mutex);
+  }
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &end);
+  const double spent = static_cast<double>(end.tv_sec - start.tv_sec) * 1e9 +
+                       static_cast<double>(end.tv_nsec - start.tv_nsec);
+  say("ns_per_lock_unlock", spent / kPairs);
   return 0;
 }
 
@@ -322,12 +558,24 @@ int sleep_cost() {
 int main(int argc, char** argv) {
   if (argc == 3 && std::string(argv[1]) == "exec_static") return exec_static(argv[2]);
   const std::map<std::string, std::function<int()>> modes = {
-      {"sleeps", sleeps},           {"fd_timeouts", fd_timeouts},
-      {"threads", threads},         {"forks", forks},
-      {"socket_wait", socket_wait}, {"busy_clock", busy_clock},
-      {"raw_sleep", raw_sleep},     {"clock_cost", clock_cost},
-      {"sleep_cost", sleep_cost},   {"receive_timeout", receive_timeout},
-      {"timer_fd", timer_fd},       {"cond_waits", cond_waits}};
+      {"sleeps", sleeps},
+      {"fd_timeouts", fd_timeouts},
+      {"threads", threads},
+      {"forks", forks},
+      {"socket_wait", socket_wait},
+      {"busy_clock", busy_clock},
+      {"raw_sleep", raw_sleep},
+      {"clock_cost", clock_cost},
+      {"sleep_cost", sleep_cost},
+      {"receive_timeout", receive_timeout},
+      {"timer_fd", timer_fd},
+      {"cond_waits", cond_waits},
+      {"interleave", interleave},
+      {"timed_mutex", timed_mutex},
+      {"socket_send_accept", socket_send_accept},
+      {"signal_timers", signal_timers},
+      {"raw_futex_wait", raw_futex_wait},
+      {"mutex_cost", mutex_cost}};
   const auto mode = argc == 2 ? modes.find(argv[1]) : modes.end();
   if (mode == modes.end()) {
     std::fprintf(stderr, "usage: timeshim_probe MODE, one of:");

@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/mman.h>
+#include <sys/personality.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -110,6 +111,7 @@ Controller::Controller(ControllerOptions options)
   header.charge_ns = options_.charge_ns;
   header.yield_after_ns = options_.yield_after_ns;
   header.wake_signal = SIGRTMAX - 1;
+  header.deterministic = options_.deterministic ? 1 : 0;
   header.controller_pid = ::getpid();
   header.size = sizeof(Header);
   header.version = kVersion;
@@ -152,6 +154,9 @@ pid_t Controller::spawn(const std::vector<std::string>& argv, const std::string&
                              " is statically linked: LD_PRELOAD cannot load the time shim into it, "
                              "so it would run on wall time");
   }
+  if (const std::string why = clock_without_libc(program); !why.empty()) {
+    throw UnsupportedProgram(program + " would run on wall time under the time shim: " + why);
+  }
   std::vector<std::string> env_strings = environment();
   for (char** entry = environ; *entry != nullptr; ++entry) {
     if (!starts_with(*entry, "LD_PRELOAD=") &&
@@ -176,6 +181,9 @@ pid_t Controller::spawn(const std::vector<std::string>& argv, const std::string&
   const std::string exec_failed = "timeshim: cannot execute " + program + "\n";
   const pid_t pid = ::fork();
   if (pid == 0) {
+    // Deterministic mode: the same addresses on every run (what a program
+    // orders by address, a CPython set of objects, then orders alike).
+    if (options_.deterministic) ::personality(ADDR_NO_RANDOMIZE);
     if (output >= 0) {
       ::dup2(output, 1);
       ::dup2(output, 2);
@@ -219,6 +227,13 @@ void Controller::wake_due() {
   for (auto& slot : header.threads) {
     if (slot.claim.load() == 0 || slot.deadline_ns.load() > now) continue;
     const auto state = static_cast<ThreadState>(slot.state.load());
+    if (state == ThreadState::DetBlocked) {
+      // Its deadline passed: it wants its turn (and sees no peer ended its wait).
+      auto blocked = static_cast<std::uint32_t>(ThreadState::DetBlocked);
+      slot.state.compare_exchange_strong(blocked,
+                                         static_cast<std::uint32_t>(ThreadState::WantToken));
+      continue;
+    }
     ThreadSlot* to_wake = &slot;
     if (state == ThreadState::WaitingCond || state == ThreadState::Timer) {
       const auto helper = helpers.find(slot.pid.load());

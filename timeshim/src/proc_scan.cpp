@@ -259,4 +259,47 @@ std::optional<bool> elf_is_dynamic(const std::string& path) {
   return false;
 }
 
+namespace {
+
+// The names of the ELF file's sections (empty when it has none or is not ELF64).
+std::vector<std::string> section_names(std::ifstream& file, const Elf64_Ehdr& header) {
+  std::vector<std::string> names;
+  if (header.e_shoff == 0 || header.e_shstrndx >= header.e_shnum) return names;
+  std::vector<Elf64_Shdr> sections(header.e_shnum);
+  file.seekg(static_cast<std::streamoff>(header.e_shoff));
+  if (!file.read(reinterpret_cast<char*>(sections.data()),
+                 static_cast<std::streamsize>(sections.size() * sizeof(Elf64_Shdr)))) {
+    return names;
+  }
+  const Elf64_Shdr& strings = sections[header.e_shstrndx];
+  if (strings.sh_size > (1U << 24)) return names;
+  std::string table(strings.sh_size, '\0');
+  file.seekg(static_cast<std::streamoff>(strings.sh_offset));
+  if (!file.read(table.data(), static_cast<std::streamsize>(table.size()))) return names;
+  for (const auto& section : sections) {
+    if (section.sh_name < table.size()) names.emplace_back(table.c_str() + section.sh_name);
+  }
+  return names;
+}
+
+}  // namespace
+
+std::string clock_without_libc(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  Elf64_Ehdr header{};
+  if (!file.read(reinterpret_cast<char*>(&header), sizeof(header))) return "";
+  if (std::string(reinterpret_cast<const char*>(header.e_ident), 4) != ELFMAG ||
+      header.e_ident[EI_CLASS] != ELFCLASS64) {
+    return "";
+  }
+  for (const std::string& name : section_names(file, header)) {
+    if (name == ".go.buildinfo" || name == ".gopclntab" || name == ".note.go.buildid") {
+      return "it is a Go program (section " + name +
+             "): the Go runtime reads the clock from the vDSO and sleeps with raw system calls, "
+             "not through libc, so LD_PRELOAD cannot give it sim time";
+    }
+  }
+  return "";
+}
+
 }  // namespace ubersim::timeshim

@@ -45,5 +45,9 @@ bool maps_contain(pid_t pid, const std::string& needle);
 // True when the ELF file has a PT_INTERP (is dynamically linked); nullopt when
 // it is not an ELF file (a script: its interpreter is the one to check).
 std::optional<bool> elf_is_dynamic(const std::string& path);
+// Why the ELF file reads the clock without libc, where it can tell (a Go
+// program: its runtime calls the vDSO itself, which LD_PRELOAD cannot
+// reach), or "" when it sees no such sign.
+std::string clock_without_libc(const std::string& path);
 
 }  // namespace ubersim::timeshim

@@ -154,8 +154,16 @@ void Controller::check_shim_loaded(pid_t pid) {
   const auto now = std::chrono::steady_clock::now();
   const auto first = first_seen_.emplace(pid, now).first->second;
   const std::string exe = exe_of(pid);
-  if (exe.empty() || shim_checked_[pid] == exe || now - first < std::chrono::milliseconds(200))
+  if (exe.empty() || shim_checked_[pid] == exe) return;
+  // A program that reads the clock without libc, shim or not (its file says so).
+  if (const std::string why = clock_without_libc(exe); !why.empty()) {
+    shim_checked_[pid] = exe;
+    problems_.push_back(Problem{pid, 0,
+                                "process " + std::to_string(pid) + " (" + comm_of(pid, pid) + ", " +
+                                    exe + ") sees wall time: " + why});
     return;
+  }
+  if (now - first < std::chrono::milliseconds(200)) return;
   const std::string library = shim_library_.substr(shim_library_.rfind('/') + 1);
   if (maps_contain(pid, library)) {
     shim_checked_[pid] = exe;
@@ -196,6 +204,10 @@ Controller::Scan Controller::scan() {
         if (!sleeps) result.all_waiting = false;  // waking a waiter now
         continue;
       }
+      if (sleeps && slot != slots.end() && slot->second.state == ThreadState::WantToken) {
+        suspects_.erase(tid);  // deterministic mode: waits for its turn (turns.cpp)
+        continue;
+      }
       if (sleeps && slot != slots.end() && is_shim_wait(slot->second.state)) {
         if (slot->second.deadline_ns <= now) {
           result.owed_wake = true;
@@ -218,7 +230,8 @@ Controller::Scan Controller::scan() {
       // waits for the group or for input: it does not hold time back.
       const auto call = sample_syscall(pid, tid);
       if (call && classify_wait(*call) == KernelWait::ForOthers) {
-        suspects_.erase(tid);
+        // The token holder's suspicion is give_turn's (turns.cpp).
+        if (tid != segment.token_tid.load()) suspects_.erase(tid);
         continue;
       }
       result.all_waiting = false;
@@ -253,6 +266,11 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
       const Scan second = scan();
       if (second.all_waiting && second.run_counts == first.run_counts &&
           segment.change_seq.load() == seq) {
+        // Deterministic mode: quiescent only when nobody wants to run.
+        if (options_.deterministic && give_turn()) {
+          backoff_ns = 20000;
+          continue;
+        }
         return Quiescence{GroupState::Quiescent, second.next_deadline};
       }
     }

@@ -83,10 +83,12 @@ int run(Controller& group, pid_t command, const RunOptions& options) {
     ::usleep(5000);
   }
   if (options.verbose) {
-    std::fprintf(stderr, "timeshim: sim time %.6f s, %llu advances, %llu intercepted calls\n",
+    std::fprintf(stderr,
+                 "timeshim: sim time %.6f s, %llu advances, %llu intercepted calls, %llu turns\n",
                  static_cast<double>(group.now_ns()) * 1e-9,
                  static_cast<unsigned long long>(group.advances()),
-                 static_cast<unsigned long long>(group.intercepted_calls()));
+                 static_cast<unsigned long long>(group.intercepted_calls()),
+                 static_cast<unsigned long long>(group.turns()));
   }
   return group.exit_status(command).value_or(1);
 }
@@ -113,6 +115,9 @@ int main(int argc, char** argv) {
                  "stop the command with SIGTERM at this sim time (s); 0: run until it ends")
       ->check(ubersim::at_least(0));
   app.add_option("--shim", options.controller.shim_library, "the shim library (default: ../lib)");
+  app.add_flag("--deterministic", options.controller.deterministic,
+               "run the group's threads one at a time in a fixed order (reproducible "
+               "interleaving; slower)");
   app.add_flag("-v,--verbose", options.verbose, "print sim time and counts at the end");
   app.add_option("command", options.command, "the command and its arguments (after --)")
       ->required();

@@ -40,6 +40,24 @@ const char* shim_call_name(ShimCall call) {
       return "a socket receive with SO_RCVTIMEO";
     case ShimCall::ChargedYield:
       return "charged pause (a thread that does not block)";
+    case ShimCall::MutexLock:
+      return "pthread_mutex_lock";
+    case ShimCall::CondWait:
+      return "pthread_cond_wait";
+    case ShimCall::SemWait:
+      return "sem_wait";
+    case ShimCall::ThreadStart:
+      return "its start (waiting for its first turn)";
+    case ShimCall::BlockingCall:
+      return "a blocking call";
+    case ShimCall::SocketSend:
+      return "a socket send with SO_SNDTIMEO";
+    case ShimCall::Accept:
+      return "accept with SO_RCVTIMEO";
+    case ShimCall::SigTimedwait:
+      return "sigtimedwait";
+    case ShimCall::EpollPwait2:
+      return "epoll_pwait2";
   }
   return "unknown";
 }

@@ -10,7 +10,9 @@
 #include <atomic>
 #include <cerrno>
 
+#include "det_sync.hpp"
 #include "runtime.hpp"
+#include "timers.hpp"
 
 namespace shim = ubersim::timeshim::shim;
 using ubersim::timeshim::futex_wait;
@@ -33,8 +35,9 @@ void fire_timer(ThreadSlot& slot, std::int64_t now) {
   // The next deadline first: a reader woken by the write may ask for it.
   slot.deadline_ns.store(interval > 0 ? deadline + static_cast<std::int64_t>(expirations) * interval
                                       : ubersim::timeshim::kNoDeadline);
-  const int fd = slot.timer_fd.load();
-  if (::write(fd, &expirations, sizeof(expirations)) < 0) {
+  if (slot.timer_kind.load() == static_cast<std::uint32_t>(ubersim::timeshim::TimerKind::Posix)) {
+    shim::fire_posix_timer(slot, expirations);
+  } else if (::write(slot.timer_fd.load(), &expirations, sizeof(expirations)) < 0) {
     // The counter is full; the program has not read it for 2^64 periods.
   }
   shim::notify();
@@ -91,7 +94,7 @@ void ensure_helper() {
   pthread_attr_setdetachstate(&attributes, PTHREAD_CREATE_DETACHED);
   pthread_attr_setstacksize(&attributes, std::size_t{64} * 1024);
   pthread_t thread;
-  if (pthread_create(&thread, &attributes, run_helper, nullptr) == 0) {
+  if (real_pthread_create(&thread, &attributes, run_helper, nullptr) == 0) {
     pthread_setname_np(thread, "timeshim-helper");
   }
   pthread_attr_destroy(&attributes);
@@ -110,6 +113,7 @@ int real_cond_clockwait(pthread_cond_t* cond, pthread_mutex_t* mutex, clockid_t 
 }
 
 int cond_wait_until(pthread_cond_t* cond, pthread_mutex_t* mutex, std::int64_t deadline) {
+  if (shim::deterministic()) return shim::det_cond_wait(cond, mutex, deadline);
   const std::int64_t view_at_start = shim::view_now();
   if (deadline <= view_at_start) {
     shim::charge_call();

@@ -211,6 +211,18 @@ __attribute__((visibility("default"))) int epoll_wait(int epoll, epoll_event* ev
   return epoll_until(epoll, events, count, deadline_ms(timeout_ms), nullptr, ShimCall::EpollWait);
 }
 
+__attribute__((visibility("default"))) int epoll_pwait2(int epoll, epoll_event* events, int count,
+                                                        const timespec* timeout,
+                                                        const sigset_t* mask) {
+  if (shim::segment() == nullptr) {
+    static const auto real =
+        shim::next_symbol<int (*)(int, epoll_event*, int, const timespec*, const sigset_t*)>(
+            "epoll_pwait2");
+    return real(epoll, events, count, timeout, mask);
+  }
+  return epoll_until(epoll, events, count, deadline_ts(timeout), mask, ShimCall::EpollPwait2);
+}
+
 __attribute__((visibility("default"))) int epoll_pwait(int epoll, epoll_event* events, int count,
                                                        int timeout_ms, const sigset_t* mask) {
   if (shim::segment() == nullptr) return real_epoll_pwait(epoll, events, count, timeout_ms, mask);

@@ -27,6 +27,9 @@ struct ThreadRecord {
   std::int64_t floor_ns;   // the view never goes below this (what it saw last)
   std::int64_t charge_ns;  // charged since the last block
   std::int64_t free_calls_used;
+  std::uint32_t order_id;  // deterministic mode: its place in the order, when given before its slot
+  bool has_order;
+  bool had_token;  // deterministic mode: it got the token and did not give it up
 };
 
 __attribute__((tls_model("initial-exec"))) thread_local ThreadRecord this_thread{};
@@ -46,6 +49,10 @@ void notify_controller() {
   futex_wake_all(the_segment->change_seq);
 }
 
+// The order id of a forked child, given out by the parent (which holds the
+// run token) in the prepare handler.
+std::uint32_t fork_child_order = 0;
+
 void release_slot(void* slot_ptr) {
   auto* slot = static_cast<ThreadSlot*>(slot_ptr);
   if (slot == nullptr || the_segment == nullptr) return;
@@ -53,6 +60,19 @@ void release_slot(void* slot_ptr) {
   slot->tid.store(0);
   slot->claim.store(0);
   notify_controller();
+}
+
+// A thread that ends holding the run token (deterministic mode) keeps it
+// and its slot to its very end: the controller takes both back once the
+// thread is gone (turns.cpp), so that nothing it still does (other
+// destructors, libc's cleanup) runs beside the next turn.
+void on_thread_exit(void* slot_ptr) {
+  auto* slot = static_cast<ThreadSlot*>(slot_ptr);
+  if (slot != nullptr && the_segment != nullptr && the_segment->deterministic != 0 &&
+      the_segment->token_tid.load() == slot->tid.load()) {
+    return;
+  }
+  release_slot(slot_ptr);
 }
 
 void on_wake_signal(int /*signal*/) {
@@ -69,9 +89,19 @@ void block_wake_signal() {
 // A slot for this thread: after exec or fork a slot may still carry this
 // tid (the image before it); it is this thread's no longer.
 ThreadSlot* claim_slot(pid_t tid) {
+  std::uint32_t order = this_thread.order_id;
+  bool has_order = this_thread.has_order;
   for (auto& slot : the_segment->threads) {
-    if (slot.claim.load() != 0 && slot.tid.load() == tid) release_slot(&slot);
+    if (slot.claim.load() != 0 && slot.tid.load() == tid) {
+      // The same thread in a new image (exec) keeps its place.
+      if (!has_order) order = slot.order_id.load();
+      has_order = true;
+      release_slot(&slot);
+    }
   }
+  // The group's first thread, or a process exec'd from a vfork or
+  // posix_spawn child (no fork handler ran): the next place in the order.
+  if (!has_order) order = the_segment->next_order_id.fetch_add(1);
   for (auto& slot : the_segment->threads) {
     std::uint32_t free_claim = 0;
     if (!slot.claim.compare_exchange_strong(free_claim, 1)) continue;
@@ -79,6 +109,9 @@ ThreadSlot* claim_slot(pid_t tid) {
     slot.pid.store(static_cast<std::int32_t>(::getpid()));
     slot.deadline_ns.store(kNoDeadline);
     slot.call.store(static_cast<std::uint32_t>(ShimCall::None));
+    slot.order_id.store(order);
+    slot.ready_seq.store(0);
+    slot.det_object.store(0);
     slot.state.store(static_cast<std::uint32_t>(ThreadState::Running));
     slot.tid.store(static_cast<std::int32_t>(tid));
     return &slot;
@@ -137,10 +170,25 @@ void after_block(std::int64_t view_at_start, std::int64_t reached_ns, ShimCall c
 
 namespace {
 
+// The parent holds the run token while it forks (deterministic mode): the
+// child's place in the order is given out now, the same on every run.
+void order_for_child() {
+  if (the_segment != nullptr && the_segment->deterministic != 0) {
+    fork_child_order = the_segment->next_order_id.fetch_add(1);
+  }
+}
+
 void forget_slot_in_child() {
-  // The forked child's only thread is a new thread: its own slot, later.
+  // The forked child's only thread is a new thread: its own slot, later;
+  // in deterministic mode now, to wait for its first turn.
   this_thread.slot = nullptr;
   this_thread.tid = 0;
+  if (the_segment != nullptr && the_segment->deterministic != 0) {
+    this_thread.order_id = fork_child_order;
+    this_thread.has_order = true;
+    acquire_token(own_slot(), ShimCall::ThreadStart);
+    set_state(own_slot(), ThreadState::Running, ShimCall::None, kNoDeadline);
+  }
 }
 
 [[noreturn]] void fail_attach(const char* path, const char* what) {
@@ -171,8 +219,8 @@ void start_shim() {
   const char* path = std::getenv(kSegmentEnv);
   if (path == nullptr || *path == '\0') return;
   Header* header = attach(path);
-  pthread_key_create(&slot_key, release_slot);
-  pthread_atfork(nullptr, nullptr, forget_slot_in_child);
+  pthread_key_create(&slot_key, on_thread_exit);
+  pthread_atfork(order_for_child, nullptr, forget_slot_in_child);
   struct sigaction action {};
   action.sa_handler = on_wake_signal;
   // No SA_RESTART: the kernel would restart a futex wait (sem_wait) after
@@ -181,7 +229,11 @@ void start_shim() {
   sigemptyset(&action.sa_mask);
   sigaction(header->wake_signal, &action, nullptr);
   the_segment = header;
-  own_slot();
+  ThreadSlot& slot = own_slot();
+  // Deterministic mode: the program's code runs only in its turn (after an
+  // exec, this thread may hold the token already).
+  acquire_token(slot, ShimCall::ThreadStart);
+  set_state(slot, ThreadState::Running, ShimCall::None, kNoDeadline);
 }
 
 pthread_once_t started = PTHREAD_ONCE_INIT;
@@ -225,6 +277,60 @@ Header* segment() {
   return the_segment;
 }
 
+bool deterministic() {
+  return the_segment != nullptr && the_segment->deterministic != 0;
+}
+
+void set_own_order(std::uint32_t order_id) {
+  this_thread.order_id = order_id;
+  this_thread.has_order = true;
+}
+
+void release_token() {
+  this_thread.had_token = false;
+  if (!deterministic() || this_thread.slot == nullptr) return;
+  std::int32_t tid = this_thread.tid;
+  if (the_segment->token_tid.compare_exchange_strong(tid, 0)) notify_controller();
+}
+
+bool holds_token() {
+  return this_thread.slot != nullptr && the_segment->token_tid.load() == this_thread.tid;
+}
+
+void wait_for_turn(ThreadSlot& slot) {
+  for (;;) {
+    const std::uint32_t seq = slot.wake_seq.load();
+    if (the_segment->token_tid.load() == this_thread.tid) return;
+    const long waited = futex_wait(slot.wake_seq, seq, to_ns(kLivenessCheck));
+    if (waited != 0 && errno == ETIMEDOUT) exit_if_controller_gone();
+  }
+}
+
+void acquire_token(ThreadSlot& slot, ShimCall call) {
+  if (!deterministic()) return;
+  if (!holds_token()) {
+    const int saved = errno;
+    set_state(slot, ThreadState::WantToken, call, kNoDeadline);
+    wait_for_turn(slot);
+    errno = saved;
+  }
+  this_thread.had_token = true;
+}
+
+namespace {
+
+// The controller took the token from this thread while it was blocked in a
+// call that did not hand it over (turns.cpp): it waits for a turn now.
+void rejoin_turns() {
+  if (!this_thread.had_token || holds_token()) return;
+  this_thread.had_token = false;
+  ThreadSlot& slot = own_slot();
+  acquire_token(slot, ShimCall::BlockingCall);
+  set_state(slot, ThreadState::Running, ShimCall::None, kNoDeadline);
+}
+
+}  // namespace
+
 std::int64_t view_now() {
   const std::int64_t sim_now = the_segment->sim_now_ns.load();
   return std::max(sim_now, this_thread.floor_ns) + this_thread.charge_ns;
@@ -232,6 +338,7 @@ std::int64_t view_now() {
 
 void charge_call() {
   the_segment->intercepted_calls.fetch_add(1, std::memory_order_relaxed);
+  if (the_segment->deterministic != 0) rejoin_turns();
   if (this_thread.free_calls_used < kFreeCalls) {
     ++this_thread.free_calls_used;
     return;
@@ -254,6 +361,7 @@ int sleep_until(std::int64_t deadline_ns, ShimCall call) {
   const std::int64_t view_at_start = view_now();
   ThreadSlot& slot = own_slot();
   set_state(slot, ThreadState::Sleeping, call, deadline_ns);
+  release_token();
   int result = 0;
   for (;;) {
     const std::uint32_t seq = slot.wake_seq.load();
@@ -265,6 +373,7 @@ int sleep_until(std::int64_t deadline_ns, ShimCall call) {
     }
     if (waited != 0 && errno == ETIMEDOUT) exit_if_controller_gone();
   }
+  acquire_token(slot, call);
   set_state(slot, ThreadState::Running, ShimCall::None, kNoDeadline);
   after_block(view_at_start, result == 0 ? deadline_ns : 0, call);
   return result;
@@ -281,10 +390,13 @@ WaitScope::WaitScope(std::int64_t deadline_ns, ShimCall call, ThreadState state,
   }
   sigdelset(&mask_, the_segment->wake_signal);
   wake_arrived = 0;
+  call_ = call;
   set_state(slot, state, call, deadline_ns);
+  release_token();
 }
 
 WaitScope::~WaitScope() {
+  acquire_token(*this_thread.slot, call_);
   set_state(*this_thread.slot, ThreadState::Running, ShimCall::None, kNoDeadline);
   after_block(view_at_start_, timed_out_ ? deadline_ns_ : 0, ShimCall::None);
 }

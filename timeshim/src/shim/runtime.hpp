@@ -52,6 +52,22 @@ void set_state(ThreadSlot& slot, ThreadState state, ShimCall call, std::int64_t 
 // charge is forgiven.
 void after_block(std::int64_t view_at_start, std::int64_t reached_ns, ShimCall call);
 
+// Deterministic mode (docs/timeshim.md): the group's threads run one at a
+// time, each in its turn, which the controller grants in a fixed order.
+bool deterministic();
+// This thread's place in the order, given by its creator before its slot.
+void set_own_order(std::uint32_t order_id);
+// Gives up the run token (before a thread blocks); no-op when not held or
+// not in deterministic mode.
+void release_token();
+bool holds_token();
+// Waits for this thread's turn (after a block, before the program's code
+// runs again); says so in the slot (WantToken). Keeps errno.
+void acquire_token(ThreadSlot& slot, ShimCall call);
+// Waits until the controller grants this thread the token (its state says
+// why it waits: WantToken, or DetBlocked until a peer makes it WantToken).
+void wait_for_turn(ThreadSlot& slot);
+
 // Sleeps until sim time reaches deadline_ns. Returns 0, or EINTR when a
 // signal of the program's own interrupted it (then sim time is before it).
 int sleep_until(std::int64_t deadline_ns, ShimCall call);
@@ -94,6 +110,7 @@ struct WaitScope {
  private:
   std::int64_t deadline_ns_;
   std::int64_t view_at_start_;
+  ShimCall call_ = ShimCall::None;
   bool timed_out_ = false;
   sigset_t mask_{};
 };

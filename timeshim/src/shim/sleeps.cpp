@@ -5,6 +5,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "det_sync.hpp"
 #include "runtime.hpp"
 
 namespace shim = ubersim::timeshim::shim;
@@ -112,6 +113,7 @@ int real_sem_clockwait(sem_t* semaphore, clockid_t clock, const timespec* limit)
 // A semaphore wait until a sim deadline: sem_wait interrupted by the wake
 // signal (it never restarts after a handler) when the deadline passes.
 int sem_wait_until(sem_t* semaphore, std::int64_t deadline) {
+  if (shim::deterministic()) return shim::det_sem_wait(semaphore, deadline);
   if (sem_trywait(semaphore) == 0) return 0;
   if (errno != EAGAIN) return -1;
   if (deadline <= shim::view_now()) {

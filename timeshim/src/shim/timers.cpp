@@ -84,6 +84,7 @@ __attribute__((visibility("default"))) int timerfd_create(clockid_t clock, int f
     return -1;
   }
   slot->timer_fd.store(fd);
+  slot->timer_kind.store(static_cast<std::uint32_t>(ubersim::timeshim::TimerKind::Fd));
   slot->interval_ns.store(0);
   slot->state.store(static_cast<std::uint32_t>(ThreadState::Timer));
   clock_offsets[fd].store(offset);

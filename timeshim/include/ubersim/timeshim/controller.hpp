@@ -46,6 +46,10 @@ struct ControllerOptions {
   // without blocking, blocked in a call the shim does not know) before it is
   // reported by name.
   std::chrono::milliseconds grace{2000};
+  // Deterministic mode (docs/timeshim.md): the group's threads run one at a
+  // time, each until it blocks, in a fixed order, so that what they do
+  // interleaves alike on every run.
+  bool deterministic = false;
 };
 
 // Something the controller found that keeps the shim from working: named,
@@ -106,6 +110,8 @@ class Controller {
   std::optional<int> exit_status(pid_t pid) const;
   std::uint64_t intercepted_calls() const;
   std::uint64_t advances() const { return advances_; }
+  // Deterministic mode: turns granted so far.
+  std::uint64_t turns() const;
 
  private:
   struct Scan;
@@ -114,6 +120,7 @@ class Controller {
   void wake_due();
   void note_suspect(pid_t pid, pid_t tid, const std::string& why);
   void check_shim_loaded(pid_t pid);
+  bool give_turn();  // deterministic mode, at a quiescent look (turns.cpp)
   std::vector<pid_t> group_processes();
   Header& header();
 

@@ -17,7 +17,7 @@ namespace ubersim::timeshim {
 // The environment variable that names the segment's file.
 inline constexpr const char* kSegmentEnv = "UBERSIM_TIMESHIM_SHM";
 inline constexpr std::uint32_t kMagic = 0x54534d55;  // "UMST"
-inline constexpr std::uint32_t kVersion = 1;
+inline constexpr std::uint32_t kVersion = 2;
 inline constexpr int kMaxThreads = 1024;
 // No deadline: a wait only input can end.
 inline constexpr std::int64_t kNoDeadline = std::numeric_limits<std::int64_t>::max();
@@ -31,8 +31,24 @@ enum class ThreadState : std::uint32_t {
   WaitingSem = 4,   // in a shim semaphore wait, until deadline_ns (woken by kWakeSignal)
   WaitingCond = 5,  // in a shim condition variable wait, until deadline_ns (woken by the helper)
   Helper = 6,       // the shim's helper thread of a process (it wakes WaitingCond threads)
-  Timer = 7,        // not a thread: a timerfd of process pid, due at deadline_ns (or never)
+  Timer = 7,        // not a thread: a timer of process pid (timer_kind), due at deadline_ns
+  // Deterministic mode (docs/timeshim.md): the thread waits for the run token,
+  // which the controller grants in a fixed order once the group is quiescent.
+  WantToken = 8,
+  // Deterministic mode: waits in the shim for a peer (a mutex, condition
+  // variable or semaphore, cond_addr) or for deadline_ns; a peer's unlock,
+  // signal or post, or the controller at the deadline, makes it WantToken.
+  DetBlocked = 9,
 };
+
+// What a Timer slot is.
+enum class TimerKind : std::uint32_t {
+  Fd = 0,     // a timerfd: expirations go to the eventfd timer_fd
+  Posix = 1,  // timer_create: a signal (SIGEV_SIGNAL, _THREAD_ID) or a thread (SIGEV_THREAD)
+};
+
+// What a DetBlocked thread waits for.
+enum class DetObject : std::uint32_t { None = 0, Mutex, Cond, Sem };
 
 // Which intercepted call a thread is blocked in, for the messages that name it.
 enum class ShimCall : std::uint32_t {
@@ -51,6 +67,15 @@ enum class ShimCall : std::uint32_t {
   CondTimedwait,
   SocketReceive,  // a receive on a socket with SO_RCVTIMEO
   ChargedYield,   // the pause a thread that never blocks is given (charged calls)
+  MutexLock,      // pthread_mutex_lock (deterministic mode), _timedlock, _clocklock
+  CondWait,       // pthread_cond_wait (deterministic mode)
+  SemWait,        // sem_wait (deterministic mode)
+  ThreadStart,    // a new thread or process waiting for its first turn (deterministic mode)
+  BlockingCall,   // a blocking call the token is handed over in (deterministic mode)
+  SocketSend,     // a send on a socket with SO_SNDTIMEO
+  Accept,         // accept on a socket with SO_RCVTIMEO
+  SigTimedwait,   // sigtimedwait
+  EpollPwait2,    // epoll_pwait2
 };
 
 const char* shim_call_name(ShimCall call);
@@ -70,6 +95,28 @@ struct alignas(64) ThreadSlot {
   // Timer: its fd (an eventfd the helper writes expirations to) and period.
   std::atomic<std::int32_t> timer_fd{-1};
   std::atomic<std::int64_t> interval_ns{0};
+  // Timer: TimerKind, and for Posix: how it notifies (sigev_notify), the
+  // signal, its value, the function of SIGEV_THREAD, the thread of
+  // SIGEV_THREAD_ID, and the overrun of its last expiry.
+  std::atomic<std::uint32_t> timer_kind{0};
+  std::atomic<std::int32_t> timer_notify{0};
+  std::atomic<std::int32_t> timer_signal{0};
+  std::atomic<std::uint64_t> timer_value{0};
+  std::atomic<std::uint64_t> timer_function{0};
+  std::atomic<std::int32_t> timer_tid{0};
+  std::atomic<std::int32_t> timer_overrun{0};
+  // Deterministic mode: the thread's place in the fixed order (creation
+  // order in the group, not the kernel's tid), what a DetBlocked thread
+  // waits for (DetObject; cond_addr is the object, det_shared when it is a
+  // process-shared semaphore), whether a peer ended that wait, the FIFO
+  // position of a condition waiter, and the order in which the controller
+  // saw it want the token (0: not yet).
+  std::atomic<std::uint32_t> order_id{0};
+  std::atomic<std::uint32_t> det_object{0};
+  std::atomic<std::uint32_t> det_shared{0};
+  std::atomic<std::uint32_t> det_signaled{0};
+  std::atomic<std::uint64_t> det_wait_seq{0};
+  std::atomic<std::uint64_t> ready_seq{0};
 };
 
 struct Header {
@@ -91,6 +138,19 @@ struct Header {
   // the controller sleeps on it.
   std::atomic<std::uint32_t> change_seq{0};
   std::atomic<std::uint64_t> intercepted_calls{0};
+  // Deterministic mode: on (1) or off (0), set before any process attaches;
+  // the tid of the thread that holds the run token (0: none); the next
+  // thread's place in the order (given out by the token holder, so the same
+  // on every run); DetBlocked threads (a peer's unlock looks for waiters
+  // only when there are any); the FIFO counter of condition waits; the
+  // controller's counter of turns.
+  std::uint32_t deterministic = 0;
+  std::atomic<std::int32_t> token_tid{0};
+  std::atomic<std::uint32_t> next_order_id{0};
+  std::atomic<std::uint32_t> det_blocked{0};
+  std::atomic<std::uint64_t> det_wait_counter{0};
+  std::atomic<std::uint64_t> ready_counter{0};
+  std::atomic<std::uint64_t> turns{0};
   ThreadSlot threads[kMaxThreads];
 };
 
@@ -102,7 +162,8 @@ static_assert(sizeof(std::atomic<std::uint32_t>) == sizeof(std::uint32_t));  // 
 // sleeps, counts as waiting for the controller).
 inline bool is_shim_wait(ThreadState state) {
   return state == ThreadState::Sleeping || state == ThreadState::WaitingFd ||
-         state == ThreadState::WaitingSem || state == ThreadState::WaitingCond;
+         state == ThreadState::WaitingSem || state == ThreadState::WaitingCond ||
+         state == ThreadState::WantToken || state == ThreadState::DetBlocked;
 }
 
 // Futex calls on a shared mapping (not FUTEX_PRIVATE: several processes).

@@ -1,0 +1,96 @@
+// Deterministic mode's turns (docs/timeshim.md, "Deterministic mode"): at a
+// quiescent look, every thread that wants to run has said so (WantToken) and
+// every other waits; the controller gives the run token to one of them, in
+// an order that depends only on what the group did: first come (by the look
+// at which it was first seen wanting), then its place in the group (the
+// order threads and processes were created in), never the kernel's tid.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "proc_scan.hpp"
+#include "ubersim/timeshim/controller.hpp"
+
+namespace ubersim::timeshim {
+namespace {
+
+bool wants_token(const ThreadSlot& slot) {
+  return slot.claim.load() != 0 && slot.tid.load() != 0 &&
+         slot.state.load() == static_cast<std::uint32_t>(ThreadState::WantToken);
+}
+
+// The slot of the thread holding the token, or nullptr when it is gone.
+ThreadSlot* holder_slot(Header& header, pid_t holder) {
+  for (auto& slot : header.threads) {
+    if (slot.claim.load() == 0 || slot.tid.load() != holder) continue;
+    if (slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer)) continue;
+    // A process that ended holding it is a zombie until its parent reaps it.
+    const auto sample = sample_thread(slot.pid.load(), holder);
+    return sample && sample->state != 'Z' && sample->state != 'X' ? &slot : nullptr;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::uint64_t Controller::turns() const {
+  return const_cast<Controller*>(this)->header().turns.load();
+}
+
+bool Controller::give_turn() {
+  Header& segment = header();
+  std::vector<ThreadSlot*> wanting;
+  for (auto& slot : segment.threads) {
+    if (wants_token(slot)) wanting.push_back(&slot);
+  }
+  if (pid_t holder = segment.token_tid.load(); holder != 0) {
+    ThreadSlot* slot = holder_slot(segment, holder);
+    if (slot == nullptr) {
+      // It ended holding the token (exit, exec that failed to load the shim).
+      segment.token_tid.compare_exchange_strong(holder, 0);
+    } else {
+      // Asleep in a call that did not hand the token over: nobody else may
+      // run until it returns. Waiting for input, that is right; waiting
+      // for another thread of the group, it never returns.
+      if (wanting.empty()) return false;
+      const pid_t pid = slot->pid.load();
+      const auto call = sample_syscall(pid, holder);
+      note_suspect(pid, holder,
+                   "holds the deterministic mode's run token while blocked in " +
+                       (call ? syscall_name(call->number) : std::string("an unknown call")) +
+                       ", a call the time shim does not hand the token over in; the token is "
+                       "taken from it so that the others can run (this run's interleaving is "
+                       "no longer fixed from here on)");
+      // Named: now the others run; it waits for a turn at its next call the
+      // shim sees.
+      if (!suspects_[holder].reported) return false;
+      suspects_.erase(holder);
+      segment.token_tid.compare_exchange_strong(holder, 0);
+    }
+  }
+  if (wanting.empty()) return false;
+  // Those first seen wanting now get their place in the queue, by their
+  // place in the group.
+  std::vector<ThreadSlot*> arrived;
+  for (ThreadSlot* slot : wanting) {
+    if (slot->ready_seq.load() == 0) arrived.push_back(slot);
+  }
+  std::sort(arrived.begin(), arrived.end(), [](const ThreadSlot* a, const ThreadSlot* b) {
+    return a->order_id.load() < b->order_id.load();
+  });
+  for (ThreadSlot* slot : arrived) slot->ready_seq.store(segment.ready_counter.fetch_add(1) + 1);
+  ThreadSlot* next = *std::min_element(wanting.begin(), wanting.end(),
+                                       [](const ThreadSlot* a, const ThreadSlot* b) {
+                                         return a->ready_seq.load() < b->ready_seq.load();
+                                       });
+  next->ready_seq.store(0);
+  // No longer wanting: a look before it runs must not give a second turn.
+  next->state.store(static_cast<std::uint32_t>(ThreadState::Running));
+  segment.token_tid.store(next->tid.load());
+  segment.turns.fetch_add(1);
+  next->wake_seq.fetch_add(1);
+  futex_wake_all(next->wake_seq);
+  return true;
+}
+
+}  // namespace ubersim::timeshim
