@@ -154,6 +154,7 @@ void InProcessSim::reset(std::optional<std::uint64_t> seed) {
 void InProcessSim::place(const sim_control_t& request, bool setup) {
   sim_control_t placement = request;
   placement.action = setup ? sim_control_t::SETUP : sim_control_t::PLACE;
+  placement.sender = "python";
   control(placement);
 }
 
