@@ -1,10 +1,11 @@
 #pragma once
 // One simulated world in the calling process, for the Python module: the
-// physics world and the vision and radio emulator cores of the programs,
-// wired together without LCM and driven by the caller's steps
-// (docs/python.md). Everything runs in sim time: nothing here reads a clock,
-// so the same seed and the same calls give the same results, bit for bit, on
-// any thread.
+// cores of the programs (the physics process's PhysicsCore in sync mode, the
+// vision and radio emulators), wired together without LCM and driven by the
+// caller's steps as the sync driver drives the processes (docs/python.md).
+// Commands are checked by the radio emulator's validator, the one every part
+// shares. Everything runs in sim time: nothing here reads a clock, so the same
+// seed and the same calls give the same results, bit for bit, on any thread.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "ubersim/channels.hpp"
+#include "ubersim/physics/physics_core.hpp"
 #include "ubersim/physics/world.hpp"
 #include "ubersim/radio/radio_emulator.hpp"
 #include "ubersim/referee/situations.hpp"
@@ -66,9 +68,10 @@ class InProcessSim {
   // the SSL rules' distances, everyone stopped. Throws std::invalid_argument.
   void situation(const referee::SituationRequest& request, referee::FieldSides sides);
 
-  // Throws std::invalid_argument, changing nothing, when an order names a
-  // robot not on the field, has a non-finite value, an unknown mode or more
-  // wheel speeds than the robot has wheels.
+  // Throws std::invalid_argument, changing nothing, when the radio
+  // emulator's validator (without the profile's sanity limits) finds an order
+  // wrong: a robot not on the field or commanded twice, a non-finite value, an
+  // unknown mode, a wheel count that is not the robot's.
   void check_orders(const std::vector<RobotOrder>& orders) const;
   // Sends the orders (through the radio when emulated), then steps physics
   // until the next step boundary. Call check_orders first: step() assumes it.
@@ -79,11 +82,11 @@ class InProcessSim {
 
   const sim_state_t& truth();                             // the state now
   const StepOutput& last_output() const { return out_; }  // what the last step() returned
-  field_geometry_t geometry() const { return world_->geometry(); }
-  const physics::World& world() const { return *world_; }
+  field_geometry_t geometry() const { return core_->geometry(); }
+  const physics::World& world() const { return core_->world(); }
   const SimOptions& options() const { return options_; }
   std::uint64_t seed() const { return options_.seed; }
-  double time() const { return world_->time(); }
+  double time() const { return core_->world().time(); }
   bool vision_emulated() const { return vision_ != nullptr; }
   bool radio_emulated() const { return radio_ != nullptr; }
   const vision::VisionEmulator* vision() const { return vision_.get(); }
@@ -93,18 +96,21 @@ class InProcessSim {
 
  private:
   void start_emulators();
+  // A SIM_CONTROL request to the core; throws std::invalid_argument when refused.
+  void control(const sim_control_t& request);
   void send(const std::vector<RobotOrder>& orders);
-  void feed_emulators();
+  // Sync mode's horizon: the caller's next commands come at `end` at the earliest.
+  void release_until(double end);
+  void feed_emulators(const std::vector<sim_state_t>& states);
 
   SimOptions options_;
   std::string config_dir_;
   std::string default_robot_type_;
-  std::unique_ptr<physics::World> world_;
+  std::unique_ptr<physics::PhysicsCore> core_;
   std::unique_ptr<vision::VisionEmulator> vision_;
   std::unique_ptr<radio::RadioEmulator> radio_;
   std::int64_t steps_taken_ = 0;  // step() calls since the last reset
   std::int64_t packet_sequence_ = 0;
-  sim_state_t state_;  // scratch for the emulators
   StepOutput out_;
 };
 

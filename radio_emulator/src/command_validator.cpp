@@ -1,82 +1,29 @@
 #include "ubersim/radio/command_validator.hpp"
 
-#include <cmath>
+#include <algorithm>
 #include <set>
 #include <ubersim/team_t.hpp>
 
 namespace ubersim::radio {
 namespace {
 
-bool all_finite(const robot_command_t& c) {
-  for (double v : {c.vx, c.vy, c.omega, c.kick_speed, c.chip_speed, c.chip_angle, c.dribbler_speed})
-    if (!std::isfinite(v)) return false;
-  if (c.mode == robot_command_t::MODE_WHEEL_SPEEDS)
-    for (double w : c.wheel_speeds)
-      if (!std::isfinite(w)) return false;
-  return true;
-}
-
-// Empty when the values are sane, else what is wrong.
-std::string absurd_value(const robot_command_t& c, const CommandLimits& limits) {
-  const auto beyond = [](const char* what, double value, double limit, const char* unit) {
-    return std::string(what) + " " + std::to_string(value) + " " + unit + " beyond the limit " +
-           std::to_string(limit) + " " + unit;
-  };
-  if (c.mode == robot_command_t::MODE_WHEEL_SPEEDS) {
-    for (double w : c.wheel_speeds)
-      if (std::abs(w) > limits.wheel_speed)
-        return beyond("wheel speed", w, limits.wheel_speed, "rad/s");
-  } else {
-    const double speed = std::hypot(c.vx, c.vy);
-    if (speed > limits.speed) return beyond("speed", speed, limits.speed, "m/s");
-    if (std::abs(c.omega) > limits.angular_speed)
-      return beyond("angular speed", c.omega, limits.angular_speed, "rad/s");
+Problem problem_of(CommandFault fault) {
+  switch (fault) {
+    case CommandFault::UnknownMode:
+      return Problem::UnknownMode;
+    case CommandFault::NonFinite:
+      return Problem::NonFinite;
+    case CommandFault::AbsurdValue:
+      return Problem::AbsurdValue;
+    case CommandFault::WheelCount:
+      return Problem::WheelCount;
   }
-  if (c.kick_speed < 0 || c.kick_speed > limits.kick_speed)
-    return beyond("kick speed", c.kick_speed, limits.kick_speed, "m/s") + " (or negative)";
-  if (c.chip_speed < 0 || c.chip_speed > limits.kick_speed)
-    return beyond("chip speed", c.chip_speed, limits.kick_speed, "m/s") + " (or negative)";
-  if (c.chip_angle < 0 || c.chip_angle >= M_PI / 2)
-    return "chip angle " + std::to_string(c.chip_angle) + " rad outside [0, pi/2)";
-  if (std::abs(c.dribbler_speed) > limits.dribbler_speed)
-    return beyond("dribbler speed", c.dribbler_speed, limits.dribbler_speed, "rad/s");
-  return {};
+  return Problem::AbsurdValue;
 }
 
-bool known_mode(std::int8_t mode) {
-  return mode == robot_command_t::MODE_LOCAL_VELOCITY ||
-         mode == robot_command_t::MODE_GLOBAL_VELOCITY ||
-         mode == robot_command_t::MODE_WHEEL_SPEEDS;
-}
-
-}  // namespace
-
-const char* problem_name(Problem problem) {
-  switch (problem) {
-    case Problem::NoSimTime:
-      return "before any SIM_STATE";
-    case Problem::UnknownTeam:
-      return "unknown team";
-    case Problem::TeamMismatch:
-      return "team does not match channel";
-    case Problem::UnknownMode:
-      return "unknown mode";
-    case Problem::NonFinite:
-      return "NaN/Inf";
-    case Problem::AbsurdValue:
-      return "absurd value";
-    case Problem::WheelCount:
-      return "wrong wheel count";
-    case Problem::DuplicateRobot:
-      return "duplicate robot id";
-    case Problem::OffField:
-      return "robot not on the field";
-  }
-  return "?";
-}
-
-Validated validate_packet(const radio_packet_t& packet, Team channel_team,
-                          const CommandLimits& limits, const RobotsOnField& robots) {
+// The checks of validate_packet; limits nullptr: no sanity limits.
+Validated validate(const radio_packet_t& packet, Team channel_team, const CommandLimits* limits,
+                   const RobotsOnField& robots) {
   Validated out;
   const int channel_team_code = static_cast<int>(channel_team);
   if (packet.team != team_t::YELLOW && packet.team != team_t::BLUE) {
@@ -113,28 +60,13 @@ Validated validate_packet(const radio_packet_t& packet, Team channel_team,
       out.findings.push_back({Problem::OffField, id, "no such robot on the field"});
       continue;
     }
-    if (!known_mode(command.mode)) {
-      out.findings.push_back({Problem::UnknownMode, id, "mode " + std::to_string(command.mode)});
-      continue;
-    }
-    if (!all_finite(command)) {
-      out.findings.push_back({Problem::NonFinite, id, "a field is NaN or infinite"});
-      continue;
-    }
-    if (const std::string what = absurd_value(command, limits); !what.empty()) {
-      out.findings.push_back({Problem::AbsurdValue, id, what});
+    const auto wheels = static_cast<std::size_t>(std::max(0, robot->second));
+    if (auto fault = find_command_fault(command, wheels, limits)) {
+      out.findings.push_back({problem_of(fault->fault), id, std::move(fault->detail)});
       continue;
     }
     robot_command_t clean = command;
-    if (command.mode == robot_command_t::MODE_WHEEL_SPEEDS) {
-      const std::int32_t wheels = robot->second;
-      if (command.num_wheels == 0 || (wheels > 0 && command.num_wheels != wheels)) {
-        out.findings.push_back({Problem::WheelCount, id,
-                                std::to_string(command.num_wheels) +
-                                    " wheel speeds for a robot with " + std::to_string(wheels)});
-        continue;
-      }
-    } else {
+    if (command.mode != robot_command_t::MODE_WHEEL_SPEEDS) {
       clean.num_wheels = 0;
       clean.wheel_speeds.clear();
     }
@@ -142,6 +74,42 @@ Validated validate_packet(const radio_packet_t& packet, Team channel_team,
   }
   out.packet.num_commands = static_cast<std::int32_t>(out.packet.commands.size());
   return out;
+}
+
+}  // namespace
+
+const char* problem_name(Problem problem) {
+  switch (problem) {
+    case Problem::NoSimTime:
+      return "before any SIM_STATE";
+    case Problem::UnknownTeam:
+      return "unknown team";
+    case Problem::TeamMismatch:
+      return "team does not match channel";
+    case Problem::UnknownMode:
+      return "unknown mode";
+    case Problem::NonFinite:
+      return "NaN/Inf";
+    case Problem::AbsurdValue:
+      return "absurd value";
+    case Problem::WheelCount:
+      return "wrong wheel count";
+    case Problem::DuplicateRobot:
+      return "duplicate robot id";
+    case Problem::OffField:
+      return "robot not on the field";
+  }
+  return "?";
+}
+
+Validated validate_packet(const radio_packet_t& packet, Team channel_team,
+                          const CommandLimits& limits, const RobotsOnField& robots) {
+  return validate(packet, channel_team, &limits, robots);
+}
+
+Validated validate_packet(const radio_packet_t& packet, Team channel_team,
+                          const RobotsOnField& robots) {
+  return validate(packet, channel_team, nullptr, robots);
 }
 
 }  // namespace ubersim::radio

@@ -104,6 +104,13 @@ RadioEmulator::Output RadioEmulator::on_answer(Team channel_team, const radio_pa
   return out;
 }
 
+RadioEmulator::SyncRelease RadioEmulator::sync_release(Team team, double earliest_arrival) {
+  SyncRelease release;
+  release.out = sync_poll(team, earliest_arrival);
+  release.horizon = link(team).commands.earliest_apply(earliest_arrival);
+  return release;
+}
+
 RadioEmulator::Output RadioEmulator::sync_poll(Team team, double earliest_arrival) {
   // A packet arriving exactly when the link frees replaces the waiting one,
   // so transmit only what frees strictly before the next possible arrival.

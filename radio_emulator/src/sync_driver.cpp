@@ -138,10 +138,10 @@ void SyncDriver::update(bool always_publish, Clock::time_point now) {
     for (Team team : kTeams) {
       const double arrival = coordinator_.earliest_arrival(team);
       answered_until = std::min(answered_until, arrival);
-      publish_(emulator_.sync_poll(team, arrival));
-      const double apply = emulator_.earliest_apply(team, arrival);
-      if (apply < horizon) {
-        horizon = apply;
+      RadioEmulator::SyncRelease release = emulator_.sync_release(team, arrival);
+      publish_(release.out);
+      if (release.horizon < horizon) {
+        horizon = release.horizon;
         const std::optional<std::string> client = coordinator_.bound_by(team);
         held_by = client ? sync_horizon_t::HELD_BY_CLIENT : sync_horizon_t::HELD_BY_NEXT_FRAME;
         bound = client.value_or(kNextFrame);

@@ -2,7 +2,10 @@
 // command checks, pacing schedule and config loading.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "physics_test_support.hpp"
 #include "ubersim/physics/pacer.hpp"
@@ -156,6 +159,40 @@ TEST(CommandCheck, ClampsAndDrops) {
   check = check_command(c, omni3);
   EXPECT_TRUE(check.clamped);
   EXPECT_EQ(check.command.chip_speed, 0.0);
+}
+
+// Physics drops exactly what the check every part shares finds
+// (ubersim/command_check.hpp), and applies everything else, clamped.
+TEST(CommandCheck, DropsWhatTheSharedCheckFinds) {
+  const RobotTypeConfig t = load_robot_config(kConfigDir, "omni4_ssl");
+  const auto wheels = [](std::vector<double> speeds) {
+    robot_command_t c = velocity_command(0, 0, 0, 0);
+    c.mode = robot_command_t::MODE_WHEEL_SPEEDS;
+    c.num_wheels = static_cast<std::int32_t>(speeds.size());
+    c.wheel_speeds = std::move(speeds);
+    return c;
+  };
+  robot_command_t unknown_mode = velocity_command(0, 1, 0, 0);
+  unknown_mode.mode = 7;
+  robot_command_t nan_speed = velocity_command(0, std::nan(""), 0, 0);
+  robot_command_t count_mismatch = wheels({1, 2, 3, 4});
+  count_mismatch.num_wheels = 3;
+  robot_command_t unread_nan_wheel = velocity_command(0, 1, 0, 0);
+  unread_nan_wheel.wheel_speeds = {std::nan("")};
+  unread_nan_wheel.num_wheels = 1;
+  const std::vector<std::pair<robot_command_t, bool>> cases{
+      {unknown_mode, false},
+      {nan_speed, false},
+      {wheels({1, 2, 3}), false},
+      {wheels({1, std::nan(""), 3, 4}), false},
+      {count_mismatch, false},
+      {wheels({1e6, 2, 3, 4}), true},
+      {velocity_command(0, 1e6, 0, 0), true},
+      {unread_nan_wheel, true}};
+  for (const auto& [command, accepted] : cases) {
+    EXPECT_EQ(check_command(command, t).accepted, accepted);
+    EXPECT_EQ(!find_command_fault(command, t.wheels.size(), nullptr).has_value(), accepted);
+  }
 }
 
 TEST(Pacer, FollowsAnAbsoluteScheduleWithoutDrift) {

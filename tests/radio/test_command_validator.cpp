@@ -153,3 +153,22 @@ TEST(CommandValidator, VelocityModeEntriesLoseTheirUnusedWheelSpeeds) {
   EXPECT_EQ(v.packet.commands[0].num_wheels, 0);
   EXPECT_TRUE(v.packet.commands[0].wheel_speeds.empty());
 }
+
+// The Python module's check: the same rules without the profile's sanity
+// limits, which an emulated radio applies later (or physics clamps).
+TEST(CommandValidator, WithoutSanityLimitsOnlyWhatNoRobotCanApplyIsFound) {
+  auto in = packet(0, 1, {0, 1, 2});
+  in.commands[0].vx = 1e9;         // far beyond LIMIT_SPEED: physics clamps it
+  in.commands[0].kick_speed = -1;  // negative: physics ignores the kick
+  in.commands[1].omega = std::nan("");
+  in.commands[2].mode = ubersim::robot_command_t::MODE_WHEEL_SPEEDS;
+  in.commands[2].wheel_speeds = {1, 2, 3, 4};
+  in.commands[2].num_wheels = 4;  // robot 2 has 3 wheels
+  const auto v = validate_packet(in, Team::Yellow, kRobots);
+  EXPECT_EQ(ids(v.packet), (std::vector<std::int32_t>{0}));
+  EXPECT_EQ(v.findings.size(), 2u);
+  EXPECT_TRUE(found(v, Problem::NonFinite, 1));
+  EXPECT_TRUE(found(v, Problem::WheelCount, 2));
+  EXPECT_FALSE(validate_packet(in, Team::Yellow, kLimits, kRobots).findings.size() == 2u)
+      << "with the limits, robot 0's entry is absurd too";
+}

@@ -90,43 +90,18 @@ std::string ClampCounts::text() const {
 
 CommandCheck check_command(const robot_command_t& raw, const RobotTypeConfig& robot) {
   CommandCheck check;
-  const double values[] = {raw.vx,         raw.vy,         raw.omega,         raw.kick_speed,
-                           raw.chip_speed, raw.chip_angle, raw.dribbler_speed};
-  for (double v : values) {
-    if (!std::isfinite(v)) {
-      check.problem = "non-finite value in command";
-      return check;
-    }
+  // What no robot can apply (the check the radio emulator and the Python
+  // module make too); the robot's own limits are applied below.
+  if (auto fault = find_command_fault(raw, robot.wheels.size(), nullptr)) {
+    check.problem = std::move(fault->detail);
+    return check;
   }
   RobotCommand& c = check.command;
-  switch (raw.mode) {
-    case robot_command_t::MODE_LOCAL_VELOCITY:
-      c.mode = CommandMode::LocalVelocity;
-      break;
-    case robot_command_t::MODE_GLOBAL_VELOCITY:
-      c.mode = CommandMode::GlobalVelocity;
-      break;
-    case robot_command_t::MODE_WHEEL_SPEEDS:
-      c.mode = CommandMode::WheelSpeeds;
-      break;
-    default:
-      check.problem = "unknown command mode " + std::to_string(raw.mode);
-      return check;
-  }
+  c.mode = raw.mode == robot_command_t::MODE_WHEEL_SPEEDS      ? CommandMode::WheelSpeeds
+           : raw.mode == robot_command_t::MODE_GLOBAL_VELOCITY ? CommandMode::GlobalVelocity
+                                                               : CommandMode::LocalVelocity;
   Findings found;
   if (c.mode == CommandMode::WheelSpeeds) {
-    if (raw.num_wheels != static_cast<int>(robot.wheels.size()) ||
-        raw.wheel_speeds.size() != robot.wheels.size()) {
-      check.problem = "wheel-speed command for " + std::to_string(raw.num_wheels) +
-                      " wheels, robot has " + std::to_string(robot.wheels.size());
-      return check;
-    }
-    for (double w : raw.wheel_speeds) {
-      if (!std::isfinite(w)) {
-        check.problem = "non-finite wheel speed in command";
-        return check;
-      }
-    }
     for (double w : raw.wheel_speeds) {
       c.wheel_speeds.push_back(
           clamp_magnitude(w, robot.motor_max_speed, CommandLimit::WheelSpeed, "rad/s", found));

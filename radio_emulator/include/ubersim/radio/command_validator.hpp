@@ -13,6 +13,10 @@
 //                          robot that is not on the field
 //   cleaned:               wheel_speeds of a velocity-mode entry (ignored by
 //                          the robot, so removed rather than passed on unchecked)
+//
+// What is wrong with one entry's values is found by the check every part
+// shares (ubersim/command_check.hpp); this adds what only a packet has: its
+// team, one entry per robot, robots on the field.
 #include <cstdint>
 #include <map>
 #include <string>
@@ -55,5 +59,10 @@ struct Validated {
 
 Validated validate_packet(const radio_packet_t& packet, Team channel_team,
                           const CommandLimits& limits, const RobotsOnField& robots);
+// The same checks without sanity limits (values are then left to physics,
+// which clamps them to the robot's own): the Python module's, which raises on
+// what no radio forwards and leaves the limits to an emulated radio.
+Validated validate_packet(const radio_packet_t& packet, Team channel_team,
+                          const RobotsOnField& robots);
 
 }  // namespace ubersim::radio

@@ -66,12 +66,17 @@ class RadioEmulator {
   // link frees; SIM_STATE then only drives the feedback.
   void set_sync(bool sync) { sync_ = sync; }
   Output on_answer(Team channel_team, const radio_packet_t& packet, double t_arrival);
-  // No packet of `team` can arrive before `earliest_arrival` (s of sim time).
-  Output sync_poll(Team team, double earliest_arrival);
-  // The earliest t_apply of a command of `team` not yet forwarded.
-  double earliest_apply(Team team, double earliest_arrival) const {
-    return link(team).commands.earliest_apply(earliest_arrival);
-  }
+  // What a sync driver does between answers (the radio emulator's SyncDriver,
+  // the Python module's InProcessSim; docs/sync.md): no packet of `team` can
+  // arrive before `earliest_arrival` (s of sim time), so what its link
+  // transmits before then goes out (`out`, for physics), and physics may start
+  // every step before `horizon`: the earliest t_apply a command of `team` not
+  // yet forwarded can still get.
+  struct SyncRelease {
+    Output out;
+    double horizon = 0;
+  };
+  SyncRelease sync_release(Team team, double earliest_arrival);
 
   // A run-time realism change (EMULATOR_REALISM) for both teams: the radio
   // values >= 0 replace the profiles'. Returns what was wrong (nothing
@@ -104,6 +109,8 @@ class RadioEmulator {
     std::array<std::uint64_t, kProblemCount> problems{};
   };
 
+  // What the link of `team` transmits before `earliest_arrival`.
+  Output sync_poll(Team team, double earliest_arrival);
   TeamLink& link(Team team) { return links_[static_cast<int>(team)]; }
   const TeamLink& link(Team team) const { return links_[static_cast<int>(team)]; }
   void record(Team team, const Finding& finding);

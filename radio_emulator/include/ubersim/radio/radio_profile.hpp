@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "ubersim/command_check.hpp"
 #include "ubersim/config.hpp"
 
 namespace ubersim::radio {
@@ -17,17 +18,12 @@ struct LinkTiming {
   double robot_loss = 0;  // probability one robot's entry is lost from a packet that got through
 };
 
-// Sanity limits of the radio's packet format. A value beyond them is a bug in
-// the sender (wrong units, uninitialised memory), so the robot's entry is
-// dropped, not clamped. A robot's own limits (config/robots) are lower; physics
-// clamps to those, as the robot's firmware does.
-struct CommandLimits {
-  double speed = 0;           // m/s, |(vx, vy)|
-  double angular_speed = 0;   // rad/s, |omega|
-  double wheel_speed = 0;     // rad/s, |each wheel speed| in wheel-speed mode
-  double kick_speed = 0;      // m/s, flat and chip kick speed
-  double dribbler_speed = 0;  // rad/s, |dribbler roller speed|
-};
+// Sanity limits of the radio's packet format (ubersim/command_check.hpp). A
+// value beyond them is a bug in the sender (wrong units, uninitialised
+// memory), so the robot's entry is dropped, not clamped. A robot's own limits
+// (config/robots) are lower; physics clamps to those, as the robot's firmware
+// does.
+using CommandLimits = ubersim::CommandLimits;
 
 struct RadioProfile {
   std::string name;

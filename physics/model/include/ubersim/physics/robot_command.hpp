@@ -7,6 +7,7 @@
 #include <ubersim/robot_command_t.hpp>
 #include <vector>
 
+#include "ubersim/command_check.hpp"
 #include "ubersim/robot_config.hpp"
 
 namespace ubersim::physics {
@@ -58,8 +59,9 @@ struct ClampCounts {
   std::string text() const;
 };
 
-// Drops a command with a non-finite value, an unknown mode or the wrong number
-// of wheel speeds; clamps values beyond the robot's limits.
+// Drops a command find_command_fault finds wrong (a non-finite value, an
+// unknown mode or the wrong number of wheel speeds: ubersim/command_check.hpp,
+// the check every part shares); clamps values beyond the robot's limits.
 CommandCheck check_command(const robot_command_t& raw, const RobotTypeConfig& robot);
 
 }  // namespace ubersim::physics
