@@ -36,12 +36,20 @@ void ProcessHost::at_stop(std::function<void()> hook) {
   stop_hooks_.push_back(std::move(hook));
 }
 
-TruthDemandAnnouncer& ProcessHost::truth_demand() {
+void ProcessHost::ask_for_truth(TruthDemandAnnouncer::Source demand) {
   if (!truth_demand_) {
     truth_demand_ = std::make_unique<TruthDemandAnnouncer>(bus_, channels_, name_);
     hooks_.push_back([this](Clock::time_point now) { truth_demand_->tick(now); });
   }
-  return *truth_demand_;
+  truth_demand_->ask(std::move(demand));
+}
+
+void ProcessHost::ask_for_truth(const truth_demand_t& fixed) {
+  ask_for_truth([fixed] { return fixed; });
+}
+
+void ProcessHost::send_truth_demand(Clock::time_point now) {
+  if (truth_demand_) truth_demand_->send_now(now);
 }
 
 void ProcessHost::stop(int status) {

@@ -68,9 +68,9 @@ int run(const Options& options) {
   const dds::Route* state_route = config.find(topics::kSimState);
   if (state_route != nullptr && dds::carries_lcm_to_dds(state_route->direction)) {
     if (options.truth_rate > 0) {
-      host.truth_demand().periodic(options.truth_rate);
+      host.ask_for_truth(periodic_demand(options.truth_rate));
     } else {
-      host.truth_demand().every_step();
+      host.ask_for_truth(every_step_demand());
     }
   }
   host.at_stop([&] {

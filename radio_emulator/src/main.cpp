@@ -153,10 +153,9 @@ int run(const Options& options) {
   // whenever it changes and once a second, first before the first wait; in
   // sync mode said again right before the first horizon that lets physics
   // start (physics sends its first state after both).
-  TruthDemandAnnouncer& demand = host.truth_demand();
-  demand.follow([&] { return emulator.truth_demand(); }, TruthDemandAnnouncer::Renewal::OnChange);
+  host.ask_for_truth([&] { return emulator.truth_demand(); });
   if (sync) {
-    sync->before_release([&] { demand.announce(host.now()); });
+    sync->before_release([&] { host.send_truth_demand(host.now()); });
     host.after_wake([&](ProcessHost::Clock::time_point now) {
       if (!sync->tick(now)) host.stop(1);  // a client dropped with --sync-strict
     });

@@ -59,7 +59,7 @@ class Runner {
     // (REFEREE.next_judge_time) and sends it: that is the referee's demand.
     // Otherwise physics does not wait for the referee, which then needs every
     // state to see the ones it judges.
-    if (!options_.sync) host_.truth_demand().every_step();
+    if (!options_.sync) host_.ask_for_truth(every_step_demand());
     // Stopped before the game is over (a signal): the result says so.
     host_.at_stop([this] {
       if (!over_) finish();

@@ -68,10 +68,10 @@ StreamSettings referee_stream(const BridgeOptions& options) {
                 options.referee_ttl, options.referee_interface);
 }
 
-SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
-                     TruthDemandAnnouncer& truth_demand, BridgeOptions options)
-    : bus_(bus),
-      channels_(channels),
+SslBridge::SslBridge(ProcessHost& host, BridgeOptions options)
+    : host_(host),
+      bus_(host.bus()),
+      channels_(host.channels()),
       options_(std::move(options)),
       vision_out_(vision_stream(options_)),
       control_socket_(UdpSocket::bound(options_.listen_address, options_.control_port)),
@@ -82,8 +82,7 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
       referee_translator_(referee_source_),
       sync_{{SyncAnswers(options_.sync_timeout), SyncAnswers(options_.sync_timeout)}},
       sync_clients_{{SyncClient(bus_, channels_, Team::Yellow, "ssl_bridge_yellow"),
-                     SyncClient(bus_, channels_, Team::Blue, "ssl_bridge_blue")}},
-      truth_demand_(truth_demand) {
+                     SyncClient(bus_, channels_, Team::Blue, "ssl_bridge_blue")}} {
   // protobuf logs every datagram that misses a required field to stderr, one
   // line each, at any rate; decoded() counts and logs them throttled instead.
   google::protobuf::SetLogHandler(nullptr);
@@ -102,7 +101,7 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
     settings.uuid = random_uuid();
     tracked_.emplace(settings);
     tracked_out_.emplace(tracked_stream(options_));
-    truth_demand_.periodic(options_.tracked_rate);
+    host_.ask_for_truth(periodic_demand(options_.tracked_rate));
   }
   ubersim::subscribe(
       bus_, channels_, topics::kSimState, [this](const sim_state_t& s) { on_state(s); }, 10);
@@ -418,7 +417,7 @@ std::optional<double> SslBridge::sync_datagram(Team team) {
       // tracked frames' instants before, or two sync runs publish other states.
       // (A team speaks only after a detection packet, so physics listens by now.)
       const auto now = std::chrono::steady_clock::now();
-      truth_demand_.announce(now);
+      host_.send_truth_demand(now);
       client.join(now);
       return std::nullopt;
     }

@@ -50,7 +50,7 @@ int run(Options& options) {
   }
 
   ProcessHost host(options.common, "ssl_bridge");
-  ssl::SslBridge bridge(host.bus(), host.channels(), host.truth_demand(), options.bridge);
+  ssl::SslBridge bridge(host, options.bridge);
   bridge.start();
   host.after_wake([&](ProcessHost::Clock::time_point now) { bridge.tick(now); });
   std::optional<ssl::GrsimPort> grsim;

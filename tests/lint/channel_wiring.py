@@ -21,7 +21,7 @@ argument of, innermost first:
   anything else (a channel name in a log line)             -> neither
 Two helpers of common/ publish for the programs that use them: SyncClient
 (SYNC_CLIENT) and the truth-demand announcer (SIM_TRUTH_DEMAND, through
-ProcessHost::truth_demand() or a TruthDemandAnnouncer of its own).
+ProcessHost::ask_for_truth() or a TruthDemandAnnouncer of its own).
 """
 import pathlib
 import re
@@ -125,7 +125,7 @@ def scan(root):
         joined = "\n".join(sources)
         if re.search(r"\bSyncClient\b", joined):
             found.add(("SYNC_CLIENT", "publishes", program))
-        if re.search(r"\btruth_demand\(\)\.|\bTruthDemandAnnouncer\b", joined):
+        if re.search(r"\bask_for_truth\(|\bTruthDemandAnnouncer\b", joined):
             found.add(("SIM_TRUTH_DEMAND", "publishes", program))
     return found
 

@@ -1,12 +1,15 @@
 // The server on its process host in-process on memq:// (no network):
 // publication rate, commands over the bus, the end of --duration, the start
-// gate; and the core's referee horizon.
+// gate; and the core's referee horizon and which states it publishes.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <ubersim/referee_t.hpp>
 #include <ubersim/sim_commands_t.hpp>
+#include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
+#include <ubersim/truth_demand_t.hpp>
+#include <vector>
 
 #include "physics_test_support.hpp"
 #include "ubersim/physics/physics_core.hpp"
@@ -83,6 +86,74 @@ TEST(PhysicsCore, HoldsAtTheStateTheRefereeEndedTheGameAt) {
   judged.game_over = true;
   core.on_referee(judged);
   EXPECT_FALSE(core.below_referee_horizon()) << "a step past the game's end";
+}
+
+// Which steps' states go out: the union of what the consumers in the demand
+// book want, physics' own (docs/sync.md, "Ground truth on demand") included.
+constexpr double kStep = 1.0 / 240;
+
+WorldSetup setup_at_state_rate(double rate) {
+  WorldSetup setup = load_world_setup(kConfigDir, "field2002_5v5", "default");
+  setup.physics.state_publish_rate = rate;
+  return setup;
+}
+
+std::vector<std::int64_t> published_steps(PhysicsCore& core, int steps) {
+  std::vector<std::int64_t> out;
+  for (int i = 0; i < steps; ++i) {
+    for (const sim_state_t& s : core.step().states) out.push_back(s.step);
+  }
+  return out;
+}
+
+truth_demand_t instants_demand(std::vector<double> instants) {
+  truth_demand_t demand{};
+  demand.consumer = "test";
+  demand.num_instants = static_cast<std::int32_t>(instants.size());
+  demand.instants = std::move(instants);
+  return demand;
+}
+
+TEST(PhysicsCore, StatePublishRateThinsWhatGoesOutOnlyWhileNobodyAsks) {
+  PhysicsCore core(setup_at_state_rate(60), CoreOptions{});
+  EXPECT_EQ(published_steps(core, 8), (std::vector<std::int64_t>{4, 8}));
+  core.on_truth_demand(instants_demand({10 * kStep}), PhysicsCore::Clock::now());
+  EXPECT_EQ(published_steps(core, 8), (std::vector<std::int64_t>{10}));
+}
+
+TEST(PhysicsCore, TruthEveryStepWinsOverStatePublishRateAndDemands) {
+  CoreOptions options;
+  options.truth_on_demand = false;  // --truth-every-step
+  PhysicsCore core(setup_at_state_rate(60), options);
+  core.on_truth_demand(instants_demand({2 * kStep}), PhysicsCore::Clock::now());
+  EXPECT_EQ(published_steps(core, 3), (std::vector<std::int64_t>{1, 2, 3}));
+}
+
+TEST(PhysicsCore, AStepRequestSeesEveryStateOfItsSteps) {
+  PhysicsCore core(setup_at_state_rate(0), CoreOptions{});
+  core.on_truth_demand(instants_demand({2 * kStep}), PhysicsCore::Clock::now());
+  sim_control_t step{};
+  step.action = sim_control_t::STEP;
+  step.step_count = 3;
+  const PhysicsCore::Output& out = core.on_control(step, "");
+  ASSERT_EQ(out.states.size(), 3u);
+  EXPECT_EQ(out.states.back().step, 3);
+  EXPECT_TRUE(published_steps(core, 3).empty()) << "the instant was served by the request";
+}
+
+TEST(PhysicsCore, WithTheRefereeInSyncModeItsNextStateIsWantedBesideTheDemands) {
+  CoreOptions options;
+  options.sync = true;
+  options.sync_referee = true;
+  PhysicsCore core(setup_at_state_rate(60), options);
+  EXPECT_EQ(published_steps(core, 2), (std::vector<std::int64_t>{1, 2}))
+      << "every step while nobody asks, whatever the rate";
+  core.on_truth_demand(instants_demand({4 * kStep}), PhysicsCore::Clock::now());
+  referee_t judged{};
+  judged.sim_time = 2 * kStep;
+  judged.next_judge_time = 6 * kStep;
+  core.on_referee(judged);
+  EXPECT_EQ(published_steps(core, 4), (std::vector<std::int64_t>{4, 6}));
 }
 
 // A command beyond a robot type's limits is applied at the limit and counted where the user looks:

@@ -175,7 +175,7 @@ TEST(ProcessHost, TheTruthDemandGoesOutBeforeTheFirstWaitAndOnceASecond) {
   const ubersim::ChannelNames channels;
   Listener listener(ubersim::channel_name(channels, ubersim::topics::kTruthDemand));
   ProcessHost host(bus_url(), channels, "viewer");
-  host.truth_demand().periodic(60);
+  host.ask_for_truth(ubersim::periodic_demand(60));
   int turns = 0;
   PacingOf pacing([&](Clock::time_point now) {
     if (++turns == 1) return Turn::wait_until(now);  // the first turn: no wait yet
@@ -189,20 +189,17 @@ TEST(ProcessHost, TheTruthDemandGoesOutBeforeTheFirstWaitAndOnceASecond) {
   EXPECT_DOUBLE_EQ(listener.demands[0].period[0], 1.0 / 60);
 }
 
-TEST(ProcessHost, AFollowedDemandGoesOutWhenItChanges) {
+TEST(ProcessHost, ADemandGoesOutWhenItChanges) {
   const ubersim::ChannelNames channels;
   Listener listener(ubersim::channel_name(channels, ubersim::topics::kTruthDemand));
   ProcessHost host(bus_url(), channels, "radio");
   double instant = 0.5;
-  host.truth_demand().follow(
-      [&] {
-        ubersim::truth_demand_t d{};
-        d.consumer = "radio";
-        d.instants = {instant};
-        d.num_instants = 1;
-        return d;
-      },
-      ubersim::TruthDemandAnnouncer::Renewal::OnChange);
+  host.ask_for_truth([&] {
+    ubersim::truth_demand_t d{};
+    d.instants = {instant};
+    d.num_instants = 1;
+    return d;
+  });
   int turns = 0;
   PacingOf pacing([&](Clock::time_point now) {
     ++turns;
@@ -215,42 +212,32 @@ TEST(ProcessHost, AFollowedDemandGoesOutWhenItChanges) {
   listener.read_pending();
   // The first at once, then only the change (turns 1..4 all within a second).
   ASSERT_EQ(listener.demands.size(), 2u);
+  EXPECT_EQ(listener.demands[0].consumer, "radio");  // the host's name
   EXPECT_DOUBLE_EQ(listener.demands[0].instants.at(0), 0.5);
   EXPECT_DOUBLE_EQ(listener.demands[1].instants.at(0), 0.75);
 }
 
-TEST(ProcessHost, ADemandRenewedOnAnnounceGoesOutOnlyWhenAnnounced) {
+// Before something that lets physics step in sync mode (a registration) a
+// program sends its demand at once, changed or not.
+TEST(ProcessHost, SendTruthDemandSendsItAtOnceChangedOrNot) {
   const ubersim::ChannelNames channels;
   Listener listener(ubersim::channel_name(channels, ubersim::topics::kTruthDemand));
   ProcessHost host(bus_url(), channels, "vision");
-  double instant = 0.5;
-  ubersim::TruthDemandAnnouncer& demand = host.truth_demand();
-  demand.follow(
-      [&] {
-        ubersim::truth_demand_t d{};
-        d.consumer = "vision";
-        d.instants = {instant};
-        d.num_instants = 1;
-        return d;
-      },
-      ubersim::TruthDemandAnnouncer::Renewal::OnAnnounce);
+  host.send_truth_demand(host.now());  // nothing asked for yet: nothing goes out
+  host.ask_for_truth(ubersim::every_step_demand());
   int turns = 0;
   PacingOf pacing([&](Clock::time_point now) {
     ++turns;
-    if (turns == 2) instant = 0.75;  // changed, not announced: stays
-    if (turns == 3) {
-      instant = 1.0;
-      demand.announce(now);
-    }
+    if (turns == 3) host.send_truth_demand(now);
     if (turns == 5) return Turn::finish();
     return Turn::wait_until(now);
   });
   host.run(pacing);
   listener.read_until(2);
   listener.read_pending();
-  ASSERT_EQ(listener.demands.size(), 2u);
-  EXPECT_DOUBLE_EQ(listener.demands[0].instants.at(0), 0.5);  // the first tick: at once
-  EXPECT_DOUBLE_EQ(listener.demands[1].instants.at(0), 1.0);  // the source as it is then
+  ASSERT_EQ(listener.demands.size(), 2u);  // the first tick's and the one sent at turn 3
+  EXPECT_TRUE(listener.demands[0].every_step);
+  EXPECT_TRUE(listener.demands[1].every_step);
 }
 
 }  // namespace

@@ -42,7 +42,7 @@ SimRig::SimRig(const RigPaths& paths, const RigOptions& options)
 
   bus_ = std::make_unique<MessageBus>(with_receive_buffer(default_lcm_url()));
   truth_demand_ = std::make_unique<TruthDemandAnnouncer>(*bus_, channels_, sender_);
-  truth_demand_->every_step();
+  truth_demand_->ask(every_step_demand);
   ubersim::subscribe(*bus_, channels_, topics::kSimState, [this](const sim_state_t& s) {
     // Physics publishes a step's state again after a placement and, while idle
     // in lockstep, once a second of wall time: handlers see each step once, so
@@ -156,7 +156,7 @@ bool SimRig::wait(Done done, double timeout_s) {
                           deadline - std::chrono::steady_clock::now())
                           .count();
     if (left <= 0) return false;
-    truth_demand_->tick();
+    truth_demand_->tick(std::chrono::steady_clock::now());
     bus_->wait_and_handle(static_cast<int>(std::min<long long>(left, 100)));
   }
   return true;

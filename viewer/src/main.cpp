@@ -166,7 +166,7 @@ int run(const Options& options) {
   });
   // Ground truth at the display rate is all a page can show (physics
   // publishes no more for the viewer's sake).
-  host.truth_demand().periodic(options.display_rate);
+  host.ask_for_truth(periodic_demand(options.display_rate));
   const auto frame_period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(1.0 / options.display_rate));
   host.every(

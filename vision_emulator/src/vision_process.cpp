@@ -131,7 +131,7 @@ class VisionShell {
   void request_geometry();
   void repeat_geometry(Clock::time_point now) { publish_geometry(now); }
   void repeat_schedule(Clock::time_point now);
-  // The truth demand as the announcer sends it (it asks at each send).
+  // The truth demand as it stands: what the host sends (ProcessHost::ask_for_truth).
   truth_demand_t truth_demand();
   // SIGTERM: what waits is still handled, then the summary.
   void stop();
@@ -142,6 +142,7 @@ class VisionShell {
   void after_state(const sim_state_t& state, const std::vector<vision_frame_t>& frames, bool always,
                    Clock::time_point now);
   void announce_demand(bool always, double sim_time, Clock::time_point now);
+  void renew_demand();
   void send_schedule(Clock::time_point now);
 
   ProcessHost& host_;
@@ -163,6 +164,8 @@ class VisionShell {
   // and one per frame was a third of what physics woke for in real time
   // (docs/sync.md).
   double demand_renewal_ = 0;  // sim time
+  truth_demand_t demand_{};
+  bool demand_made_ = false;
 };
 
 void VisionShell::on_sim_state(const sim_state_t& state) {
@@ -231,20 +234,23 @@ void VisionShell::after_state(const sim_state_t& state, const std::vector<vision
   send_schedule(now);
 }
 
-// A demand when the last one runs low or `always`; otherwise the
-// announcer's once a second, checked here as well as after each wakeup.
+// A new demand, sent at once, when the last one runs low or `always`;
+// otherwise the host repeats the one it has once a second.
 void VisionShell::announce_demand(bool always, double sim_time, Clock::time_point now) {
-  TruthDemandAnnouncer& demand = host_.truth_demand();
-  if (always || sim_time >= demand_renewal_ - CaptureSchedule::kTolerance) {
-    demand.announce(now);
-  } else {
-    demand.tick(now);
-  }
+  if (!always && sim_time < demand_renewal_ - CaptureSchedule::kTolerance) return;
+  renew_demand();
+  host_.send_truth_demand(now);
+}
+
+void VisionShell::renew_demand() {
+  demand_renewal_ = emulator_.demand_renewal_time();
+  demand_ = emulator_.truth_demand();
+  demand_made_ = true;
 }
 
 truth_demand_t VisionShell::truth_demand() {
-  demand_renewal_ = emulator_.demand_renewal_time();
-  return emulator_.truth_demand();
+  if (!demand_made_) renew_demand();  // the first, before the first state
+  return demand_;
 }
 
 void VisionShell::send_schedule(Clock::time_point now) {
@@ -371,9 +377,8 @@ int run_vision_process(const VisionProcessOptions& options) {
   subscribe(bus, channels, topics::kVisionCameras,
             [&](const vision_cameras_t& m) { shell.on_cameras(m); });
 
-  // The demand goes out when the shell says it runs low (and once a second).
-  host.truth_demand().follow([&] { return shell.truth_demand(); },
-                             TruthDemandAnnouncer::Renewal::OnAnnounce);
+  // The demand goes out when the shell renews it (and once a second).
+  host.ask_for_truth([&] { return shell.truth_demand(); });
   ProcessHost::Timer& schedule_repeat =
       host.every(kScheduleRepeat, [&](Clock::time_point now) { shell.repeat_schedule(now); });
   const auto geometry_period = std::chrono::duration_cast<Clock::duration>(

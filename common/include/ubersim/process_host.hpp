@@ -7,7 +7,7 @@
 //   subscribe(host.bus(), host.channels(), topics::kSimState,
 //             [&](const sim_state_t& m) { model.on_sim_state(m, host.now()); });
 //   host.every(frame_period, [&](ProcessHost::Clock::time_point now) { ... });
-//   host.truth_demand().periodic(60);
+//   host.ask_for_truth(periodic_demand(60));
 //   return host.run();
 //
 // The host owns the bus, the shutdown signal, the wait loop, the wall clock
@@ -132,10 +132,18 @@ class ProcessHost {
   void at_stop(std::function<void()> hook);
 
   // What this program needs of ground truth (docs/sync.md, "Ground truth on
-  // demand"): announced on SIM_TRUTH_DEMAND, changes at once and repeated
-  // once a second. Made on first use, and ticked from then on after every
-  // wakeup, after the hooks added before it.
-  TruthDemandAnnouncer& truth_demand();
+  // demand"), the one way to say it: `demand` says it whenever asked (after
+  // every wakeup, after the hooks added before the first call). The host
+  // sends it on SIM_TRUTH_DEMAND before the first wait, whenever it differs
+  // from what went out last, and at least once a second. A program that
+  // asks nothing never calls this (physics then publishes every step).
+  void ask_for_truth(TruthDemandAnnouncer::Source demand);
+  // A demand that never changes (every_step_demand(), periodic_demand()).
+  void ask_for_truth(const truth_demand_t& fixed);
+  // Sends the demand at once, changed or not (nothing when none was asked
+  // for): before something that lets physics step in sync mode (a
+  // registration, the first schedule), which must know it by then.
+  void send_truth_demand(Clock::time_point now);
 
   // Ends run() after the current turn with `status` (a fatal condition: 1).
   void stop(int status);

@@ -1,8 +1,11 @@
 #pragma once
 // What a consumer of ground truth tells physics it needs (docs/sync.md,
-// "Ground truth on demand"): a truth_demand_t on SIM_TRUTH_DEMAND, sent when it
-// changes and again at least once a second (physics forgets a consumer not
-// heard for 3 s). Call tick() from the process's loop, as often as it wakes.
+// "Ground truth on demand"): a truth_demand_t on SIM_TRUTH_DEMAND. A program
+// states it once, on its host (ProcessHost::ask_for_truth), as a function
+// that says the demand whenever asked (a fixed one: every_step_demand(),
+// periodic_demand()); this announcer, which the host ticks after every
+// wakeup, sends it when it differs from what went out last and at least once
+// a second (physics forgets a consumer not heard for 3 s).
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -15,45 +18,43 @@
 
 namespace ubersim {
 
+// The state after every step.
+truth_demand_t every_step_demand();
+// The states at the instants n / rate_hz of sim time, n >= 0.
+truth_demand_t periodic_demand(double rate_hz);
+
 class TruthDemandAnnouncer {
  public:
   using Clock = std::chrono::steady_clock;
+  // The demand as it stands (the consumer's name is filled in when empty).
+  using Source = std::function<truth_demand_t()>;
   static constexpr std::chrono::milliseconds kRepeat{1000};
 
   TruthDemandAnnouncer(MessageBus& bus, const ChannelNames& channels, std::string consumer);
 
-  // What is asked for from now on (sent at the next tick).
-  void every_step();
-  void periodic(double rate_hz);  // instants n / rate of sim time
-  void nothing();                 // stop asking (no message: physics forgets in 3 s)
-
-  // A demand a core computes (instants ahead of its frames, feedback samples):
-  // from now on the demand is `source()`, asked again whenever it is sent.
-  // OnChange: each tick asks the source and sends the demand when its bytes
-  // differ from the last sent. OnAnnounce: sent only by announce() (the
-  // program decides when its demand runs low). In both it goes out again,
-  // as the source says then, once kRepeat has passed since it last went out.
-  enum class Renewal { OnChange, OnAnnounce };
-  void follow(std::function<truth_demand_t()> source, Renewal renewal);
-
-  // Sends the demand if it changed or kRepeat has passed since it was last sent.
-  void tick(Clock::time_point now = Clock::now());
-  // Sends the demand now (if there is one), e.g. before a sync registration
-  // that lets physics start stepping: it must know the demand from step one.
-  void announce(Clock::time_point now = Clock::now());
+  // What is asked for from now on: sent at the next tick.
+  void ask(Source source);
+  // Sends the demand if it differs from the last sent or kRepeat has passed
+  // since it went out.
+  void tick(Clock::time_point now);
+  // Sends the demand now, changed or not (if there is one): before something
+  // that lets physics step (a sync registration), which must know it by then.
+  void send_now(Clock::time_point now);
 
  private:
-  MessageBus& bus_;
-  std::string channel_;
-  truth_demand_t demand_{};
+  // Asks the source and encodes its demand into bytes_.
+  void encode_demand();
   void send(Clock::time_point now);
 
-  std::function<truth_demand_t()> source_;
-  Renewal renewal_ = Renewal::OnAnnounce;
-  // The last demand sent, encoded, and the next one (buffers kept across ticks).
+  MessageBus& bus_;
+  std::string channel_;
+  std::string consumer_;
+  Source source_;
+  truth_demand_t demand_{};
+  // The last demand sent, encoded, and the next one (buffers kept across ticks,
+  // so that comparing allocates nothing once they grew).
   std::vector<std::uint8_t> sent_bytes_, bytes_;
-  bool asking_ = false;
-  bool changed_ = false;
+  bool sent_any_ = false;
   Clock::time_point next_{};
 };
 

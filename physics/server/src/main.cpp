@@ -49,9 +49,10 @@ int run(int argc, char** argv) {
   // demand"): every reader of SIM_STATE in this tree says what it needs.
   bool truth_every_step = false;
   app.add_flag("--truth-every-step", truth_every_step,
-               "publish SIM_STATE after every step, whoever asks (default: only at the instants "
-               "consumers ask for on SIM_TRUTH_DEMAND, every step while nobody asks; "
-               "docs/sync.md)");
+               "publish SIM_STATE after every step, whatever else is asked for; "
+               "STATE_PUBLISH_RATE then changes nothing (it thins only what goes out while "
+               "nobody asks). Default: the states consumers ask for on SIM_TRUTH_DEMAND "
+               "(docs/sync.md)");
   bool truth_on_demand = false;
   app.add_flag("--truth-on-demand", truth_on_demand, "the default; kept for older scripts")
       ->excludes("--truth-every-step");

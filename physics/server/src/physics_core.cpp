@@ -48,9 +48,25 @@ PhysicsCore::PhysicsCore(WorldSetup setup, CoreOptions options)
       options_(std::move(options)),
       speed_(options_.speed < 0 ? -1.0 : options_.speed),
       paused_(options_.paused),
-      next_state_time_(first_state_time()),
       sync_(options_.sync),
-      referee_horizon_(options_.sync_referee ? 0.0 : std::numeric_limits<double>::infinity()) {}
+      referee_horizon_(options_.sync_referee ? 0.0 : std::numeric_limits<double>::infinity()) {
+  add_own_demand();
+}
+
+void PhysicsCore::add_own_demand() {
+  // Physics' own consumers in the demand book, beside the programs that ask.
+  using While = TruthDemand::While;
+  if (!options_.truth_on_demand) demand_.own_every_step(kEveryStepConsumer, While::Always);
+  // While no program asks: every step, or STATE_PUBLISH_RATE's instants n /
+  // rate, each served by the step nearest to it. In sync mode with the referee
+  // every step: the referee judges states a program must otherwise ask for.
+  const double rate = world_.setup().physics.state_publish_rate;
+  if (rate > 0 && !options_.sync_referee) {
+    demand_.own_periodic(kNobodyAsksConsumer, 1.0 / rate, -world_.dt() / 2, While::NobodyAsks);
+  } else {
+    demand_.own_every_step(kNobodyAsksConsumer, While::NobodyAsks);
+  }
+}
 
 void PhysicsCore::on_commands(const sim_commands_t& packet) {
   ++packets_received_;
@@ -84,6 +100,9 @@ void PhysicsCore::on_referee(const referee_t& r) {
   referee_horizon_ = r.game_over ? r.sim_time
                      : ahead     ? r.next_judge_time
                                  : r.sim_time + world_.dt() / 2;
+  // The state physics waits at for the referee is the referee's demand: it
+  // judges that state and names the next one.
+  if (options_.sync_referee) demand_.own_from(kRefereeConsumer, referee_horizon_);
 }
 
 void PhysicsCore::on_truth_demand(const truth_demand_t& d, Clock::time_point wall) {
@@ -109,12 +128,6 @@ bool PhysicsCore::duration_reached() const {
   return options_.duration > 0 && world_.time() >= options_.duration - world_.dt() / 2;
 }
 
-double PhysicsCore::first_state_time() const {
-  // Step 0 is published at start (and after a reset); then one per 1 / rate.
-  const double rate = world_.setup().physics.state_publish_rate;
-  return rate > 0 ? 1.0 / rate : 0.0;
-}
-
 void PhysicsCore::clear_output() {
   for (sim_state_t& s : out_.states) spare_.push_back(std::move(s));
   out_.states.clear();
@@ -130,33 +143,18 @@ const PhysicsCore::Output& PhysicsCore::state() {
 
 const PhysicsCore::Output& PhysicsCore::step() {
   clear_output();
-  step_once(false);
+  step_once();
   return out_;
 }
 
-void PhysicsCore::step_once(bool publish_every_step) {
+void PhysicsCore::step_once() {
   world_.step();
   ++steps_;
-  const double rate = world_.setup().physics.state_publish_rate;
-  if (options_.truth_on_demand && !publish_every_step && !demand_.empty()) {
-    // Only what someone asked for: ground truth costs only its consumers. The
-    // state physics waits at for the referee (sync_referee) is the referee's
-    // demand: it judges that state and names the next one (REFEREE).
-    const bool referee_wants = options_.sync_referee && !below_referee_horizon();
-    if (demand_.wanted(world_.time(), world_.dt()) || referee_wants) add_state();
-    return;
-  }
-  if (publish_every_step || rate <= 0 || options_.sync_referee) {
-    add_state();
-  } else if (world_.time() >= next_state_time_ - world_.dt() / 2) {
-    add_state();
-    next_state_time_ += 1.0 / rate;
-    if (next_state_time_ < world_.time()) next_state_time_ = world_.time() + 1.0 / rate;
-  }
+  // Only what a consumer wants: ground truth costs only its consumers.
+  if (demand_.wanted(world_.time(), world_.dt())) add_state();
 }
 
 std::int64_t PhysicsCore::steps_to_wanted_state(std::int64_t max_steps) const {
-  if (!options_.truth_on_demand || options_.sync_referee || demand_.empty()) return 1;
   const double dt = world_.dt();
   const std::int64_t step = world_.step_index();
   std::int64_t k = 1;
@@ -207,7 +205,10 @@ void PhysicsCore::on_step_request(const sim_control_t& request) {
                     std::to_string(request.step_count));
     return;
   }
-  for (int i = 0; i < request.step_count; ++i) step_once(true);
+  // Whoever steps by hand sees every state of its steps.
+  demand_.own_every_step(kStepRequestConsumer, TruthDemand::While::Always);
+  for (int i = 0; i < request.step_count; ++i) step_once();
+  demand_.forget(kStepRequestConsumer);
   ++schedule_epoch_;
   acknowledge(request, true, "stepped " + std::to_string(request.step_count));
 }
@@ -272,7 +273,6 @@ const PhysicsCore::Output& PhysicsCore::on_control(const sim_control_t& request,
     case sim_control_t::RESET:
       world_.reset();
       demand_.reset();
-      next_state_time_ = first_state_time();
       ++schedule_epoch_;
       add_state();
       acknowledge(request, true, "reset to scenario " + options_.scenario);

@@ -20,9 +20,10 @@ std::string TruthDemand::on_demand(const truth_demand_t& d, double now, double d
       d.instants.size() != static_cast<std::size_t>(d.num_instants)) {
     return "bad counts";
   }
-  if (consumers_.count(d.consumer) == 0 && consumers_.size() >= kMaxConsumers) {
-    return "too many consumers";
-  }
+  const auto known = consumers_.find(d.consumer);
+  if (known != consumers_.end() && known->second.own) return "the name of one of physics' own";
+  const bool is_new = known == consumers_.end();
+  if (is_new && programs_ >= static_cast<std::size_t>(kMaxConsumers)) return "too many consumers";
   Consumer c;
   c.every_step = d.every_step;
   c.heard = wall;
@@ -48,19 +49,45 @@ std::string TruthDemand::on_demand(const truth_demand_t& d, double now, double d
     c.instants.insert(t);
   }
   consumers_[d.consumer] = std::move(c);
+  if (is_new) ++programs_;
   return "";
+}
+
+TruthDemand::Consumer& TruthDemand::own(const std::string& name, While when) {
+  Consumer& c = consumers_[name];
+  c = Consumer{};
+  c.own = true;
+  c.when = when;
+  return c;
+}
+
+void TruthDemand::own_every_step(const std::string& name, While when) {
+  own(name, when).every_step = true;
+}
+
+void TruthDemand::own_periodic(const std::string& name, double period, double phase, While when) {
+  own(name, when).periodic.emplace_back(period, phase);
+}
+
+void TruthDemand::own_from(const std::string& name, double from) {
+  own(name, While::Always).from = from;
+}
+
+bool TruthDemand::periodic_due(const Consumer& c, double t, double dt) {
+  for (const auto& [period, phase] : c.periodic) {
+    // The last instant at or before t: is it after the previous step?
+    const double n = std::floor((t + kTolerance - phase) / period);
+    if (n >= 0 && phase + n * period > t - dt + kTolerance) return true;
+  }
+  return false;
 }
 
 bool TruthDemand::wanted(double t, double dt) {
   bool want = catch_up_;
   catch_up_ = false;
   for (auto& [name, c] : consumers_) {
-    if (c.every_step) want = true;
-    for (const auto& [period, phase] : c.periodic) {
-      // The last instant at or before t: is it after the previous step?
-      const double n = std::floor((t + kTolerance - phase) / period);
-      if (n >= 0 && phase + n * period > t - dt + kTolerance) want = true;
-    }
+    if (!counts(c)) continue;
+    if (c.every_step || t + dt * 1e-6 >= c.from || periodic_due(c, t, dt)) want = true;
     while (!c.instants.empty() && *c.instants.begin() <= t + kTolerance) {
       c.instants.erase(c.instants.begin());
       want = true;
@@ -72,11 +99,8 @@ bool TruthDemand::wanted(double t, double dt) {
 bool TruthDemand::would_want(double t, double dt) const {
   if (catch_up_) return true;
   for (const auto& [name, c] : consumers_) {
-    if (c.every_step) return true;
-    for (const auto& [period, phase] : c.periodic) {
-      const double n = std::floor((t + kTolerance - phase) / period);
-      if (n >= 0 && phase + n * period > t - dt + kTolerance) return true;
-    }
+    if (!counts(c)) continue;
+    if (c.every_step || t + dt * 1e-6 >= c.from || periodic_due(c, t, dt)) return true;
     if (!c.instants.empty() && *c.instants.begin() <= t + kTolerance) return true;
   }
   return false;
@@ -85,9 +109,10 @@ bool TruthDemand::would_want(double t, double dt) const {
 std::vector<std::string> TruthDemand::expire(Clock::time_point wall, Clock::duration silence) {
   std::vector<std::string> gone;
   for (auto it = consumers_.begin(); it != consumers_.end();) {
-    if (wall - it->second.heard > silence) {
+    if (!it->second.own && wall - it->second.heard > silence) {
       gone.push_back(it->first);
       it = consumers_.erase(it);
+      --programs_;
     } else {
       ++it;
     }
@@ -96,7 +121,9 @@ std::vector<std::string> TruthDemand::expire(Clock::time_point wall, Clock::dura
 }
 
 void TruthDemand::reset() {
-  for (auto& [name, c] : consumers_) c.instants.clear();
+  for (auto& [name, c] : consumers_) {
+    if (!c.own) c.instants.clear();
+  }
   catch_up_ = false;
 }
 

@@ -14,6 +14,7 @@
 #include "ubersim/channels.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
+#include "ubersim/process_host.hpp"
 #include "ubersim/ssl_bridge/latest_state.hpp"
 #include "ubersim/ssl_bridge/multicast_out.hpp"
 #include "ubersim/ssl_bridge/official_referee.hpp"
@@ -25,7 +26,6 @@
 #include "ubersim/ssl_bridge/udp_socket.hpp"
 #include "ubersim/ssl_bridge/vision_translation.hpp"
 #include "ubersim/sync_client.hpp"
-#include "ubersim/truth_demand_announcer.hpp"
 
 namespace ubersim::ssl {
 
@@ -83,9 +83,9 @@ StreamSettings referee_stream(const BridgeOptions& options);
 // wakeup (at least every 50 ms), stop() once at the end.
 class SslBridge {
  public:
-  // `truth_demand` is the program's announcer (the process host's).
-  SslBridge(MessageBus& bus, const ChannelNames& channels, TruthDemandAnnouncer& truth_demand,
-            BridgeOptions options);
+  // On the program's host: its bus, channels and truth demand (the tracked
+  // frames' rate).
+  SslBridge(ProcessHost& host, BridgeOptions options);
   // Logs where everything goes and watches the sockets on the bus.
   void start();
   // After every wakeup: answers what physics did not acknowledge in time;
@@ -131,6 +131,7 @@ class SslBridge {
   void answer(PendingResponse& pending);
   void expire_pending(std::chrono::steady_clock::time_point now);
 
+  ProcessHost& host_;
   MessageBus& bus_;
   ChannelNames channels_;
   BridgeOptions options_;
@@ -159,7 +160,6 @@ class SslBridge {
   std::map<std::string, uint64_t> counters_;
   // Ground truth at the tracked rate (tracked frames); without them the
   // bridge takes whatever states the others ask for (docs/sync.md).
-  TruthDemandAnnouncer& truth_demand_;
 };
 
 }  // namespace ubersim::ssl

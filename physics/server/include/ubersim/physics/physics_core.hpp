@@ -36,19 +36,23 @@ struct CoreOptions {
   bool sync = false;    // sync mode (docs/sync.md): step up to the horizon SIM_SYNC_HORIZON names
   // Sync mode with the automatic referee: also never past the state the referee
   // judges next (its REFEREE message names it, next_judge_time), so each
-  // placement it decides on a state applies at the step from that state.
-  // SIM_STATE goes out after every step, or with truth_on_demand at the
-  // demanded steps and that state. Physics holds while no referee speaks.
+  // placement it decides on a state applies at the step from that state; that
+  // state is the referee's demand. Physics holds while no referee speaks.
   bool sync_referee = false;
-  // SIM_STATE only at the instants consumers ask for on SIM_TRUTH_DEMAND
-  // (every step while nobody has asked): docs/sync.md, "Ground truth on demand".
-  // The default; --truth-every-step turns it off.
+  // false (--truth-every-step): physics' own consumer wants every step's
+  // state. Either way SIM_STATE goes out at the union of what the consumers
+  // in the demand book want (docs/sync.md, "Ground truth on demand").
   bool truth_on_demand = true;
 };
 
 class PhysicsCore {
  public:
   using Clock = std::chrono::steady_clock;
+  // Physics' own consumers in the demand book (TruthDemand), by name.
+  static constexpr const char* kEveryStepConsumer = "physics: --truth-every-step";
+  static constexpr const char* kNobodyAsksConsumer = "physics: while nobody asks";
+  static constexpr const char* kRefereeConsumer = "physics: the referee's next state";
+  static constexpr const char* kStepRequestConsumer = "physics: a STEP request";
 
   // What one call produced, to publish in this order. Returned by reference
   // to one the core reuses (valid until its next call), so that a state is
@@ -81,10 +85,9 @@ class PhysicsCore {
   field_geometry_t geometry() const { return world_.geometry(); }
   // Forgets truth consumers not heard for 3 s (logged).
   void expire_demand(Clock::time_point wall);
-  // States on demand with someone asking: in how many steps (1..max_steps) the
-  // next wanted state comes, max_steps if none before. Steps nobody sees a
-  // state of need not run on time (the server sleeps until that step is due).
-  // 1 when every step's state goes out.
+  // In how many steps (1..max_steps) the next wanted state comes, max_steps if
+  // none before. Steps nobody sees a state of need not run on time (the server
+  // sleeps until that step is due). 1 when every step's state goes out.
   std::int64_t steps_to_wanted_state(std::int64_t max_steps) const;
 
   // Nothing advances by itself: paused, or lockstep outside sync mode.
@@ -135,7 +138,8 @@ class PhysicsCore {
  private:
   // Empties out_, keeping its states' memory in spare_ for the next ones.
   void clear_output();
-  void step_once(bool publish_every_step);
+  void step_once();
+  void add_own_demand();
   void add_state();
   void acknowledge(const sim_control_t& request, bool ok, const std::string& message);
   // SIM_CONTROL actions with more to them than a line or two (on_control).
@@ -143,14 +147,12 @@ class PhysicsCore {
   void on_speed_request(const sim_control_t& request);
   void on_define_robot_type(const sim_control_t& request);
   void on_set_field(const sim_control_t& request);
-  double first_state_time() const;
 
   World world_;
   CoreOptions options_;
   double speed_;
   std::uint64_t schedule_epoch_ = 0;
   bool paused_;
-  double next_state_time_ = 0;  // sim time of the next publication (STATE_PUBLISH_RATE > 0)
   Output out_;
   std::vector<sim_state_t> spare_;
   ThrottledLog log_;

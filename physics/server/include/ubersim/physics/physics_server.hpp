@@ -10,8 +10,8 @@
 //              SIM_TRUTH_DEMAND (truth_demand_t): which states its readers want
 //              SIM_VISION_SCHEDULE (vision_schedule_t): the vision listens, and how far it got
 //              REFEREE (referee_t): with --sync-referee, the state it judges next
-//   publishes  SIM_STATE    (sim_state_t):    at the steps SIM_TRUTH_DEMAND asks for (every
-//                                             step while nobody asks, or at STATE_PUBLISH_RATE)
+//   publishes  SIM_STATE    (sim_state_t):    at the steps its demand book wants
+//                                             (TruthDemand: SIM_TRUTH_DEMAND's and its own)
 //              SIM_GEOMETRY (field_geometry_t): at start, every GEOMETRY_PUBLISH_PERIOD
 //                                             of wall time (a host timer), and on request
 //              SIM_CONTROL_ACK (sim_control_ack_t): one per SIM_CONTROL
