@@ -5,11 +5,14 @@
 
 #include <array>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <ubersim/sim_control_ack_t.hpp>
+#include <ubersim/vision_schedule_t.hpp>
+#include <vector>
 
 #include "ubersim/channels.hpp"
 #include "ubersim/logging.hpp"
@@ -21,6 +24,7 @@
 #include "ubersim/ssl_bridge/robot_control_translation.hpp"
 #include "ubersim/ssl_bridge/sim_control_translation.hpp"
 #include "ubersim/ssl_bridge/sync_answers.hpp"
+#include "ubersim/ssl_bridge/team_group.hpp"
 #include "ubersim/ssl_bridge/tracked_frames.hpp"
 #include "ubersim/ssl_bridge/udp_socket.hpp"
 #include "ubersim/ssl_bridge/vision_translation.hpp"
@@ -71,6 +75,16 @@ struct BridgeOptions {
   // datagrams answers the oldest detection frame it has not answered yet.
   bool sync = false;
   double sync_timeout = 1.0;  // s of wall time a team may take to answer a frame
+  // Team programs the bridge starts under the time shim (--team-command, sync
+  // mode only): each such team is a *timed* sync client (docs/timeshim.md,
+  // "Integration with sync mode"); everything the bridge sends is gated by sim time.
+  TeamGroupOptions teams;
+};
+
+// A packet held back for a timed team until the sim time it stands for.
+struct StampedPacket {
+  double t;  // s of sim time
+  std::string bytes;
 };
 
 // The settings of the vision, tracked frames and referee streams.
@@ -94,6 +108,9 @@ class SslBridge {
   // Sync mode: the registered teams leave.
   void stop();
   void log_summary() const;
+  // Timed teams: what says the bridge should stop (the host's stop flag), looked
+  // at while the team group runs.
+  void set_stop_check(std::function<bool()> should_stop) { should_stop_ = std::move(should_stop); }
 
  private:
   struct PendingResponse {
@@ -126,6 +143,17 @@ class SslBridge {
   void sync_tick(std::chrono::steady_clock::time_point now);
   void drop_sync_client(Team team, const std::string& why);
   void sync_leave();
+  // Timed teams (team_group.hpp): outputs wait for the sim time they stand
+  // for; the group runs ahead to the next input between them.
+  bool timed(Team team) const;
+  bool timed_mode() const { return teams_ != nullptr; }
+  void on_schedule(const vision_schedule_t& schedule);
+  void deliver_timed();
+  void run_teams_to(double t);
+  bool at_quiescence(std::int64_t now_ns);
+  void promise(std::int64_t promise_ns);
+  void teams_ended();
+  double group_time() const;
   // Largest radius of the robots on the field (their types' radii), else the configured one.
   double max_robot_radius() const;
   void answer(PendingResponse& pending);
@@ -160,6 +188,15 @@ class SslBridge {
   // Ground truth at the tracked rate (tracked frames); without them the
   // bridge takes whatever states the others ask for (docs/sync.md).
   TruthDemandAnnouncer& truth_demand_;
+  std::unique_ptr<TeamGroup> teams_;
+  std::function<bool()> should_stop_ = [] { return false; };
+  std::vector<std::string> timed_vision_;  // vision packets waiting for their publication
+  std::vector<StampedPacket> timed_referee_;
+  std::vector<StampedPacket> timed_tracked_;
+  std::int64_t timed_step_ = -1;  // of the latest schedule heard
+  double timed_publication_ = 0;  // s, sim time the awaited frames are published at
+  double timed_next_input_ = 0;   // s, the next frame's earliest publication
+  int timed_frames_due_ = 0;      // frames of the latest schedule not heard yet
 };
 
 }  // namespace ubersim::ssl

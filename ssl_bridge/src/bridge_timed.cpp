@@ -1,0 +1,140 @@
+// The SSL bridge with team programs under the time shim (docs/timeshim.md,
+// "Integration with sync mode"): the bridge is the teams' clock. What it sends
+// them waits for the sim time it stands for (a detection packet: its frame's
+// publication), and what they send is stamped with the sim time they sent it.
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ubersim/team_t.hpp>
+
+#include "ubersim/ssl_bridge/bridge.hpp"
+#include "ubersim/topics.hpp"
+
+namespace ubersim::ssl {
+namespace {
+
+std::int64_t to_ns(double seconds) {
+  return std::llround(seconds * 1e9);
+}
+
+// Sends the stamped packets up to t (s) in the order they came, keeps the rest.
+template <class Send>
+void send_until(std::vector<StampedPacket>& queue, double t, const Send& send) {
+  const auto later = std::stable_partition(queue.begin(), queue.end(),
+                                           [t](const StampedPacket& p) { return p.t <= t; });
+  for (auto it = queue.begin(); it != later; ++it) send(it->bytes);
+  queue.erase(queue.begin(), later);
+}
+
+}  // namespace
+
+bool SslBridge::timed(Team team) const {
+  if (!teams_ || teams_->exited()) return false;
+  const auto& commands = options_.teams.commands;
+  return std::any_of(commands.begin(), commands.end(),
+                     [team](const TeamCommand& c) { return c.team == team; });
+}
+
+double SslBridge::group_time() const {
+  return teams_ ? static_cast<double>(teams_->now_ns()) / 1e9 : 0.0;
+}
+
+// The vision emulator announces each step's frames before it sends them (one
+// socket, in order), and the earliest publication of its next frame: the next
+// input the team group can get, so the group may run ahead to it.
+void SslBridge::on_schedule(const vision_schedule_t& schedule) {
+  if (schedule.step <= timed_step_ || !(schedule.t_state >= 0) ||
+      !(schedule.next_publication >= schedule.t_state)) {
+    return;  // a repetition (or a reset: sim time of the group cannot go back)
+  }
+  timed_step_ = schedule.step;
+  timed_publication_ = schedule.t_state;
+  timed_next_input_ = schedule.next_publication;
+  timed_frames_due_ = std::max(0, schedule.num_frames);
+  if (timed_frames_due_ == 0) deliver_timed();
+}
+
+// Every frame of the step is here: the group catches up to their publication,
+// gets them (with the geometry, referee messages and tracked frames of that
+// time), answers, and runs ahead to the next frame.
+void SslBridge::deliver_timed() {
+  if (teams_->exited()) return;
+  run_teams_to(timed_publication_);
+  for (const std::string& bytes : timed_vision_) {
+    if (vision_out_.send(bytes)) ++counters_["vision packets sent"];
+  }
+  timed_vision_.clear();
+  send_until(timed_referee_, timed_publication_, [this](const std::string& bytes) {
+    if (referee_out_.send(bytes)) ++counters_["referee packets sent"];
+  });
+  if (tracked_out_) {
+    send_until(timed_tracked_, timed_publication_, [this](const std::string& bytes) {
+      if (tracked_out_->send(bytes)) ++counters_["tracked packets sent"];
+    });
+  }
+  run_teams_to(timed_next_input_);
+}
+
+void SslBridge::run_teams_to(double t) {
+  const bool running = teams_->run_to(
+      to_ns(t), [this](std::int64_t now_ns) { return at_quiescence(now_ns); },
+      [this](std::int64_t promise_ns) { promise(promise_ns); }, should_stop_);
+  if (!running && teams_->exited()) teams_ended();
+}
+
+// Every thread of the group waits, so whatever it sent is in our sockets:
+// stamp it with the group's time (handle_robot_datagram) and answer it.
+bool SslBridge::at_quiescence(std::int64_t /*now_ns*/) {
+  const auto now = std::chrono::steady_clock::now();
+  for (const TeamCommand& command : options_.teams.commands) {
+    SyncClient& client = sync_clients_[static_cast<int>(command.team)];
+    if (client.joined()) continue;
+    // Registered once the team has started up (its first quiescence): a team
+    // that takes long to start does not hold physics past its timeout.
+    spdlog::info("sync: the {} team's program is up: registered as timed sync client {}",
+                 team_name(command.team), client.name());
+    truth_demand_.announce(now);
+    client.join(now);
+  }
+  bool answered = false;
+  sockaddr_in from{};
+  for (Team team : kTeams) {
+    UdpSocket& socket = team == Team::Blue ? blue_socket_ : yellow_socket_;
+    while (auto bytes = socket.receive(from)) {
+      handle_robot_datagram(team, *bytes, from);
+      answered = true;  // its RobotControlResponse went back
+    }
+  }
+  while (auto bytes = control_socket_.receive(from)) {
+    handle_control_datagram(*bytes, from);
+    answered = true;
+  }
+  return answered;
+}
+
+// An empty radio packet at t_sent = the promise: nothing before it (docs/sync.md).
+void SslBridge::promise(std::int64_t promise_ns) {
+  for (const TeamCommand& command : options_.teams.commands) {
+    if (!sync_clients_[static_cast<int>(command.team)].joined()) continue;
+    radio_packet_t packet{};
+    packet.team = command.team == Team::Yellow ? int8_t{team_t::YELLOW} : int8_t{team_t::BLUE};
+    packet.sequence = ++radio_sequence_[static_cast<int>(command.team)];
+    packet.t_sent = static_cast<double>(promise_ns) / 1e9;
+    ubersim::publish(bus_, channels_, topics::kRadio.of(command.team), packet);
+  }
+}
+
+// The team programs ended: their clients leave (the run goes on without
+// them), and what was held back for them goes out now.
+void SslBridge::teams_ended() {
+  for (const TeamCommand& command : options_.teams.commands) {
+    sync_clients_[static_cast<int>(command.team)].leave();
+  }
+  for (const std::string& bytes : timed_vision_) vision_out_.send(bytes);
+  timed_vision_.clear();
+  timed_referee_.clear();
+  timed_tracked_.clear();
+}
+
+}  // namespace ubersim::ssl
