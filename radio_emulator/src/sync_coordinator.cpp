@@ -255,6 +255,13 @@ double SyncCoordinator::earliest_arrival(Team team) const {
   return next_publication_;
 }
 
+double SyncCoordinator::answered_until(Team team) const {
+  const Client& c = client(team);
+  const double arrival = earliest_arrival(team);
+  if (!c.present || !c.timed || c.promise >= next_publication_) return arrival;
+  return std::min(c.promise, last_schedule_time_);
+}
+
 std::optional<std::string> SyncCoordinator::bound_by(Team team) const {
   const Client& c = client(team);
   if (c.present && (c.timed ? c.behind : !c.owed.empty())) return c.stats.name;

@@ -137,7 +137,7 @@ void SyncDriver::update(bool always_publish, Clock::time_point now) {
   } else {
     for (Team team : kTeams) {
       const double arrival = coordinator_.earliest_arrival(team);
-      answered_until = std::min(answered_until, arrival);
+      answered_until = std::min(answered_until, coordinator_.answered_until(team));
       publish_(emulator_.sync_poll(team, arrival));
       const double apply = emulator_.earliest_apply(team, arrival);
       if (apply < horizon) {

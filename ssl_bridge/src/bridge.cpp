@@ -279,6 +279,13 @@ void SslBridge::on_geometry(const vision_geometry_t& geometry) {
   current_field_ = geometry.field;
   GeometryExtras extras = options_.geometry;
   if (extras.max_robot_radius > 0) extras.max_robot_radius = max_robot_radius();
+  if (timed_mode() && !teams_->exited()) {
+    // The vision emulator repeats its geometry on a wall-time timer; timed
+    // teams get it at sim-time instants instead (deliver_timed).
+    geometry_packet(geometry, extras).SerializeToString(&timed_geometry_);
+    register_timed_teams();
+    return;
+  }
   send_vision(geometry_packet(geometry, extras));
 }
 

@@ -61,6 +61,7 @@ void SslBridge::on_schedule(const vision_schedule_t& schedule) {
 void SslBridge::deliver_timed() {
   if (teams_->exited()) return;
   run_teams_to(timed_publication_);
+  send_timed_geometry();
   for (const std::string& bytes : timed_vision_) {
     if (vision_out_.send(bytes)) ++counters_["vision packets sent"];
   }
@@ -76,6 +77,17 @@ void SslBridge::deliver_timed() {
   run_teams_to(timed_next_input_);
 }
 
+// The geometry goes out when it changed, and again every second of sim time
+// (what the vision emulator sends in wall time), always with a frame.
+void SslBridge::send_timed_geometry() {
+  constexpr double kRepeat = 1.0;  // s of sim time
+  if (timed_geometry_.empty()) return;
+  if (timed_geometry_ == timed_geometry_sent_ && timed_publication_ < timed_geometry_next_) return;
+  if (vision_out_.send(timed_geometry_)) ++counters_["vision packets sent"];
+  timed_geometry_sent_ = timed_geometry_;
+  timed_geometry_next_ = timed_publication_ + kRepeat;
+}
+
 void SslBridge::run_teams_to(double t) {
   const bool running = teams_->run_to(
       to_ns(t), [this](std::int64_t now_ns) { return at_quiescence(now_ns); },
@@ -85,18 +97,25 @@ void SslBridge::run_teams_to(double t) {
 
 // Every thread of the group waits, so whatever it sent is in our sockets:
 // stamp it with the group's time (handle_robot_datagram) and answer it.
-bool SslBridge::at_quiescence(std::int64_t /*now_ns*/) {
+// The teams register once their programs are up (the group's first
+// quiescence: a team slow to start does not hold physics past its timeout) and
+// the field's geometry is here, so that every run's first frame comes with it.
+void SslBridge::register_timed_teams() {
+  if (!teams_up_ || timed_geometry_.empty()) return;
   const auto now = std::chrono::steady_clock::now();
   for (const TeamCommand& command : options_.teams.commands) {
     SyncClient& client = sync_clients_[static_cast<int>(command.team)];
     if (client.joined()) continue;
-    // Registered once the team has started up (its first quiescence): a team
-    // that takes long to start does not hold physics past its timeout.
     spdlog::info("sync: the {} team's program is up: registered as timed sync client {}",
                  team_name(command.team), client.name());
     truth_demand_.announce(now);
     client.join(now);
   }
+}
+
+bool SslBridge::at_quiescence(std::int64_t /*now_ns*/) {
+  teams_up_ = true;
+  register_timed_teams();
   bool answered = false;
   sockaddr_in from{};
   for (Team team : kTeams) {
@@ -131,6 +150,7 @@ void SslBridge::teams_ended() {
   for (const TeamCommand& command : options_.teams.commands) {
     sync_clients_[static_cast<int>(command.team)].leave();
   }
+  if (!timed_geometry_.empty()) vision_out_.send(timed_geometry_);
   for (const std::string& bytes : timed_vision_) vision_out_.send(bytes);
   timed_vision_.clear();
   timed_referee_.clear();

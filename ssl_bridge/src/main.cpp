@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
@@ -27,7 +29,7 @@ struct Options {
   ubersim::ssl::GrsimOptions grsim;
   std::string robot_type = "omni4_ssl";
   std::string ball = "ssl_golf_ball";
-  std::vector<std::string> team_commands;  // COLOUR COMMAND pairs (--team-command)
+  std::vector<std::pair<std::string, std::string>> team_commands;  // --team-command
   double team_grace = 2.0;
 };
 
@@ -185,7 +187,6 @@ void add_team_options(CLI::App& app, Options& options) {
   app.add_option("--team-command", options.team_commands,
                  "COLOUR COMMAND: with --sync, start COMMAND (/bin/sh -c) under the time shim as "
                  "the COLOUR team's program, a timed sync client (repeatable, one per colour)")
-      ->expected(2)
       ->type_name("COLOUR COMMAND");
   app.add_option("--team-output-dir", options.bridge.teams.output_dir,
                  "folder for each team command's output (team_<colour>.log); default: the "
@@ -200,8 +201,7 @@ void add_team_options(CLI::App& app, Options& options) {
 // The --team-command pairs as commands; an error text when they are not valid.
 std::string take_team_commands(Options& options) {
   auto& teams = options.bridge.teams;
-  for (std::size_t i = 0; i + 1 < options.team_commands.size(); i += 2) {
-    const std::string& colour = options.team_commands[i];
+  for (const auto& [colour, command] : options.team_commands) {
     if (colour != "yellow" && colour != "blue") {
       return "--team-command: colour '" + colour + "' is not yellow or blue";
     }
@@ -209,8 +209,8 @@ std::string take_team_commands(Options& options) {
     for (const auto& known : teams.commands) {
       if (known.team == team) return "--team-command: " + colour + " given twice";
     }
-    if (options.team_commands[i + 1].empty()) return "--team-command: empty command";
-    teams.commands.push_back({team, options.team_commands[i + 1]});
+    if (command.empty()) return "--team-command: empty command";
+    teams.commands.push_back({team, command});
   }
   if (!teams.commands.empty() && !options.bridge.sync) {
     return "--team-command: only with --sync (without it, start the team program yourself)";

@@ -1,9 +1,16 @@
 #include "ubersim/ssl_bridge/team_group.hpp"
 
+#include <dirent.h>
 #include <spdlog/spdlog.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <csignal>
+#include <fstream>
+#include <map>
+#include <sstream>
 
 namespace ubersim::ssl {
 namespace {
@@ -11,13 +18,55 @@ namespace {
 // How long one wait for quiescence lasts before the bridge looks at its stop
 // flag and at what holds the group back.
 constexpr std::chrono::milliseconds kLook{200};
+// Wall time the team programs get to end on SIGTERM (in sim time, run freely).
+constexpr std::chrono::milliseconds kEndGrace{500};
+
+// Every process below this one (the bridge is their subreaper, so a team's
+// orphaned child is among them too).
+std::vector<pid_t> descendants() {
+  std::map<pid_t, pid_t> parent;
+  DIR* proc = ::opendir("/proc");
+  if (proc == nullptr) return {};
+  while (const dirent* entry = ::readdir(proc)) {
+    const pid_t pid = static_cast<pid_t>(std::atoi(entry->d_name));
+    if (pid <= 0) continue;
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string line;
+    std::getline(stat, line);
+    const auto close = line.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(line.substr(close + 1));
+    char state = 0;
+    pid_t ppid = 0;
+    rest >> state >> ppid;
+    parent[pid] = ppid;
+  }
+  ::closedir(proc);
+  std::vector<pid_t> below;
+  for (const auto& [pid, ppid] : parent) {
+    for (pid_t up = ppid; up > 1; up = parent.count(up) ? parent[up] : 0) {
+      if (up == ::getpid()) {
+        below.push_back(pid);
+        break;
+      }
+    }
+  }
+  return below;
+}
 
 }  // namespace
 
 TeamGroup::TeamGroup(TeamGroupOptions options)
-    : options_(std::move(options)), controller_(options_.controller) {}
+    : options_(std::move(options)), controller_(options_.controller) {
+  // A team's process whose parent ends stays ours, so that stop() finds it.
+  ::prctl(PR_SET_CHILD_SUBREAPER, 1);
+}
 
-TeamGroup::~TeamGroup() = default;
+TeamGroup::~TeamGroup() {
+  for (pid_t pid : descendants()) ::kill(pid, SIGKILL);
+  while (::waitpid(-1, nullptr, WNOHANG) > 0) {
+  }
+}
 
 void TeamGroup::start() {
   for (const TeamCommand& command : options_.commands) {
@@ -65,9 +114,17 @@ void TeamGroup::report_problems() {
 }
 
 void TeamGroup::stop() {
-  for (pid_t pid : pids_) {
-    if (!controller_.exit_status(pid)) ::kill(pid, SIGTERM);
+  if (exited_) return;
+  for (pid_t pid : descendants()) ::kill(pid, SIGTERM);
+  // Their handlers run in sim time: let it run freely for a moment.
+  const auto give_up = std::chrono::steady_clock::now() + kEndGrace;
+  while (std::chrono::steady_clock::now() < give_up) {
+    const auto q = controller_.run_until(timeshim::kNoDeadline, kEndGrace);
+    if (q.state == timeshim::GroupState::Exited || q.next_deadline_ns == timeshim::kNoDeadline) {
+      break;
+    }
   }
+  report_problems();
 }
 
 }  // namespace ubersim::ssl

@@ -107,6 +107,11 @@ class SyncCoordinator {
   // The earliest sim time a further answer of `team` can arrive (kInfinity
   // when the team has no client, or no frame schedule was heard yet).
   double earliest_arrival(Team team) const;
+  // Up to which sim time `team`'s answers are complete: its earliest arrival,
+  // but for a timed client its promise only once it reached the next frame
+  // (before, it may still send up to there: at most the latest schedule's
+  // time), so that a run ends after everything it sends before that frame.
+  double answered_until(Team team) const;
   // Who holds `team` back: its client's name when it owes an answer; nothing
   // when it waits for the schedule's next frame.
   std::optional<std::string> bound_by(Team team) const;

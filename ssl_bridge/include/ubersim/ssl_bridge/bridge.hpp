@@ -149,6 +149,8 @@ class SslBridge {
   bool timed_mode() const { return teams_ != nullptr; }
   void on_schedule(const vision_schedule_t& schedule);
   void deliver_timed();
+  void register_timed_teams();
+  void send_timed_geometry();
   void run_teams_to(double t);
   bool at_quiescence(std::int64_t now_ns);
   void promise(std::int64_t promise_ns);
@@ -191,6 +193,10 @@ class SslBridge {
   std::unique_ptr<TeamGroup> teams_;
   std::function<bool()> should_stop_ = [] { return false; };
   std::vector<std::string> timed_vision_;  // vision packets waiting for their publication
+  bool teams_up_ = false;                  // the group was quiescent once
+  std::string timed_geometry_;             // the latest geometry packet
+  std::string timed_geometry_sent_;        // the one the teams got last
+  double timed_geometry_next_ = 0;         // s, sim time it is sent again
   std::vector<StampedPacket> timed_referee_;
   std::vector<StampedPacket> timed_tracked_;
   std::int64_t timed_step_ = -1;  // of the latest schedule heard
