@@ -79,7 +79,7 @@ usage: tools/launch.sh [options]
                        packet with one RobotControl
   --no-tracked         with --ssl-bridge: send no tracked frames
   --team COLOUR 'COMMAND'
-                       run COMMAND (sh -c) as the yellow or blue team's program, an unchanged
+                       run COMMAND (sh -c) as the yellow, blue or both teams' program, an unchanged
                        SSL team (simulation protocol on 10301/10302); implies --ssl-bridge;
                        repeatable, once per colour. With --sync the bridge starts it under the
                        time shim on simulation time, stamping its commands with their send
@@ -115,7 +115,7 @@ lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
 referee=none game_length="" tracked=1 game_controller="" yellow_name="" blue_name=""
 ssl_mode=0 lan=0 vision_port="" vision_interface="" vision_ttl="" ssl_local_only=0 ssl_port_offset=0 referee_given=0
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port="" open_viewer=0 ssl_bridge=0
-repeat_games=0 team_yellow="" team_blue=""
+repeat_games=0 team_yellow="" team_blue="" team_both=""
 while [ $# -gt 0 ]; do
   if [[ $options_with_values == *[[:space:]]"$1"[[:space:]]* ]] && { [ $# -lt 2 ] || [[ $2 == --* ]]; }; then
     usage_error "$1 needs a value (tools/launch.sh --help lists the options)"
@@ -160,9 +160,10 @@ while [ $# -gt 0 ]; do
       [ $# -ge 3 ] || usage_error "--team needs a colour and a command: --team yellow 'COMMAND'"
       [ -n "$3" ] || usage_error "--team $2: the command is empty"
       case "$2" in
-        yellow) [ -z "$team_yellow" ] || usage_error "--team yellow given twice"; team_yellow=$3 ;;
-        blue) [ -z "$team_blue" ] || usage_error "--team blue given twice"; team_blue=$3 ;;
-        *) usage_error "--team: colour '$2' is not yellow or blue" ;;
+        yellow) [ -z "$team_yellow$team_both" ] || usage_error "--team yellow: yellow has a program already"; team_yellow=$3 ;;
+        blue) [ -z "$team_blue$team_both" ] || usage_error "--team blue: blue has a program already"; team_blue=$3 ;;
+        both) [ -z "$team_yellow$team_blue$team_both" ] || usage_error "--team both: a colour has a program already"; team_both=$3 ;;
+        *) usage_error "--team: colour '$2' is not yellow, blue or both" ;;
       esac
       ssl_bridge=1; shift 3 ;;
     --ssl) ssl_mode=1; shift ;;
@@ -296,7 +297,7 @@ case "$demo" in yellow|blue|both|none) ;; *) usage_error "--demo: '$demo' is not
 case "$demo_mode" in play|positions|figure8) ;; *) usage_error "--demo-mode: '$demo_mode' is not play, positions or figure8" ;; esac
 for team in yellow blue; do
   team_command=team_$team
-  if [ -n "${!team_command}" ] && { [ "$demo" = "$team" ] || [ "$demo" = both ]; }; then
+  if [ -n "${!team_command}$team_both" ] && { [ "$demo" = "$team" ] || [ "$demo" = both ]; }; then
     usage_error "--team $team: the $team demo team plays that colour (--demo $demo)"
   fi
 done
@@ -535,7 +536,8 @@ if [ "$sync" = 1 ]; then
   # Team programs (--team) run under the time shim in the bridge's team group.
   [ -z "$team_yellow" ] || bridge_args+=(--team-command yellow "$team_yellow")
   [ -z "$team_blue" ] || bridge_args+=(--team-command blue "$team_blue")
-  [ -z "$team_yellow$team_blue" ] || bridge_args+=(--team-output-dir "$log_dir")
+  [ -z "$team_both" ] || bridge_args+=(--team-command both "$team_both")
+  [ -z "$team_yellow$team_blue$team_both" ] || bridge_args+=(--team-output-dir "$log_dir")
   physics_args+=(--sync)
   radio_args+=(--sync --sync-clients "${sync_clients:-$clients}")
   [ "$sync_strict" = 1 ] && radio_args+=(--sync-strict)
@@ -647,6 +649,7 @@ done
 if [ "$sync" = 0 ]; then
   [ -z "$team_yellow" ] || start team_yellow sh -c "$team_yellow"
   [ -z "$team_blue" ] || start team_blue sh -c "$team_blue"
+  [ -z "$team_both" ] || start team_both sh -c "$team_both"
 fi
 [ "$viewer" = 1 ] && start viewer "$bin_dir/ubersim_viewer" "${common[@]}" --port "$viewer_port"
 if [ "$open_viewer" = 1 ]; then

@@ -174,9 +174,16 @@ SyncCoordinator::Answer SyncCoordinator::on_timed_answer(Client& c, double t_sen
 // A timed client lags when its promise is short of the next frame's
 // publication: the simulation cannot pass it until the promise advances.
 void SyncCoordinator::note_progress(Client& c, Clock::time_point now) const {
-  const bool lags = schedule_heard_ && c.promise < next_publication_;
+  const bool lags = schedule_heard_ && !reached_next_frame(c);
   if (lags && !c.behind) c.behind_since = now;
   c.behind = lags;
+}
+
+// A timed client's clock counts whole nanoseconds: its promise of the next
+// frame's publication may fall short of the schedule's double by less than one.
+bool SyncCoordinator::reached_next_frame(const Client& c) const {
+  constexpr double kClockResolution = 1e-9;  // s
+  return c.promise >= next_publication_ - kClockResolution;
 }
 
 std::vector<Drop> SyncCoordinator::expire(Clock::time_point now) {
@@ -258,7 +265,7 @@ double SyncCoordinator::earliest_arrival(Team team) const {
 double SyncCoordinator::answered_until(Team team) const {
   const Client& c = client(team);
   const double arrival = earliest_arrival(team);
-  if (!c.present || !c.timed || c.promise >= next_publication_) return arrival;
+  if (!c.present || !c.timed || reached_next_frame(c)) return arrival;
   return std::min(c.promise, last_schedule_time_);
 }
 

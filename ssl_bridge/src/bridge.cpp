@@ -139,8 +139,10 @@ SslBridge::SslBridge(MessageBus& bus, const ChannelNames& channels,
   if (!options_.teams.commands.empty()) {
     teams_ = std::make_unique<TeamGroup>(options_.teams);
     for (const TeamCommand& command : options_.teams.commands) {
-      sync_clients_[static_cast<int>(command.team)].set_timed(true);
+      timed_teams_.push_back(command.team);
+      if (command.both) timed_teams_.push_back(Team::Blue);
     }
+    for (Team team : timed_teams_) sync_clients_[static_cast<int>(team)].set_timed(true);
     ubersim::subscribe(bus_, channels_, topics::kVisionSchedule,
                        [this](const vision_schedule_t& s) { on_schedule(s); });
   }
@@ -432,7 +434,11 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
   if (publish) {
     packet.sequence = ++radio_sequence_[static_cast<int>(team)];
     packet.t_sent = answers.value_or(state_.sim_time());
-    ubersim::publish(bus_, channels_, topics::kRadio.of(team), packet);
+    if (timed(team) && !sync_clients_[static_cast<int>(team)].joined()) {
+      timed_early_[static_cast<int>(team)].push_back(packet);  // sent once it registered
+    } else {
+      ubersim::publish(bus_, channels_, topics::kRadio.of(team), packet);
+    }
   }
   for (const SimulatorError& error : errors) *response.add_errors() = error;
   const auto feedback = feedback_.find(team);

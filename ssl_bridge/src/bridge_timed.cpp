@@ -31,9 +31,7 @@ void send_until(std::vector<StampedPacket>& queue, double t, const Send& send) {
 
 bool SslBridge::timed(Team team) const {
   if (!teams_ || teams_->exited()) return false;
-  const auto& commands = options_.teams.commands;
-  return std::any_of(commands.begin(), commands.end(),
-                     [team](const TeamCommand& c) { return c.team == team; });
+  return std::find(timed_teams_.begin(), timed_teams_.end(), team) != timed_teams_.end();
 }
 
 double SslBridge::group_time() const {
@@ -103,13 +101,18 @@ void SslBridge::run_teams_to(double t) {
 void SslBridge::register_timed_teams() {
   if (!teams_up_ || timed_geometry_.empty()) return;
   const auto now = std::chrono::steady_clock::now();
-  for (const TeamCommand& command : options_.teams.commands) {
-    SyncClient& client = sync_clients_[static_cast<int>(command.team)];
+  for (Team team : timed_teams_) {
+    SyncClient& client = sync_clients_[static_cast<int>(team)];
     if (client.joined()) continue;
     spdlog::info("sync: the {} team's program is up: registered as timed sync client {}",
-                 team_name(command.team), client.name());
+                 team_name(team), client.name());
     truth_demand_.announce(now);
     client.join(now);
+    // What it sent while it started up, after its registration (same socket).
+    for (const radio_packet_t& packet : timed_early_[static_cast<int>(team)]) {
+      ubersim::publish(bus_, channels_, topics::kRadio.of(team), packet);
+    }
+    timed_early_[static_cast<int>(team)].clear();
   }
 }
 
@@ -134,22 +137,20 @@ bool SslBridge::at_quiescence(std::int64_t /*now_ns*/) {
 
 // An empty radio packet at t_sent = the promise: nothing before it (docs/sync.md).
 void SslBridge::promise(std::int64_t promise_ns) {
-  for (const TeamCommand& command : options_.teams.commands) {
-    if (!sync_clients_[static_cast<int>(command.team)].joined()) continue;
+  for (Team team : timed_teams_) {
+    if (!sync_clients_[static_cast<int>(team)].joined()) continue;
     radio_packet_t packet{};
-    packet.team = command.team == Team::Yellow ? int8_t{team_t::YELLOW} : int8_t{team_t::BLUE};
-    packet.sequence = ++radio_sequence_[static_cast<int>(command.team)];
+    packet.team = team == Team::Yellow ? int8_t{team_t::YELLOW} : int8_t{team_t::BLUE};
+    packet.sequence = ++radio_sequence_[static_cast<int>(team)];
     packet.t_sent = static_cast<double>(promise_ns) / 1e9;
-    ubersim::publish(bus_, channels_, topics::kRadio.of(command.team), packet);
+    ubersim::publish(bus_, channels_, topics::kRadio.of(team), packet);
   }
 }
 
 // The team programs ended: their clients leave (the run goes on without
 // them), and what was held back for them goes out now.
 void SslBridge::teams_ended() {
-  for (const TeamCommand& command : options_.teams.commands) {
-    sync_clients_[static_cast<int>(command.team)].leave();
-  }
+  for (Team team : timed_teams_) sync_clients_[static_cast<int>(team)].leave();
   if (!timed_geometry_.empty()) vision_out_.send(timed_geometry_);
   for (const std::string& bytes : timed_vision_) vision_out_.send(bytes);
   timed_vision_.clear();

@@ -186,7 +186,8 @@ void add_grsim_options(CLI::App& app, ubersim::ssl::GrsimOptions& g) {
 void add_team_options(CLI::App& app, Options& options) {
   app.add_option("--team-command", options.team_commands,
                  "COLOUR COMMAND: with --sync, start COMMAND (/bin/sh -c) under the time shim as "
-                 "the COLOUR team's program, a timed sync client (repeatable, one per colour)")
+                 "the COLOUR (yellow, blue, or both: one program for both) team's program, a "
+                 "timed sync client (repeatable, one per colour)")
       ->type_name("COLOUR COMMAND");
   app.add_option("--team-output-dir", options.bridge.teams.output_dir,
                  "folder for each team command's output (team_<colour>.log); default: the "
@@ -202,15 +203,18 @@ void add_team_options(CLI::App& app, Options& options) {
 std::string take_team_commands(Options& options) {
   auto& teams = options.bridge.teams;
   for (const auto& [colour, command] : options.team_commands) {
-    if (colour != "yellow" && colour != "blue") {
-      return "--team-command: colour '" + colour + "' is not yellow or blue";
+    if (colour != "yellow" && colour != "blue" && colour != "both") {
+      return "--team-command: colour '" + colour + "' is not yellow, blue or both";
     }
-    const ubersim::Team team = colour == "yellow" ? ubersim::Team::Yellow : ubersim::Team::Blue;
+    const bool both = colour == "both";
+    const ubersim::Team team = colour == "blue" ? ubersim::Team::Blue : ubersim::Team::Yellow;
     for (const auto& known : teams.commands) {
-      if (known.team == team) return "--team-command: " + colour + " given twice";
+      if (known.both || both || known.team == team) {
+        return "--team-command: more than one program for " + colour;
+      }
     }
     if (command.empty()) return "--team-command: empty command";
-    teams.commands.push_back({team, command});
+    teams.commands.push_back({team, both, command});
   }
   if (!teams.commands.empty() && !options.bridge.sync) {
     return "--team-command: only with --sync (without it, start the team program yourself)";

@@ -70,13 +70,13 @@ TeamGroup::~TeamGroup() {
 
 void TeamGroup::start() {
   for (const TeamCommand& command : options_.commands) {
-    const std::string output = options_.output_dir.empty() ? std::string()
-                                                           : options_.output_dir + "/team_" +
-                                                                 team_name(command.team) + ".log";
+    const std::string output = options_.output_dir.empty()
+                                   ? std::string()
+                                   : options_.output_dir + "/team_" + command.colour() + ".log";
     const pid_t pid = controller_.spawn({"/bin/sh", "-c", command.command}, output);
     pids_.push_back(pid);
-    spdlog::info("team {}: started under the time shim (pid {}): {}{}", team_name(command.team),
-                 pid, command.command, output.empty() ? "" : ", output in " + output);
+    spdlog::info("team {}: started under the time shim (pid {}): {}{}", command.colour(), pid,
+                 command.command, output.empty() ? "" : ", output in " + output);
   }
 }
 

@@ -148,6 +148,7 @@ class SyncCoordinator {
   };
   Answer on_timed_answer(Client& c, double t_sent, Clock::time_point now);
   void note_progress(Client& c, Clock::time_point now) const;
+  bool reached_next_frame(const Client& c) const;
   Client& client(Team team) { return clients_[static_cast<int>(team)]; }
   const Client& client(Team team) const { return clients_[static_cast<int>(team)]; }
 

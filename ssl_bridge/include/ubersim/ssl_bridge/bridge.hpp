@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <ubersim/radio_packet_t.hpp>
 #include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/vision_schedule_t.hpp>
 #include <vector>
@@ -191,6 +192,9 @@ class SslBridge {
   // bridge takes whatever states the others ask for (docs/sync.md).
   TruthDemandAnnouncer& truth_demand_;
   std::unique_ptr<TeamGroup> teams_;
+  std::vector<Team> timed_teams_;  // the colours the team group's programs play
+  // By Team: what a timed team sent before it registered (at sim time 0).
+  std::array<std::vector<radio_packet_t>, 2> timed_early_;
   std::function<bool()> should_stop_ = [] { return false; };
   std::vector<std::string> timed_vision_;  // vision packets waiting for their publication
   bool teams_up_ = false;                  // the group was quiescent once

@@ -27,7 +27,10 @@ namespace ubersim::ssl {
 
 struct TeamCommand {
   Team team = Team::Yellow;
+  bool both = false;    // one program plays both colours (team is then Yellow)
   std::string command;  // run as /bin/sh -c COMMAND
+
+  std::string colour() const { return both ? "both" : team_name(team); }
 };
 
 struct TeamGroupOptions {
