@@ -78,6 +78,13 @@ usage: tools/launch.sh [options]
                        10301 blue / 10302 yellow); with --sync an SSL team answers every detection
                        packet with one RobotControl
   --no-tracked         with --ssl-bridge: send no tracked frames
+  --team COLOUR 'COMMAND'
+                       run COMMAND (sh -c) as the yellow, blue or both teams' program, an unchanged
+                       SSL team (simulation protocol on 10301/10302); implies --ssl-bridge;
+                       repeatable, once per colour. With --sync the bridge starts it under the
+                       time shim on simulation time, stamping its commands with their send
+                       time (docs/timeshim.md); without, it runs in real time. Its output goes
+                       to team_COLOUR.log in the log folder
   --lan                with --ssl / --ssl-bridge: the command ports (grSim, simulation and robot
                        control) listen on every interface, for an AI on another PC (anyone on
                        the network may command the robots: docs/threat_model.md)
@@ -108,7 +115,7 @@ lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
 referee=none game_length="" tracked=1 game_controller="" yellow_name="" blue_name=""
 ssl_mode=0 lan=0 vision_port="" vision_interface="" vision_ttl="" ssl_local_only=0 ssl_port_offset=0 referee_given=0
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port="" open_viewer=0 ssl_bridge=0
-repeat_games=0
+repeat_games=0 team_yellow="" team_blue="" team_both=""
 while [ $# -gt 0 ]; do
   if [[ $options_with_values == *[[:space:]]"$1"[[:space:]]* ]] && { [ $# -lt 2 ] || [[ $2 == --* ]]; }; then
     usage_error "$1 needs a value (tools/launch.sh --help lists the options)"
@@ -149,6 +156,16 @@ while [ $# -gt 0 ]; do
     --viewer-port) viewer_port=$2; shift 2 ;;
     --open-viewer) viewer=1; open_viewer=1; shift ;;
     --ssl-bridge) ssl_bridge=1; shift ;;
+    --team)
+      [ $# -ge 3 ] || usage_error "--team needs a colour and a command: --team yellow 'COMMAND'"
+      [ -n "$3" ] || usage_error "--team $2: the command is empty"
+      case "$2" in
+        yellow) [ -z "$team_yellow$team_both" ] || usage_error "--team yellow: yellow has a program already"; team_yellow=$3 ;;
+        blue) [ -z "$team_blue$team_both" ] || usage_error "--team blue: blue has a program already"; team_blue=$3 ;;
+        both) [ -z "$team_yellow$team_blue$team_both" ] || usage_error "--team both: a colour has a program already"; team_both=$3 ;;
+        *) usage_error "--team: colour '$2' is not yellow, blue or both" ;;
+      esac
+      ssl_bridge=1; shift 3 ;;
     --ssl) ssl_mode=1; shift ;;
     --lan) lan=1; shift ;;
     --vision-port) vision_port=$2; shift 2 ;;
@@ -278,6 +295,12 @@ fi
 [ -z "$viewer_port" ] || check_whole --viewer-port "$viewer_port" 1 65535
 case "$demo" in yellow|blue|both|none) ;; *) usage_error "--demo: '$demo' is not yellow, blue, both or none" ;; esac
 case "$demo_mode" in play|positions|figure8) ;; *) usage_error "--demo-mode: '$demo_mode' is not play, positions or figure8" ;; esac
+for team in yellow blue; do
+  team_command=team_$team
+  if [ -n "${!team_command}$team_both" ] && { [ "$demo" = "$team" ] || [ "$demo" = both ]; }; then
+    usage_error "--team $team: the $team demo team plays that colour (--demo $demo)"
+  fi
+done
 [ -z "$log_file" ] || [ -d "$(dirname "$log_file")" ] ||
   usage_error "--log: no folder '$(dirname "$log_file")' to write '$log_file' into"
 [ -z "$scenario" ] || check_config --scenario scenarios scenario "$scenario"
@@ -510,6 +533,11 @@ if [ "$sync" = 1 ]; then
   clients=0
   case "$demo" in yellow|blue) clients=1 ;; both) clients=2 ;; esac
   [ "$ssl_bridge" = 1 ] && clients=2
+  # Team programs (--team) run under the time shim in the bridge's team group.
+  [ -z "$team_yellow" ] || bridge_args+=(--team-command yellow "$team_yellow")
+  [ -z "$team_blue" ] || bridge_args+=(--team-command blue "$team_blue")
+  [ -z "$team_both" ] || bridge_args+=(--team-command both "$team_both")
+  [ -z "$team_yellow$team_blue$team_both" ] || bridge_args+=(--team-output-dir "$log_dir")
   physics_args+=(--sync)
   radio_args+=(--sync --sync-clients "${sync_clients:-$clients}")
   [ "$sync_strict" = 1 ] && radio_args+=(--sync-strict)
@@ -588,9 +616,14 @@ wait_for_bus_claim "${pids[-1]}"
 # through a filter (ended and waited for before the summary at the end).
 sync_watch="" sync_filter=""
 if [ "$sync" = 1 ] && [ "$radio" = 1 ]; then
-  exec {sync_fd}> >(sed -un 's/^.*\(sync client \(dropped\|rejoined\): .*\)$/launch: radio: \1/p' >&2)
+  # Also what physics waits for, once a wait passes 2 s, and the time shim's
+  # findings about the team programs (stuck threads, static programs).
+  exec {sync_fd}> >(sed -un -e 's/^.*\(sync client \(dropped\|rejoined\): .*\)$/launch: radio: \1/p' \
+    -e 's/^.*\(sync: physics waits .*\)$/launch: physics: \1/p' -e 's/^.*\] \(timeshim: .*\)$/launch: \1/p' >&2)
   sync_filter=$!
-  tail -n +1 -s 0.2 --pid=$$ -F "$log_dir/radio.log" >&"$sync_fd" 2>/dev/null &
+  sync_logs=("$log_dir/radio.log" "$log_dir/physics.log")
+  [ "$ssl_bridge" = 0 ] || sync_logs+=("$log_dir/ssl_bridge.log")
+  tail -q -n +1 -s 0.2 --pid=$$ -F "${sync_logs[@]}" >&"$sync_fd" 2>/dev/null &
   sync_watch=$!
 fi
 # start_referee PROGRAM LISTENING: starts the referee (ubersim's or the GC
@@ -612,6 +645,12 @@ for team in yellow blue; do
   fi
 done
 [ "$ssl_bridge" = 1 ] && start ssl_bridge "$bin_dir/ubersim_ssl_bridge" "${common[@]}" "${bridge_args[@]}"
+# Without --sync a team program runs in real time next to the set.
+if [ "$sync" = 0 ]; then
+  [ -z "$team_yellow" ] || start team_yellow sh -c "$team_yellow"
+  [ -z "$team_blue" ] || start team_blue sh -c "$team_blue"
+  [ -z "$team_both" ] || start team_both sh -c "$team_both"
+fi
 [ "$viewer" = 1 ] && start viewer "$bin_dir/ubersim_viewer" "${common[@]}" --port "$viewer_port"
 if [ "$open_viewer" = 1 ]; then
   if [ -z "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then

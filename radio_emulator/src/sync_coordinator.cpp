@@ -29,6 +29,14 @@ double TeamControl::without_control_until(double now) const {
 }
 
 std::string Drop::describe() const {
+  if (timed) {
+    return fmt::format(
+        "sync client dropped: team {}, client '{}', at sim time {:.3f} s: its time did not "
+        "advance past that (no packet, no promise) within {:g} s of wall time while the "
+        "simulation waited for it; the {} team is without control until a client registers "
+        "for it again",
+        team_name(team), client, t_sim, timeout, team_name(team));
+  }
   return fmt::format(
       "sync client dropped: team {}, client '{}', at sim time {:.3f} s: it did not answer the "
       "frame captured at {:.3f} s within {:g} s of wall time; the {} team is without control "
@@ -72,6 +80,9 @@ std::string SyncCoordinator::on_client(const sync_client_t& message) {
   c.stats.answers = c.stats.frames_skipped = 0;
   c.stats.answer_wall_seconds = c.stats.slowest_answer = 0;
   c.owed.clear();  // it answers frames published from now on
+  c.timed = message.timed;
+  c.promise = 0;
+  c.behind = false;
   if (!rejoined.empty()) return rejoined;
   return "sync client '" + message.name + "' registered for " + team_name(team);
 }
@@ -101,6 +112,10 @@ void SyncCoordinator::on_schedule(const vision_schedule_t& schedule, Clock::time
   stats_.frames += frames;
   for (Client& c : clients_) {
     if (!c.present) continue;
+    if (c.timed) {
+      note_progress(c, now);
+      continue;  // it answers no frame
+    }
     for (std::size_t i = 0; i < frames; ++i) {
       c.owed.push_back({schedule.t_capture[i], schedule.t_state, now});
     }
@@ -116,6 +131,7 @@ SyncCoordinator::Answer SyncCoordinator::on_answer(Team team, double t_sent,
     answer.verdict = Verdict::Unregistered;
     return answer;
   }
+  if (c.timed) return on_timed_answer(c, t_sent, now);
   // The oldest owed frame with this capture time; frames before it were
   // skipped (the client answered a later one first): nothing to send for them.
   const auto match = std::find_if(c.owed.begin(), c.owed.end(),
@@ -137,10 +153,54 @@ SyncCoordinator::Answer SyncCoordinator::on_answer(Team team, double t_sent,
   return answer;
 }
 
+SyncCoordinator::Answer SyncCoordinator::on_timed_answer(Client& c, double t_sent,
+                                                         Clock::time_point now) {
+  Answer answer;
+  if (!(t_sent >= c.promise) || !(t_sent < 1e9)) {
+    ++stats_.unmatched;  // earlier than it promised, or not a time: out of order
+    return answer;
+  }
+  const bool advanced = t_sent > c.promise;
+  c.promise = t_sent;
+  answer.verdict = Verdict::Accepted;
+  answer.t_arrival = t_sent;
+  ++c.stats.answers;
+  ++stats_.answers;
+  if (advanced) c.behind = false;
+  note_progress(c, now);
+  return answer;
+}
+
+// A timed client lags when its promise is short of the next frame's
+// publication: the simulation cannot pass it until the promise advances.
+void SyncCoordinator::note_progress(Client& c, Clock::time_point now) const {
+  const bool lags = schedule_heard_ && !reached_next_frame(c);
+  if (lags && !c.behind) c.behind_since = now;
+  c.behind = lags;
+}
+
+// A timed client's clock counts whole nanoseconds: its promise of the next
+// frame's publication may fall short of the schedule's double by less than one.
+bool SyncCoordinator::reached_next_frame(const Client& c) const {
+  constexpr double kClockResolution = 1e-9;  // s
+  return c.promise >= next_publication_ - kClockResolution;
+}
+
 std::vector<Drop> SyncCoordinator::expire(Clock::time_point now) {
   std::vector<Drop> dropped;
   for (Team team : kTeams) {
     Client& c = client(team);
+    if (c.present && c.timed) {
+      if (!c.behind || seconds(now - c.behind_since) <= timeout_) continue;
+      ++stats_.timeouts;
+      TeamControl& control = control_[static_cast<int>(team)];
+      ++control.drops;
+      control.dropped_at = c.promise;
+      dropped.push_back({team, control.client, c.promise, c.promise, timeout_, true});
+      departed_.push_back(c.stats);
+      c.present = false;
+      continue;
+    }
     if (!c.present || c.owed.empty()) continue;
     const Outstanding& oldest = c.owed.front();
     if (seconds(now - oldest.wall_published) <= timeout_) continue;
@@ -160,6 +220,7 @@ std::vector<Drop> SyncCoordinator::expire(Clock::time_point now) {
 void SyncCoordinator::forgive(Clock::duration gap) {
   for (Client& c : clients_) {
     for (Outstanding& o : c.owed) o.wall_published += gap;
+    c.behind_since += gap;
   }
 }
 
@@ -196,13 +257,21 @@ std::string SyncCoordinator::summary() const {
 double SyncCoordinator::earliest_arrival(Team team) const {
   const Client& c = client(team);
   if (!c.present || !schedule_heard_) return kInfinity;
+  if (c.timed) return c.promise;
   if (!c.owed.empty()) return c.owed.front().t_published;
   return next_publication_;
 }
 
+double SyncCoordinator::answered_until(Team team) const {
+  const Client& c = client(team);
+  const double arrival = earliest_arrival(team);
+  if (!c.present || !c.timed || reached_next_frame(c)) return arrival;
+  return std::min(c.promise, last_schedule_time_);
+}
+
 std::optional<std::string> SyncCoordinator::bound_by(Team team) const {
   const Client& c = client(team);
-  if (c.present && !c.owed.empty()) return c.stats.name;
+  if (c.present && (c.timed ? c.behind : !c.owed.empty())) return c.stats.name;
   return std::nullopt;
 }
 

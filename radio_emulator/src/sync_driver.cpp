@@ -137,7 +137,7 @@ void SyncDriver::update(bool always_publish, Clock::time_point now) {
   } else {
     for (Team team : kTeams) {
       const double arrival = coordinator_.earliest_arrival(team);
-      answered_until = std::min(answered_until, arrival);
+      answered_until = std::min(answered_until, coordinator_.answered_until(team));
       RadioEmulator::SyncRelease release = emulator_.sync_release(team, arrival);
       publish_(release.out);
       if (release.horizon < horizon) {

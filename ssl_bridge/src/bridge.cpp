@@ -135,11 +135,25 @@ SslBridge::SslBridge(ProcessHost& host, BridgeOptions options)
     ubersim::subscribe(bus_, channels_, topics::kRadioFeedback.of(team),
                        [this, team](const radio_feedback_t& f) { feedback_[team] = f; });
   }
+  if (!options_.teams.commands.empty()) {
+    teams_ = std::make_unique<TeamGroup>(options_.teams);
+    for (const TeamCommand& command : options_.teams.commands) {
+      timed_teams_.push_back(command.team);
+      if (command.both) timed_teams_.push_back(Team::Blue);
+    }
+    for (Team team : timed_teams_) sync_clients_[static_cast<int>(team)].set_timed(true);
+    ubersim::subscribe(bus_, channels_, topics::kVisionSchedule,
+                       [this](const vision_schedule_t& s) { on_schedule(s); });
+  }
 }
 
 void SslBridge::send_vision(const SSL_WrapperPacket& packet) {
   std::string bytes;
   packet.SerializeToString(&bytes);
+  if (timed_mode() && !teams_->exited()) {
+    timed_vision_.push_back(std::move(bytes));  // sent at its publication (deliver_timed)
+    return;
+  }
   if (vision_out_.send(bytes)) {
     ++counters_["vision packets sent"];
   } else {
@@ -148,13 +162,16 @@ void SslBridge::send_vision(const SSL_WrapperPacket& packet) {
 }
 
 void SslBridge::on_vision(const vision_frame_t& frame) {
+  const bool last_of_step = timed_mode() && timed_frames_due_ > 0 && --timed_frames_due_ == 0;
   if (!forwardable(frame)) {
     ++counters_["vision frames dropped (not finite)"];
     bad_input_.warn("vision_not_finite",
                     "dropped a VISION frame with a number not finite or beyond 1e9");
-    return;
+  } else {
+    send_vision(detection_packet(frame));
   }
-  send_vision(detection_packet(frame));
+  if (last_of_step) deliver_timed();
+  if (!forwardable(frame)) return;
   // Owed before the team can answer: the answer comes back through our own poll loop.
   if (options_.sync) {
     const auto now = std::chrono::steady_clock::now();
@@ -188,6 +205,10 @@ void SslBridge::on_state(const sim_state_t& state) {
   for (const TrackerWrapperPacket& packet : packets) {
     std::string bytes;
     packet.SerializeToString(&bytes);
+    if (timed_mode() && !teams_->exited()) {
+      timed_tracked_.push_back({state.sim_time, std::move(bytes)});
+      continue;
+    }
     if (tracked_out_->send(bytes)) {
       ++counters_["tracked packets sent"];
     } else {
@@ -203,6 +224,10 @@ void SslBridge::on_referee(const referee_t& referee) {
   }
   std::string bytes;
   referee_translator_.translate(referee).SerializeToString(&bytes);
+  if (timed_mode() && !teams_->exited()) {
+    timed_referee_.push_back({referee.sim_time, std::move(bytes)});
+    return;
+  }
   if (referee_out_.send(bytes)) {
     ++counters_["referee packets sent"];
   } else {
@@ -255,6 +280,13 @@ void SslBridge::on_geometry(const vision_geometry_t& geometry) {
   current_field_ = geometry.field;
   GeometryExtras extras = options_.geometry;
   if (extras.max_robot_radius > 0) extras.max_robot_radius = max_robot_radius();
+  if (timed_mode() && !teams_->exited()) {
+    // The vision emulator repeats its geometry on a wall-time timer; timed
+    // teams get it at sim-time instants instead (deliver_timed).
+    geometry_packet(geometry, extras).SerializeToString(&timed_geometry_);
+    register_timed_teams();
+    return;
+  }
   send_vision(geometry_packet(geometry, extras));
 }
 
@@ -378,7 +410,13 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
   ++counters_[name + " robot control datagrams"];
   // Sync mode: every datagram answers a frame (or is a hello or an extra one),
   // whatever it holds, so a malformed one still counts as "nothing to send".
-  const std::optional<double> answers = options_.sync ? sync_datagram(team) : std::nullopt;
+  // A timed team (under the time shim) is stamped with the sim time it sent at.
+  std::optional<double> answers;
+  if (timed(team)) {
+    answers = group_time();
+  } else if (options_.sync) {
+    answers = sync_datagram(team);
+  }
   RobotControlResponse response;
   Errors errors;
   RobotControl control;
@@ -394,8 +432,12 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
   const bool publish = options_.sync ? answers.has_value() : packet.num_commands > 0;
   if (publish) {
     packet.sequence = ++radio_sequence_[static_cast<int>(team)];
-    packet.t_sent = answers ? *answers : state_.sim_time();
-    ubersim::publish(bus_, channels_, topics::kRadio.of(team), packet);
+    packet.t_sent = answers.value_or(state_.sim_time());
+    if (timed(team) && !sync_clients_[static_cast<int>(team)].joined()) {
+      timed_early_[static_cast<int>(team)].push_back(packet);  // sent once it registered
+    } else {
+      ubersim::publish(bus_, channels_, topics::kRadio.of(team), packet);
+    }
   }
   for (const SimulatorError& error : errors) *response.add_errors() = error;
   const auto feedback = feedback_.find(team);
@@ -454,10 +496,8 @@ void SslBridge::drop_sync_client(Team team, const std::string& why) {
 
 void SslBridge::sync_leave() {
   for (Team team : kTeams) {
-    SyncAnswers& answers = sync_[static_cast<int>(team)];
-    if (!answers.registered()) continue;
-    answers.leave();
-    sync_clients_[static_cast<int>(team)].leave();
+    sync_[static_cast<int>(team)].leave();
+    sync_clients_[static_cast<int>(team)].leave();  // nothing when it never joined
   }
 }
 
@@ -509,6 +549,10 @@ void SslBridge::start() {
         "sync mode: a team's first RobotControl registers it; then each RobotControl answers "
         "the oldest detection packet it has not answered (docs/sync.md)");
   }
+  if (teams_) {
+    teams_->start();
+    run_teams_to(0);  // the teams start up at sim time 0, then register as timed clients
+  }
 }
 
 void SslBridge::tick(std::chrono::steady_clock::time_point now) {
@@ -518,6 +562,7 @@ void SslBridge::tick(std::chrono::steady_clock::time_point now) {
 
 void SslBridge::stop() {
   if (options_.sync) sync_leave();
+  if (teams_) teams_->stop();
 }
 
 void SslBridge::log_summary() const {
@@ -530,6 +575,11 @@ void SslBridge::log_summary() const {
               " answers=" + std::to_string(s.answers) + " extra=" + std::to_string(s.extra) +
               " timeouts=" + std::to_string(s.timeouts + s.overflows);
     }
+  }
+  if (teams_) {
+    text += " team group: quiescences=" + std::to_string(teams_->quiescences()) +
+            " advances=" + std::to_string(teams_->advances()) +
+            " sim time=" + std::to_string(group_time()) + " s";
   }
   const std::uint64_t skipped = vision_out_.loopback_copies_skipped() +
                                 (tracked_out_ ? tracked_out_->loopback_copies_skipped() : 0) +

@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
@@ -27,6 +29,8 @@ struct Options {
   ubersim::ssl::GrsimOptions grsim;
   std::string robot_type = "omni4_ssl";
   std::string ball = "ssl_golf_ball";
+  std::vector<std::pair<std::string, std::string>> team_commands;  // --team-command
+  double team_grace = 2.0;
 };
 
 int run(Options& options) {
@@ -177,6 +181,48 @@ void add_grsim_options(CLI::App& app, ubersim::ssl::GrsimOptions& g) {
       ->check(ubersim::in_range(0.0, 3600.0));
 }
 
+// Team programs the bridge starts under the time shim (docs/timeshim.md).
+void add_team_options(CLI::App& app, Options& options) {
+  app.add_option("--team-command", options.team_commands,
+                 "COLOUR COMMAND: with --sync, start COMMAND (/bin/sh -c) under the time shim as "
+                 "the COLOUR (yellow, blue, or both: one program for both) team's program, a "
+                 "timed sync client (repeatable, one per colour)")
+      ->type_name("COLOUR COMMAND");
+  app.add_option("--team-output-dir", options.bridge.teams.output_dir,
+                 "folder for each team command's output (team_<colour>.log); default: the "
+                 "bridge's own stdout and stderr");
+  app.add_option("--team-grace", options.team_grace,
+                 "s of wall time a team's thread may hold sim time back (busy, or blocked in a "
+                 "call the time shim does not know) before it is named")
+      ->capture_default_str()
+      ->check(ubersim::in_range(0.1, 600.0));
+}
+
+// The --team-command pairs as commands; an error text when they are not valid.
+std::string take_team_commands(Options& options) {
+  auto& teams = options.bridge.teams;
+  for (const auto& [colour, command] : options.team_commands) {
+    if (colour != "yellow" && colour != "blue" && colour != "both") {
+      return "--team-command: colour '" + colour + "' is not yellow, blue or both";
+    }
+    const bool both = colour == "both";
+    const ubersim::Team team = colour == "blue" ? ubersim::Team::Blue : ubersim::Team::Yellow;
+    for (const auto& known : teams.commands) {
+      if (known.both || both || known.team == team) {
+        return "--team-command: more than one program for " + colour;
+      }
+    }
+    if (command.empty()) return "--team-command: empty command";
+    teams.commands.push_back({team, both, command});
+  }
+  if (!teams.commands.empty() && !options.bridge.sync) {
+    return "--team-command: only with --sync (without it, start the team program yourself)";
+  }
+  teams.controller.grace =
+      std::chrono::milliseconds(static_cast<std::int64_t>(options.team_grace * 1000));
+  return "";
+}
+
 int parse_and_run(int argc, char** argv) {
   Options options;
   auto& b = options.bridge;
@@ -190,12 +236,17 @@ int parse_and_run(int argc, char** argv) {
   app.add_flag("--tracked", b.tracked,
                "also send SSL tracked frames (TrackerWrapperPacket) built from ground truth");
   add_grsim_options(app, options.grsim);
+  add_team_options(app, options);
   app.add_option("--robot-type", options.robot_type,
                  "robot config for robots added with present = true, and for wheel_velocity")
       ->capture_default_str();
   app.add_option("--ball", options.ball, "ball config whose model the geometry reports")
       ->capture_default_str();
   if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
+  if (const std::string error = take_team_commands(options); !error.empty()) {
+    std::fprintf(stderr, "ubersim_ssl_bridge: %s\n", error.c_str());
+    return 2;
+  }
 
   ubersim::setup_logging("ssl_bridge", options.common.verbosity());
   // Set by tests/run_isolated.sh when it has no network namespace to offer:

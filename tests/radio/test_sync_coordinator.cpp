@@ -177,3 +177,40 @@ TEST(SyncCoordinator, RepeatedScheduleAnnouncesNoFrameTwice) {
   EXPECT_DOUBLE_EQ(sync.earliest_arrival(Team::Yellow), 0.033) << "owes nothing";
   EXPECT_EQ(sync.stats().frames, 1u);
 }
+
+// A timed client (a team under the time shim, docs/sync.md "Timed clients"):
+// its packets arrive at their own t_sent, an empty one is a promise, and it is
+// dropped only when its promise stops short of the next frame for too long.
+TEST(SyncCoordinator, TimedClientArrivesAtItsSendTimeAndIsHeldByItsPromise) {
+  SyncCoordinator sync(1.0);
+  const auto now = Clock::now();
+  auto timed = client(0, "shim_yellow");
+  timed.timed = true;
+  EXPECT_FALSE(sync.on_client(timed).empty());
+  sync.on_schedule(schedule(0.0, 0, {}, 0.05), now);
+  EXPECT_DOUBLE_EQ(sync.earliest_arrival(Team::Yellow), 0.0) << "promised nothing yet";
+  EXPECT_EQ(sync.bound_by(Team::Yellow), "shim_yellow");
+  // A command sent at 20 ms arrives then, whatever frames were published.
+  auto answer = sync.on_answer(Team::Yellow, 0.02, now);
+  EXPECT_EQ(answer.verdict, SyncCoordinator::Verdict::Accepted);
+  EXPECT_DOUBLE_EQ(answer.t_arrival, 0.02);
+  EXPECT_DOUBLE_EQ(sync.earliest_arrival(Team::Yellow), 0.02);
+  // Frames owe it nothing: a promise up to the next frame lets the run past it.
+  sync.on_schedule(schedule(0.05, 12, {0.0}, 0.07), now);
+  EXPECT_DOUBLE_EQ(sync.earliest_arrival(Team::Yellow), 0.02);
+  EXPECT_EQ(sync.on_answer(Team::Yellow, 0.07, now).verdict, SyncCoordinator::Verdict::Accepted);
+  EXPECT_FALSE(sync.bound_by(Team::Yellow).has_value()) << "waits for the next frame";
+  EXPECT_EQ(sync.on_answer(Team::Yellow, 0.06, now).verdict, SyncCoordinator::Verdict::Unmatched)
+      << "earlier than its promise";
+  EXPECT_TRUE(sync.expire(now + std::chrono::seconds(5)).empty()) << "it kept up: no drop";
+  // The next frame is ahead of its promise, and it does not advance: dropped.
+  sync.on_schedule(schedule(0.07, 17, {0.05}, 0.09), now);
+  EXPECT_TRUE(sync.expire(now + std::chrono::milliseconds(900)).empty());
+  const auto dropped = sync.expire(now + std::chrono::milliseconds(1100));
+  ASSERT_EQ(dropped.size(), 1u);
+  EXPECT_DOUBLE_EQ(dropped[0].t_sim, 0.07);
+  EXPECT_NE(dropped[0].describe().find("sync client dropped: team yellow, client 'shim_yellow', "
+                                       "at sim time 0.070 s: its time did not advance"),
+            std::string::npos)
+      << dropped[0].describe();
+}

@@ -42,6 +42,10 @@ class SyncClient {
   // "A dropped client"); a goodbye would not.
   void drop() { joined_ = false; }
 
+  // A timed client (a team under the time shim): its radio packets carry their
+  // send time, and an empty one is a promise (docs/sync.md, "Timed clients").
+  void set_timed(bool timed) { message_.timed = timed; }
+
   bool joined() const { return joined_; }
   const std::string& name() const { return message_.name; }
 

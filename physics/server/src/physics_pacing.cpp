@@ -40,6 +40,19 @@ std::string horizon_bound_name(const PhysicsCore::HorizonBound& bound) {
   return bound.waiting_for.empty() ? "?" : bound.waiting_for;
 }
 
+void LongWaitNote::waiting(Clock::time_point now, double sim_time, const std::string& whom) {
+  if (!since_ || whom != whom_) {
+    since_ = now;
+    whom_ = whom;
+    said_ = false;
+    return;
+  }
+  if (said_ || now - *since_ < kAfter) return;
+  said_ = true;
+  spdlog::warn("sync: physics waits at sim time {:.3f} s for {} ({:.1f} s of wall time so far)",
+               sim_time, whom, std::chrono::duration<double>(now - *since_).count());
+}
+
 void HeldWait::settle(Clock::time_point now) {
   if (!waiting_since_) return;
   *seconds_ += std::chrono::duration<double>(now - *waiting_since_).count();
@@ -77,7 +90,12 @@ void StartGate::start_now() {
 }
 
 Turn StartGate::turn(Clock::time_point now) {
-  if (!open()) return Turn::wait_until(now + kHeldWait);
+  if (!open()) {
+    long_wait_.waiting(
+        now, loop_.core.world().time(),
+        vision_.heard() ? "the sync clients' registration (SYNC_CLIENT)" : "the vision emulator");
+    return Turn::wait_until(now + kHeldWait);
+  }
   loop_.publisher.publish(loop_.core.state());
   started_ = true;
   first_state_wall_ = now;
@@ -90,11 +108,13 @@ Turn SyncSteps::turn(Clock::time_point now) {
     // What is already waiting may move the horizon: no system call to sleep then.
     if (!loop_.hold.looked()) return loop_.hold.look();
     const std::string bound = horizon_bound_name(core.horizon_bound());
+    long_wait_.waiting(now, core.world().time(), bound);
     return loop_.hold.wait(now, now + kHeldWait, loop_.stats.sync_wait_seconds[bound],
                            loop_.stats.sync_waits[bound]);
   }
   if (loop_.poll.due(now)) return Turn::poll();
   loop_.hold.released();
+  long_wait_.released();
   loop_.publisher.publish(core.step());
   return Turn::again();
 }

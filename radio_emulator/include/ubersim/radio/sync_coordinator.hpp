@@ -10,6 +10,11 @@
 // answer can arrive is its oldest unanswered frame's publication, or, when it
 // is up to date, the schedule's next publication. The radio links add their
 // delay to that to give the simulation its horizon.
+//
+// A *timed* client (sync_client_t.timed: a team under the time shim) answers
+// no frame: each packet's t_sent is the sim time it was sent (nondecreasing),
+// and it arrives then; an empty packet at t_sent = c promises nothing before c
+// (a null message). Its earliest next arrival is its latest t_sent.
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -64,6 +69,7 @@ struct Drop {
   double t_sim;        // s of sim time: its first unanswered frame's publication
   double t_capture;    // that frame's capture time
   double timeout;      // s of wall time it had
+  bool timed = false;  // a timed client: its promise (t_sim) stopped advancing
 
   // "sync client dropped: team yellow, client 'demo_yellow', at sim time ..." (one line,
   // the form tools/launch.sh and the batch runner read: docs/sync.md).
@@ -101,6 +107,11 @@ class SyncCoordinator {
   // The earliest sim time a further answer of `team` can arrive (kInfinity
   // when the team has no client, or no frame schedule was heard yet).
   double earliest_arrival(Team team) const;
+  // Up to which sim time `team`'s answers are complete: its earliest arrival,
+  // but for a timed client its promise only once it reached the next frame
+  // (before, it may still send up to there: at most the latest schedule's
+  // time), so that a run ends after everything it sends before that frame.
+  double answered_until(Team team) const;
   // Who holds `team` back: its client's name when it owes an answer; nothing
   // when it waits for the schedule's next frame.
   std::optional<std::string> bound_by(Team team) const;
@@ -128,7 +139,16 @@ class SyncCoordinator {
     bool present = false;
     SyncClientStats stats;
     std::deque<Outstanding> owed;
+    // Timed clients: the latest t_sent (its promise), and since when (wall
+    // time) it lags behind the next frame's publication without advancing.
+    bool timed = false;
+    double promise = 0;
+    bool behind = false;
+    Clock::time_point behind_since{};
   };
+  Answer on_timed_answer(Client& c, double t_sent, Clock::time_point now);
+  void note_progress(Client& c, Clock::time_point now) const;
+  bool reached_next_frame(const Client& c) const;
   Client& client(Team team) { return clients_[static_cast<int>(team)]; }
   const Client& client(Team team) const { return clients_[static_cast<int>(team)]; }
 

@@ -5,11 +5,15 @@
 
 #include <array>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <ubersim/radio_packet_t.hpp>
 #include <ubersim/sim_control_ack_t.hpp>
+#include <ubersim/vision_schedule_t.hpp>
+#include <vector>
 
 #include "ubersim/channels.hpp"
 #include "ubersim/logging.hpp"
@@ -22,6 +26,7 @@
 #include "ubersim/ssl_bridge/robot_control_translation.hpp"
 #include "ubersim/ssl_bridge/sim_control_translation.hpp"
 #include "ubersim/ssl_bridge/sync_answers.hpp"
+#include "ubersim/ssl_bridge/team_group.hpp"
 #include "ubersim/ssl_bridge/tracked_frames.hpp"
 #include "ubersim/ssl_bridge/udp_socket.hpp"
 #include "ubersim/ssl_bridge/vision_translation.hpp"
@@ -71,6 +76,16 @@ struct BridgeOptions {
   // datagrams answers the oldest detection frame it has not answered yet.
   bool sync = false;
   double sync_timeout = 1.0;  // s of wall time a team may take to answer a frame
+  // Team programs the bridge starts under the time shim (--team-command, sync
+  // mode only): each such team is a *timed* sync client (docs/timeshim.md,
+  // "Integration with sync mode"); everything the bridge sends is gated by sim time.
+  TeamGroupOptions teams;
+};
+
+// A packet held back for a timed team until the sim time it stands for.
+struct StampedPacket {
+  double t;  // s of sim time
+  std::string bytes;
 };
 
 // The settings of the vision, tracked frames and referee streams.
@@ -94,6 +109,8 @@ class SslBridge {
   // Sync mode: the registered teams leave.
   void stop();
   void log_summary() const;
+  // Timed teams: what says the bridge should stop (the host's stop flag), looked
+  // at while the team group runs.
 
  private:
   struct PendingResponse {
@@ -126,6 +143,19 @@ class SslBridge {
   void sync_tick(std::chrono::steady_clock::time_point now);
   void drop_sync_client(Team team, const std::string& why);
   void sync_leave();
+  // Timed teams (team_group.hpp): outputs wait for the sim time they stand
+  // for; the group runs ahead to the next input between them.
+  bool timed(Team team) const;
+  bool timed_mode() const { return teams_ != nullptr; }
+  void on_schedule(const vision_schedule_t& schedule);
+  void deliver_timed();
+  void register_timed_teams();
+  void send_timed_geometry();
+  void run_teams_to(double t);
+  bool at_quiescence(std::int64_t now_ns);
+  void promise(std::int64_t promise_ns);
+  void teams_ended();
+  double group_time() const;
   // Largest radius of the robots on the field (their types' radii), else the configured one.
   double max_robot_radius() const;
   void answer(PendingResponse& pending);
@@ -160,6 +190,21 @@ class SslBridge {
   std::map<std::string, uint64_t> counters_;
   // Ground truth at the tracked rate (tracked frames); without them the
   // bridge takes whatever states the others ask for (docs/sync.md).
+  std::unique_ptr<TeamGroup> teams_;
+  std::vector<Team> timed_teams_;  // the colours the team group's programs play
+  // By Team: what a timed team sent before it registered (at sim time 0).
+  std::array<std::vector<radio_packet_t>, 2> timed_early_;
+  std::vector<std::string> timed_vision_;  // vision packets waiting for their publication
+  bool teams_up_ = false;                  // the group was quiescent once
+  std::string timed_geometry_;             // the latest geometry packet
+  std::string timed_geometry_sent_;        // the one the teams got last
+  double timed_geometry_next_ = 0;         // s, sim time it is sent again
+  std::vector<StampedPacket> timed_referee_;
+  std::vector<StampedPacket> timed_tracked_;
+  std::int64_t timed_step_ = -1;  // of the latest schedule heard
+  double timed_publication_ = 0;  // s, sim time the awaited frames are published at
+  double timed_next_input_ = 0;   // s, the next frame's earliest publication
+  int timed_frames_due_ = 0;      // frames of the latest schedule not heard yet
 };
 
 }  // namespace ubersim::ssl

@@ -112,6 +112,21 @@ class IdleWait final : public Pacing {
 // listens (it has sent SIM_VISION_SCHEDULE) and, in sync mode, the radio
 // emulator has every client it expects (its horizon is no longer held by
 // HELD_BY_REGISTRATION).
+// Sync mode: one log line when physics has waited longer than kAfter of wall
+// time in one place (tools/launch.sh shows it on the terminal: docs/sync.md).
+class LongWaitNote {
+ public:
+  static constexpr std::chrono::seconds kAfter{2};
+  // Physics waits at sim_time for `whom`; logs once per wait past kAfter.
+  void waiting(PacingClock::time_point now, double sim_time, const std::string& whom);
+  void released() { since_.reset(); }
+
+ private:
+  std::optional<PacingClock::time_point> since_;
+  std::string whom_;
+  bool said_ = false;
+};
+
 class StartGate final : public Pacing {
  public:
   StartGate(StepLoop& loop, const VisionLead& vision) : loop_(loop), vision_(vision) {}
@@ -130,6 +145,7 @@ class StartGate final : public Pacing {
   bool radio_ready_ = false;
   bool started_ = false;
   std::optional<PacingClock::time_point> first_state_wall_;
+  LongWaitNote long_wait_;
 };
 
 // Sync mode: as fast as possible below the horizon, looking for messages (a
@@ -142,6 +158,7 @@ class SyncSteps final : public Pacing {
 
  private:
   StepLoop& loop_;
+  LongWaitNote long_wait_;
 };
 
 // As fast as possible: steps back to back, looking for messages every

@@ -1,0 +1,79 @@
+#pragma once
+// Team programs under the time shim, hosted by the SSL bridge (docs/timeshim.md,
+// "Integration with sync mode"): the bridge starts each team's command under
+// one timeshim::Controller (both teams in one group, one sim clock) and runs
+// the group step by step, so that everything a team sends is stamped with the
+// sim time at which it was sent and everything the bridge sends reaches the
+// team at the sim time it stands for.
+//
+// run_to(T) is the one loop: wait until every thread of the group waits
+// (quiescence: whatever the team sent is in the bridge's sockets now), let the
+// bridge drain and answer (at_quiescence; when it sent something to the group,
+// the group runs again at the same instant), promise "nothing is sent before
+// min(next deadline, T)", and advance sim time there.
+#include <sys/types.h>
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ubersim/channels.hpp"
+#include "ubersim/timeshim/controller.hpp"
+
+namespace ubersim::ssl {
+
+struct TeamCommand {
+  Team team = Team::Yellow;
+  bool both = false;    // one program plays both colours (team is then Yellow)
+  std::string command;  // run as /bin/sh -c COMMAND
+
+  std::string colour() const { return both ? "both" : team_name(team); }
+};
+
+struct TeamGroupOptions {
+  std::vector<TeamCommand> commands;
+  std::string output_dir;  // each team's output in team_<colour>.log there; "": the bridge's own
+  timeshim::ControllerOptions controller;
+};
+
+class TeamGroup {
+ public:
+  // Returns true when it sent something to the group (run it again first).
+  using AtQuiescence = std::function<bool(std::int64_t now_ns)>;
+  // Nothing the group sends is stamped before promise_ns.
+  using Promise = std::function<void(std::int64_t promise_ns)>;
+  using ShouldStop = std::function<bool()>;
+
+  explicit TeamGroup(TeamGroupOptions options);
+  ~TeamGroup();
+  TeamGroup(const TeamGroup&) = delete;
+  TeamGroup& operator=(const TeamGroup&) = delete;
+
+  // Starts every command (throws timeshim::UnsupportedProgram for a static one).
+  void start();
+  // Runs the group up to until_ns (see above). False when the group has ended
+  // (every process of it exited) or should_stop said so.
+  bool run_to(std::int64_t until_ns, const AtQuiescence& at_quiescence, const Promise& promise,
+              const ShouldStop& should_stop);
+  std::int64_t now_ns() const { return controller_.now_ns(); }
+  bool exited() const { return exited_; }
+  // Asks every command to end (SIGTERM); the destructor kills what is left.
+  void stop();
+  std::uint64_t quiescences() const { return quiescences_; }
+  std::uint64_t advances() const { return controller_.advances(); }
+
+ private:
+  void report_problems();
+
+  TeamGroupOptions options_;
+  timeshim::Controller controller_;
+  std::vector<pid_t> pids_;
+  std::int64_t promised_ns_ = -1;
+  bool exited_ = false;
+  std::uint64_t quiescences_ = 0;
+};
+
+}  // namespace ubersim::ssl

@@ -1,0 +1,130 @@
+#include "ubersim/ssl_bridge/team_group.hpp"
+
+#include <dirent.h>
+#include <spdlog/spdlog.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <csignal>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace ubersim::ssl {
+namespace {
+
+// How long one wait for quiescence lasts before the bridge looks at its stop
+// flag and at what holds the group back.
+constexpr std::chrono::milliseconds kLook{200};
+// Wall time the team programs get to end on SIGTERM (in sim time, run freely).
+constexpr std::chrono::milliseconds kEndGrace{500};
+
+// Every process below this one (the bridge is their subreaper, so a team's
+// orphaned child is among them too).
+std::vector<pid_t> descendants() {
+  std::map<pid_t, pid_t> parent;
+  DIR* proc = ::opendir("/proc");
+  if (proc == nullptr) return {};
+  while (const dirent* entry = ::readdir(proc)) {
+    const pid_t pid = static_cast<pid_t>(std::atoi(entry->d_name));
+    if (pid <= 0) continue;
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string line;
+    std::getline(stat, line);
+    const auto close = line.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(line.substr(close + 1));
+    char state = 0;
+    pid_t ppid = 0;
+    rest >> state >> ppid;
+    parent[pid] = ppid;
+  }
+  ::closedir(proc);
+  std::vector<pid_t> below;
+  for (const auto& [pid, ppid] : parent) {
+    for (pid_t up = ppid; up > 1; up = parent.count(up) ? parent[up] : 0) {
+      if (up == ::getpid()) {
+        below.push_back(pid);
+        break;
+      }
+    }
+  }
+  return below;
+}
+
+}  // namespace
+
+TeamGroup::TeamGroup(TeamGroupOptions options)
+    : options_(std::move(options)), controller_(options_.controller) {
+  // A team's process whose parent ends stays ours, so that stop() finds it.
+  ::prctl(PR_SET_CHILD_SUBREAPER, 1);
+}
+
+TeamGroup::~TeamGroup() {
+  for (pid_t pid : descendants()) ::kill(pid, SIGKILL);
+  while (::waitpid(-1, nullptr, WNOHANG) > 0) {
+  }
+}
+
+void TeamGroup::start() {
+  for (const TeamCommand& command : options_.commands) {
+    const std::string output = options_.output_dir.empty()
+                                   ? std::string()
+                                   : options_.output_dir + "/team_" + command.colour() + ".log";
+    const pid_t pid = controller_.spawn({"/bin/sh", "-c", command.command}, output);
+    pids_.push_back(pid);
+    spdlog::info("team {}: started under the time shim (pid {}): {}{}", command.colour(), pid,
+                 command.command, output.empty() ? "" : ", output in " + output);
+  }
+}
+
+bool TeamGroup::run_to(std::int64_t until_ns, const AtQuiescence& at_quiescence,
+                       const Promise& promise, const ShouldStop& should_stop) {
+  for (;;) {
+    if (exited_ || should_stop()) return false;
+    const timeshim::Quiescence q = controller_.wait_quiescent(kLook);
+    report_problems();
+    if (q.state == timeshim::GroupState::Exited) {
+      exited_ = true;
+      spdlog::warn("timeshim: every process of the team group has ended");
+      return false;
+    }
+    if (q.state == timeshim::GroupState::Busy) continue;
+    ++quiescences_;
+    const std::int64_t now = controller_.now_ns();
+    if (at_quiescence(now)) continue;  // it answered the group: let it read that first
+    const std::int64_t next = std::max(now, q.next_deadline_ns == timeshim::kNoDeadline
+                                                ? until_ns
+                                                : std::min(q.next_deadline_ns, until_ns));
+    if (next > promised_ns_) {
+      promised_ns_ = next;
+      promise(next);
+    }
+    if (next <= now) return true;
+    controller_.advance_to(next);
+  }
+}
+
+void TeamGroup::report_problems() {
+  for (const timeshim::Problem& problem : controller_.take_problems()) {
+    spdlog::warn("timeshim: {}", problem.text);
+  }
+}
+
+void TeamGroup::stop() {
+  if (exited_) return;
+  for (pid_t pid : descendants()) ::kill(pid, SIGTERM);
+  // Their handlers run in sim time: let it run freely for a moment.
+  const auto give_up = std::chrono::steady_clock::now() + kEndGrace;
+  while (std::chrono::steady_clock::now() < give_up) {
+    const auto q = controller_.run_until(timeshim::kNoDeadline, kEndGrace);
+    if (q.state == timeshim::GroupState::Exited || q.next_deadline_ns == timeshim::kNoDeadline) {
+      break;
+    }
+  }
+  report_problems();
+}
+
+}  // namespace ubersim::ssl

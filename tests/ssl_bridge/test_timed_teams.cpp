@@ -1,0 +1,130 @@
+// Unchanged team programs in sync mode (docs/timeshim.md, "Integration with
+// sync mode"): tools/launch.sh --sync --team yellow 'COMMAND' --team blue
+// 'COMMAND' starts two SSL team programs that know nothing of ubersim (a C++
+// one, ssl_timed_team, and a Python one, ssl_timed_team.py: threads, a 50 Hz
+// sleep loop, socket timeouts, poll/select, a child process, wall-clock reads)
+// under the time shim in the SSL bridge. Checked: no team dropped; each
+// command is stamped with the sim time the team sent it (its own loop's
+// times, multiples of 20 ms, not frame capture times); the team's own clock
+// is sim time; two runs, the second beside a CPU hog, record the same bytes.
+// ISOLATED: own network namespace, so the league's ports are free.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <ubersim/radio_packet_t.hpp>
+#include <ubersim/sim_state_t.hpp>
+
+#include "e2e_support.hpp"
+#include "sync_logs.hpp"
+
+using namespace e2e;
+
+namespace {
+
+constexpr const char* kPython = "/usr/bin/python3";
+
+struct Game {
+  int status = -1;
+  std::string output, bridge_log, radio_log, yellow_log, blue_log;
+  std::map<std::string, ChannelLog> log;
+};
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Game play(const TempDir& dir, const std::string& name, const std::string& seed, bool hog) {
+  const std::string log = dir.path(name + ".lcmlog");
+  const std::string logs = dir.path(name + "_logs");
+  std::optional<CpuHog> load;
+  if (hog) load.emplace();
+  Launch launch(
+      {"--sync", "--team", "yellow", std::string(UBERSIM_SSL_TIMED_TEAM_EXE) + " --team yellow",
+       "--team", "blue", std::string(kPython) + " " + UBERSIM_SSL_TIMED_TEAM_PY + " --team blue",
+       "--no-tracked", "--duration", "4", "--seed", seed, "--log", log, "--log-dir", logs},
+      dir);
+  Game game;
+  game.status = launch.script().wait(120);
+  game.output = launch.output();
+  game.bridge_log = read_file(logs + "/ssl_bridge.log");
+  game.radio_log = read_file(logs + "/radio.log");
+  game.yellow_log = read_file(logs + "/team_yellow.log");
+  game.blue_log = read_file(logs + "/team_blue.log");
+  if (game.status == 0) game.log = read_log_by_channel(log);
+  return game;
+}
+
+// The times a team's loop printed ("loop N steady|monotonic S ...").
+std::vector<double> loop_times(const std::string& team_log) {
+  static const std::regex line(R"(loop (\d+) (steady|monotonic) ([0-9.]+) (wall|time) ([0-9.]+))");
+  std::vector<double> times;
+  for (auto it = std::sregex_iterator(team_log.begin(), team_log.end(), line);
+       it != std::sregex_iterator(); ++it) {
+    const double t = std::stod((*it)[3]);
+    EXPECT_NEAR(std::stod((*it)[5]), 1767225600.0 + t, 1e-5) << "its wall clock is sim time too";
+    times.push_back(t);
+  }
+  return times;
+}
+
+bool on_grid(double t) {
+  return std::fabs(t / 0.02 - std::round(t / 0.02)) < 1e-6;
+}
+
+void check_team(const Game& game, const std::string& channel, const std::string& team_log) {
+  SCOPED_TRACE(channel);
+  const auto packets = decode_all<ubersim::radio_packet_t>(game.log.at(channel));
+  const auto states = decode_all<ubersim::sim_state_t>(game.log.at("SIM_STATE"));
+  ASSERT_FALSE(states.empty());
+  double last = -1;
+  std::size_t with_commands = 0;
+  for (const auto& packet : packets) {
+    ASSERT_GE(packet.t_sent, last) << "t_sent never goes back";
+    last = packet.t_sent;
+    if (packet.num_commands == 0) continue;  // a promise: nothing sent before t_sent
+    ++with_commands;
+    EXPECT_TRUE(on_grid(packet.t_sent))
+        << "a command sent at " << packet.t_sent << " s: not a time of the team's 50 Hz loop";
+  }
+  // The team's loop ran on sim time: loop N at N * 20 ms, up to where physics stopped.
+  const std::vector<double> loops = loop_times(team_log);
+  ASSERT_GT(loops.size(), 150u) << team_log;
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    ASSERT_NEAR(loops[i], 0.02 * static_cast<double>(i), 1e-6) << "loop " << i;
+  }
+  EXPECT_NEAR(loops.back(), states.back().sim_time, 0.25);
+  EXPECT_GT(with_commands, 150u);
+}
+
+}  // namespace
+
+TEST(TimedTeams, UnchangedTeamsPlayAReproducibleSyncGameUnderTheTimeShim) {
+  if (access(kPython, X_OK) != 0) GTEST_SKIP() << kPython << " not found: the Python team needs it";
+  TempDir dir;
+  const Game first = play(dir, "first", "7", false);
+  ASSERT_EQ(first.status, 0) << first.output << first.bridge_log << first.radio_log;
+  EXPECT_NE(first.radio_log.find("sync: no client was dropped"), std::string::npos)
+      << first.radio_log;
+  EXPECT_NE(first.radio_log.find("0 duplicated or out of order; 0 client timeouts"),
+            std::string::npos)
+      << first.radio_log;
+  check_team(first, "RADIO_YELLOW", first.yellow_log);
+  check_team(first, "RADIO_BLUE", first.blue_log);
+
+  const Game second = play(dir, "second", "7", true);
+  ASSERT_EQ(second.status, 0) << second.output << second.bridge_log << second.radio_log;
+  for (const std::string& channel : reproducible_channels()) {
+    ASSERT_TRUE(first.log.count(channel)) << channel << " was not recorded";
+    ASSERT_TRUE(second.log.count(channel)) << channel << " was not recorded";
+    EXPECT_EQ(compare_channel(first.log.at(channel), second.log.at(channel)), "")
+        << "on " << channel;
+  }
+  EXPECT_EQ(first.yellow_log, second.yellow_log);
+  EXPECT_EQ(first.blue_log, second.blue_log);
+}
