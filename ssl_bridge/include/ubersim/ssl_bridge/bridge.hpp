@@ -18,6 +18,7 @@
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/ssl_bridge/latest_state.hpp"
+#include "ubersim/ssl_bridge/lcm_team_door.hpp"
 #include "ubersim/ssl_bridge/multicast_out.hpp"
 #include "ubersim/ssl_bridge/official_referee.hpp"
 #include "ubersim/ssl_bridge/referee_translation.hpp"
@@ -79,6 +80,8 @@ struct BridgeOptions {
   // mode only): each such team is a *timed* sync client (docs/timeshim.md,
   // "Integration with sync mode"); everything the bridge sends is gated by sim time.
   TeamGroupOptions teams;
+  // Which of them speak LCM, on a private bus (--team-protocol, lcm_team_door.hpp).
+  LcmDoorOptions lcm_door;
 };
 
 // A packet held back for a timed team until the sim time it stands for.
@@ -191,6 +194,7 @@ class SslBridge {
   // bridge takes whatever states the others ask for (docs/sync.md).
   TruthDemandAnnouncer& truth_demand_;
   std::unique_ptr<TeamGroup> teams_;
+  std::unique_ptr<LcmTeamDoor> lcm_door_;  // the timed teams that speak LCM
   std::function<bool()> should_stop_ = [] { return false; };
   std::vector<std::string> timed_vision_;  // vision packets waiting for their publication
   bool teams_up_ = false;                  // the group was quiescent once
