@@ -48,7 +48,9 @@ std::string with_lcm_url(const std::string& command, const std::string& url) {
 std::string apply_team_protocols(const std::vector<std::pair<std::string, std::string>>& protocols,
                                  const std::string& main_url, TeamGroupOptions& teams,
                                  LcmDoorOptions& door) {
-  for (const auto& [colour, protocol] : protocols) {
+  for (const auto& entry : protocols) {
+    const std::string& colour = entry.first;  // captured below: not a structured binding
+    const std::string& protocol = entry.second;
     if (protocol != "ssl" && protocol != "lcm") {
       return "--team-protocol: protocol '" + protocol + "' is not ssl or lcm";
     }
