@@ -84,7 +84,10 @@ usage: tools/launch.sh [options]
                        repeatable, once per colour. With --sync the bridge starts it under the
                        time shim on simulation time, stamping its commands with their send
                        time (docs/timeshim.md); without, it runs in real time. Its output goes
-                       to team_COLOUR.log in the log folder
+                       to team_COLOUR.log in the log folder. 'lcm:COMMAND': the program speaks
+                       ubersim's LCM contract instead (VISION, VISION_GEOMETRY, REFEREE in,
+                       RADIO_<TEAM> out, e.g. ubersim_demo_team without --sync); with --sync it
+                       gets a private LCM bus that the bridge relays, timed
   --lan                with --ssl / --ssl-bridge: the command ports (grSim, simulation and robot
                        control) listen on every interface, for an AI on another PC (anyone on
                        the network may command the robots: docs/threat_model.md)
@@ -162,7 +165,9 @@ while [ $# -gt 0 ]; do
       case "$2" in
         yellow) [ -z "$team_yellow$team_both" ] || usage_error "--team yellow: yellow has a program already"; team_yellow=$3 ;;
         blue) [ -z "$team_blue$team_both" ] || usage_error "--team blue: blue has a program already"; team_blue=$3 ;;
-        both) [ -z "$team_yellow$team_blue$team_both" ] || usage_error "--team both: a colour has a program already"; team_both=$3 ;;
+        both) [ -z "$team_yellow$team_blue$team_both" ] || usage_error "--team both: a colour has a program already"
+              [[ $3 != lcm:* ]] || usage_error "--team both: an LCM program plays one colour (--team yellow 'lcm:COMMAND')"
+              team_both=$3 ;;
         *) usage_error "--team: colour '$2' is not yellow, blue or both" ;;
       esac
       ssl_bridge=1; shift 3 ;;
@@ -534,8 +539,14 @@ if [ "$sync" = 1 ]; then
   case "$demo" in yellow|blue) clients=1 ;; both) clients=2 ;; esac
   [ "$ssl_bridge" = 1 ] && clients=2
   # Team programs (--team) run under the time shim in the bridge's team group.
-  [ -z "$team_yellow" ] || bridge_args+=(--team-command yellow "$team_yellow")
-  [ -z "$team_blue" ] || bridge_args+=(--team-command blue "$team_blue")
+  for team in yellow blue; do
+    team_command=team_$team
+    [ -n "${!team_command}" ] || continue
+    bridge_args+=(--team-command "$team" "${!team_command#lcm:}")
+    # 'lcm:COMMAND': an LCM team, on a private bus the bridge relays (docs/timeshim.md).
+    [[ ${!team_command} != lcm:* ]] || bridge_args+=(--team-protocol "$team" lcm)
+  done
+  # One program playing both colours (an SSL program such as Utama-Core's runner).
   [ -z "$team_both" ] || bridge_args+=(--team-command both "$team_both")
   [ -z "$team_yellow$team_blue$team_both" ] || bridge_args+=(--team-output-dir "$log_dir")
   physics_args+=(--sync)
@@ -647,8 +658,8 @@ done
 [ "$ssl_bridge" = 1 ] && start ssl_bridge "$bin_dir/ubersim_ssl_bridge" "${common[@]}" "${bridge_args[@]}"
 # Without --sync a team program runs in real time next to the set.
 if [ "$sync" = 0 ]; then
-  [ -z "$team_yellow" ] || start team_yellow sh -c "$team_yellow"
-  [ -z "$team_blue" ] || start team_blue sh -c "$team_blue"
+  [ -z "$team_yellow" ] || start team_yellow sh -c "${team_yellow#lcm:}"
+  [ -z "$team_blue" ] || start team_blue sh -c "${team_blue#lcm:}"
   [ -z "$team_both" ] || start team_both sh -c "$team_both"
 fi
 [ "$viewer" = 1 ] && start viewer "$bin_dir/ubersim_viewer" "${common[@]}" --port "$viewer_port"

@@ -38,27 +38,20 @@ struct SyncRun {
   std::map<std::string, double> waited;  // s of wall time, by what physics waited for
 };
 
+// Both demo teams as LCM SyncClients (launch.sh --demo both).
+const std::vector<std::string> kSyncClientTeams{"--demo", "both"};
+
 SyncRun sync_run(const std::string& source_dir, const std::string& scenario,
                  const std::string& profile, bool on_demand, double seconds, const std::string& url,
-                 const fs::path& work) {
+                 const fs::path& work, const std::vector<std::string>& teams = kSyncClientTeams,
+                 const std::string& label = "") {
   const fs::path logs =
-      work / ("sync_" + scenario + "_" + profile + (on_demand ? "_on_demand" : ""));
+      work / ("sync_" + scenario + "_" + profile + (on_demand ? "_on_demand" : "") + label);
   ::setenv("UBERSIM_BUILD_DIR", bench_dir().parent_path().c_str(), 1);
-  std::vector<std::string> argv{"/bin/bash",
-                                source_dir + "/tools/launch.sh",
-                                "--sync",
-                                "--demo",
-                                "both",
-                                "--scenario",
-                                scenario,
-                                "--profile",
-                                profile,
-                                "--duration",
-                                std::to_string(seconds),
-                                "--lcm-url",
-                                url,
-                                "--log-dir",
-                                logs.string()};
+  std::vector<std::string> argv{"/bin/bash", source_dir + "/tools/launch.sh", "--sync"};
+  argv.insert(argv.end(), teams.begin(), teams.end());
+  argv.insert(argv.end(), {"--scenario", scenario, "--profile", profile, "--duration",
+                           std::to_string(seconds), "--lcm-url", url, "--log-dir", logs.string()});
   // On demand is physics' default; the other mode must be asked for.
   argv.push_back(on_demand ? "--truth-on-demand" : "--truth-every-step");
   ubersim::ChildProcess launch(argv, (work / "launch.out").string());
@@ -82,6 +75,36 @@ SyncRun sync_run(const std::string& source_dir, const std::string& scenario,
   return run;
 }
 
+// The same demo team logic twice in one run: as LCM SyncClients (--demo
+// both: each answers every frame) and unchanged (no --sync) under the time
+// shim, on the bridge's private LCM buses (--team COLOUR 'lcm:COMMAND',
+// docs/timeshim.md). Prints sim seconds per wall second of each and the ratio.
+void shim_case(const std::string& source_dir, const std::string& scenario, double seconds,
+               const std::string& url, const fs::path& work) {
+  const std::string demo = (bench_dir() / "ubersim_demo_team").string();
+  const std::vector<std::string> shimmed{"--team",
+                                         "yellow",
+                                         "lcm:" + demo + " --team yellow",
+                                         "--team",
+                                         "blue",
+                                         "lcm:" + demo + " --team blue",
+                                         "--no-tracked",
+                                         "--ssl-local-only"};
+  const SyncRun clients = sync_run(source_dir, scenario, "cmdragons02", true, seconds, url, work);
+  const SyncRun shim =
+      sync_run(source_dir, scenario, "cmdragons02", true, seconds, url, work, shimmed, "_shim");
+  const double client_speed = clients.sim / clients.wall;
+  const double shim_speed = shim.sim / shim.wall;
+  std::printf(
+      "\nDemo teams under the time shim against the same demo teams as LCM SyncClients\n"
+      "(%s, cmdragons02, SIM_STATE on demand, %g s of sim time each):\n"
+      "  as SyncClients        %8.1f x real time\n"
+      "  under the time shim   %8.1f x real time\n"
+      "  ratio (shim / client) %8.2f\n",
+      scenario.c_str(), seconds, client_speed, shim_speed, shim_speed / client_speed);
+  std::fflush(stdout);
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"ubersim sync benchmark: sync mode's speed against the physics alone"};
   std::string source_dir = UBERSIM_SOURCE_DIR;
@@ -102,10 +125,22 @@ int run(int argc, char** argv) {
                  "SIM_STATE every step (physics --truth-every-step), or only on demand (the "
                  "default)")
       ->capture_default_str();
+  std::string shim_scenario = "division_b_6v6";
+  bool shim_only = false;
+  app.add_option("--shim-scenario", shim_scenario,
+                 "scenario of the time shim case (demo teams under the shim against the same as "
+                 "SyncClients; \"\": none)")
+      ->capture_default_str();
+  app.add_flag("--shim-only", shim_only, "only the time shim case");
   if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
 
   ubersim::test::TempFolder work_dir("ubersim_sync_bench");  // the runs' logs
   const fs::path& work = work_dir.root();
+  if (shim_only) {
+    shim_case(source_dir, shim_scenario, seconds, url, work);
+    work_dir.succeeded();
+    return 0;
+  }
   std::printf(
       "ubersim sync benchmark: %g s of sim time per run, both demo teams as sync clients,\n"
       "against the physics alone (ubersim_physics_bench, server, in-process bus) in this run.\n"
@@ -143,6 +178,7 @@ int run(int argc, char** argv) {
       "sync [x]: sim seconds per wall second from physics' first state to the end (start-up "
       "left out);\nratio: sync over alone. Waits: wall time physics spent at the horizon, by "
       "what bounded it\n(a client's name, or vision when the next frame was not published yet).\n");
+  if (!shim_scenario.empty()) shim_case(source_dir, shim_scenario, seconds, url, work);
   work_dir.succeeded();
   return 0;
 }

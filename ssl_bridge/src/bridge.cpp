@@ -145,6 +145,13 @@ SslBridge::SslBridge(ProcessHost& host, BridgeOptions options)
     ubersim::subscribe(bus_, channels_, topics::kVisionSchedule,
                        [this](const vision_schedule_t& s) { on_schedule(s); });
   }
+  if (teams_ && !options_.lcm_door.teams.empty()) {
+    lcm_door_ = std::make_unique<LcmTeamDoor>(
+        bus_, channels_, options_.lcm_door, [this](Team team, radio_packet_t& packet) {
+          packet.sequence = ++radio_sequence_[static_cast<int>(team)];
+          ubersim::publish(bus_, channels_, topics::kRadio.of(team), packet);
+        });
+  }
 }
 
 void SslBridge::send_vision(const SSL_WrapperPacket& packet) {
@@ -170,6 +177,7 @@ void SslBridge::on_vision(const vision_frame_t& frame) {
   } else {
     send_vision(detection_packet(frame));
   }
+  if (lcm_door_ && !teams_->exited() && forwardable(frame)) lcm_door_->hold(frame);
   if (last_of_step) deliver_timed();
   if (!forwardable(frame)) return;
   // Owed before the team can answer: the answer comes back through our own poll loop.
@@ -576,6 +584,7 @@ void SslBridge::log_summary() const {
               " timeouts=" + std::to_string(s.timeouts + s.overflows);
     }
   }
+  if (lcm_door_) text += lcm_door_->summary();
   if (teams_) {
     text += " team group: quiescences=" + std::to_string(teams_->quiescences()) +
             " advances=" + std::to_string(teams_->advances()) +

@@ -59,6 +59,7 @@ void SslBridge::on_schedule(const vision_schedule_t& schedule) {
 void SslBridge::deliver_timed() {
   if (teams_->exited()) return;
   run_teams_to(timed_publication_);
+  if (lcm_door_) lcm_door_->deliver(timed_publication_);
   send_timed_geometry();
   for (const std::string& bytes : timed_vision_) {
     if (vision_out_.send(bytes)) ++counters_["vision packets sent"];
@@ -116,9 +117,10 @@ void SslBridge::register_timed_teams() {
   }
 }
 
-bool SslBridge::at_quiescence(std::int64_t /*now_ns*/) {
+bool SslBridge::at_quiescence(std::int64_t now_ns) {
   teams_up_ = true;
   register_timed_teams();
+  if (lcm_door_) lcm_door_->drain(now_ns);  // RADIO_<TEAM> to the main bus, t_sent = now
   bool answered = false;
   sockaddr_in from{};
   for (Team team : kTeams) {
@@ -150,6 +152,7 @@ void SslBridge::promise(std::int64_t promise_ns) {
 // The team programs ended: their clients leave (the run goes on without
 // them), and what was held back for them goes out now.
 void SslBridge::teams_ended() {
+  if (lcm_door_) lcm_door_->stop_holding();
   for (Team team : timed_teams_) sync_clients_[static_cast<int>(team)].leave();
   if (!timed_geometry_.empty()) vision_out_.send(timed_geometry_);
   for (const std::string& bytes : timed_vision_) vision_out_.send(bytes);

@@ -29,7 +29,8 @@ struct Options {
   ubersim::ssl::GrsimOptions grsim;
   std::string robot_type = "omni4_ssl";
   std::string ball = "ssl_golf_ball";
-  std::vector<std::pair<std::string, std::string>> team_commands;  // --team-command
+  std::vector<std::pair<std::string, std::string>> team_commands;   // --team-command
+  std::vector<std::pair<std::string, std::string>> team_protocols;  // --team-protocol
   double team_grace = 2.0;
 };
 
@@ -196,6 +197,14 @@ void add_team_options(CLI::App& app, Options& options) {
                  "call the time shim does not know) before it is named")
       ->capture_default_str()
       ->check(ubersim::in_range(0.1, 600.0));
+  app.add_option("--team-protocol", options.team_protocols,
+                 "COLOUR PROTOCOL: ssl (default) or lcm: the COLOUR team's --team-command speaks "
+                 "LCM (VISION, REFEREE, ... in, RADIO_<TEAM> out) on a private bus the bridge "
+                 "relays, timed (docs/timeshim.md)")
+      ->type_name("COLOUR PROTOCOL");
+  app.add_option("--team-lcm-url", options.bridge.lcm_door.url,
+                 "the LCM teams' private bus (default: the LCM URL's group on the next port, "
+                 "ttl=0)");
 }
 
 // The --team-command pairs as commands; an error text when they are not valid.
@@ -243,7 +252,12 @@ int parse_and_run(int argc, char** argv) {
   app.add_option("--ball", options.ball, "ball config whose model the geometry reports")
       ->capture_default_str();
   if (const auto stop = ubersim::parse_command_line(app, argc, argv)) return *stop;
-  if (const std::string error = take_team_commands(options); !error.empty()) {
+  std::string error = take_team_commands(options);
+  if (error.empty()) {
+    error = ubersim::ssl::apply_team_protocols(options.team_protocols, options.common.lcm_url,
+                                               b.teams, b.lcm_door);
+  }
+  if (!error.empty()) {
     std::fprintf(stderr, "ubersim_ssl_bridge: %s\n", error.c_str());
     return 2;
   }

@@ -20,6 +20,7 @@
 #include "ubersim/message_bus.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/ssl_bridge/latest_state.hpp"
+#include "ubersim/ssl_bridge/lcm_team_door.hpp"
 #include "ubersim/ssl_bridge/multicast_out.hpp"
 #include "ubersim/ssl_bridge/official_referee.hpp"
 #include "ubersim/ssl_bridge/referee_translation.hpp"
@@ -80,6 +81,8 @@ struct BridgeOptions {
   // mode only): each such team is a *timed* sync client (docs/timeshim.md,
   // "Integration with sync mode"); everything the bridge sends is gated by sim time.
   TeamGroupOptions teams;
+  // Which of them speak LCM, on a private bus (--team-protocol, lcm_team_door.hpp).
+  LcmDoorOptions lcm_door;
 };
 
 // A packet held back for a timed team until the sim time it stands for.
@@ -194,6 +197,7 @@ class SslBridge {
   std::vector<Team> timed_teams_;  // the colours the team group's programs play
   // By Team: what a timed team sent before it registered (at sim time 0).
   std::array<std::vector<radio_packet_t>, 2> timed_early_;
+  std::unique_ptr<LcmTeamDoor> lcm_door_;  // the timed teams that speak LCM
   std::vector<std::string> timed_vision_;  // vision packets waiting for their publication
   bool teams_up_ = false;                  // the group was quiescent once
   std::string timed_geometry_;             // the latest geometry packet
