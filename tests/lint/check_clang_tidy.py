@@ -5,7 +5,7 @@ Runs clang-tidy on every translation unit of the programs and libraries in
 the build's compile_commands.json (files under SOURCE_DIR, not under the build
 folder; not tests/, fuzz/ or a bench/ folder, to keep CI's time), in
 parallel, one process per core. Translation units compiled with the same
-flags are checked in batches: one clang-tidy run on a file in the build
+flags are checked in batches: one clang-tidy run on a file in a temporary
 folder that includes up to BATCH_SIZE of them, so the system headers they
 share are parsed and matched once (most of clang-tidy's time); a batch that
 does not compile as one file (a file defines a name an earlier one defined
@@ -32,11 +32,11 @@ import shlex
 import shutil
 import subprocess
 import sys
+import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
 SKIP = 77
 BATCH_SIZE = 12
-BATCH_FOLDER = "clang-tidy-batches"
 # Not checked unless named: clang-tidy costs 2-30 s of CPU per translation unit, and
 # tests, fuzz targets and benchmarks would more than double the test's time.
 NOT_CHECKED_BY_DEFAULT = re.compile(r"^(tests|fuzz)/|(^|/)bench/")
@@ -142,7 +142,7 @@ def run_clang_tidy(clang_tidy, database_dir, build_dir, headers, config, unit):
             path = os.path.realpath(match["file"])
             if match["check"] == "clang-diagnostic-error" and error_file is None:
                 error_file = path
-            if not is_under(path, build_dir):
+            if not is_under(path, build_dir) and not is_under(path, database_dir):
                 findings.add((path, int(match["line"]), match["check"], match["message"]))
     problem = None
     if result.returncode != 0 and not findings:
@@ -152,15 +152,15 @@ def run_clang_tidy(clang_tidy, database_dir, build_dir, headers, config, unit):
 
 
 class Batches:
-    """Runs clang-tidy on a batch: one file in the build folder that includes the batch's
-    units, with a compile database of its own holding the units' common command."""
+    """Runs clang-tidy on a batch: one file in a folder of its own under TMPDIR (a test
+    writes only there) that includes the batch's units, with a compile database of its own
+    holding the units' common command."""
 
     def __init__(self, clang_tidy, build_dir, headers):
         self.clang_tidy = clang_tidy
         self.build_dir = build_dir
         self.headers = headers
-        self.folder = os.path.join(build_dir, BATCH_FOLDER)
-        shutil.rmtree(self.folder, ignore_errors=True)
+        self.folder = tempfile.mkdtemp(prefix="clang-tidy-batches.")
         self.numbers = itertools.count()  # batch folders
         self.runs = itertools.count()
 
@@ -229,8 +229,11 @@ def main():
     batches.sort(key=lambda batch: -len(batch[0]))  # the longest first: the cores end together
     runner = Batches(clang_tidy, build_dir, headers)
     workers = len(os.sched_getaffinity(0))
-    with ThreadPoolExecutor(max_workers=workers) as pool:
-        results = list(pool.map(runner.check, batches))
+    try:
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            results = list(pool.map(runner.check, batches))
+    finally:
+        shutil.rmtree(runner.folder, ignore_errors=True)
     return report(source_dir, clang_tidy, len(units), next(runner.runs), results)
 
 
