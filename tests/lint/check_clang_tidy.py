@@ -126,29 +126,28 @@ def make_batches(units, source_dir, batch_size):
 
 
 def run_clang_tidy(clang_tidy, database_dir, build_dir, headers, config, unit):
-    """clang-tidy on one file: its findings outside the build folder, the first file with
-    a compile error (None without one), and the tail of its output when it failed without
-    findings."""
+    """clang-tidy on one file: its findings outside the build folder, the files with a
+    compile error, and the tail of its output when it failed without findings."""
     command = [clang_tidy, "--quiet", "-p", database_dir, f"--header-filter={headers}"]
     if config:
         command.append(f"--config-file={config}")
     result = subprocess.run(command + [unit], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, check=False)
     findings = set()
-    error_file = None
+    error_files = set()
     for line in result.stdout.splitlines():
         match = FINDING.match(line)
         if match:
             path = os.path.realpath(match["file"])
-            if match["check"] == "clang-diagnostic-error" and error_file is None:
-                error_file = path
+            if match["check"] == "clang-diagnostic-error":
+                error_files.add(path)
             if not is_under(path, build_dir) and not is_under(path, database_dir):
                 findings.add((path, int(match["line"]), match["check"], match["message"]))
     problem = None
     if result.returncode != 0 and not findings:
         problem = (result.stdout + result.stderr).strip().splitlines()[-5:]
-        error_file = error_file or unit
-    return findings, error_file, problem
+        error_files.add(unit)
+    return findings, error_files, problem
 
 
 class Batches:
@@ -166,23 +165,31 @@ class Batches:
 
     def check(self, batch):
         """(findings, [(unit, problem)]) of a batch's units. Where the batch does not
-        compile as one file (a unit defines a name an earlier one defined too), it is split
-        before the unit with the first error and each part is checked on its own; a unit
-        alone is checked with its own command, as the build compiles it."""
+        compile as one file (a unit defines a name an earlier one defined too), the units
+        with errors are checked again in a batch of their own, the others without them; a
+        unit alone is checked with its own command, as the build compiles it."""
         units, entry, config = batch
         if len(units) == 1:
             next(self.runs)
             findings, _, problem = run_clang_tidy(self.clang_tidy, self.build_dir,
                                                   self.build_dir, self.headers, config, units[0])
             return findings, [(units[0], problem)] if problem else []
-        findings, error_file, _ = self.run(units, entry, config)
-        if error_file is None:
+        findings, error_files, _ = self.run(units, entry, config)
+        if not error_files:
             return findings, []
-        split = units.index(error_file) if error_file in units else len(units) // 2
-        split = max(split, 1)
-        first_findings, first_problems = self.check((units[:split], entry, config))
-        rest_findings, rest_problems = self.check((units[split:], entry, config))
-        return first_findings | rest_findings, first_problems + rest_problems
+        with_errors = [unit for unit in units if unit in error_files]
+        if units[0] in error_files or not with_errors:
+            # The first unit's own error, or one in a header: halves, down to single units.
+            middle = 1 if units[0] in error_files else len(units) // 2
+            parts = [units[:middle], units[middle:]]
+        else:
+            parts = [[unit for unit in units if unit not in error_files], with_errors]
+        findings, problems = set(), []
+        for part in parts:
+            part_findings, part_problems = self.check((part, entry, config))
+            findings |= part_findings
+            problems += part_problems
+        return findings, problems
 
     def run(self, units, entry, config):
         next(self.runs)

@@ -4,7 +4,7 @@
 # headers, must not report generated code in the build folder, and must pass
 # once the findings are gone. Units with the same flags are checked as one batch:
 # unit.cpp and other.cpp share one; twin_a.cpp and twin_b.cpp (other flags) define
-# the same name, so their batch does not compile and is split: each is checked alone.
+# the same name, so their batch does not compile and twin_b is checked apart from twin_a.
 # Skipped (77) when clang-tidy is not installed.
 # Usage: test_clang_tidy_check.sh PYTHON CHECK_CLANG_TIDY_PY
 set -uo pipefail
