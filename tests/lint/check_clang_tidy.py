@@ -7,9 +7,10 @@ folder; not tests/, fuzz/ or a bench/ folder, to keep CI's time), in
 parallel, one process per core. Translation units compiled with the same
 flags are checked in batches: one clang-tidy run on a file in a temporary
 folder that includes up to BATCH_SIZE of them, so the system headers they
-share are parsed and matched once (most of clang-tidy's time); a batch that
+share are parsed and matched once (most of clang-tidy's time); where a batch
 does not compile as one file (a file defines a name an earlier one defined
-too) is split before that file and each part checked on its own. Our headers count too: a finding in any
+too), the files with errors are checked in a batch of their own and the
+others again without them. Our headers count too: a finding in any
 file under SOURCE_DIR is reported; system headers, fetched and generated code
 (the build folder) are not. Each finding is printed once as
 
