@@ -225,7 +225,6 @@ class AutoReferee {
   double progress_time_ = 0;                      // s
   double too_many_reported_[2] = {-1e9, -1e9};    // sim time of the last report per team
   double stage_end_ = 0;                          // s, of a half or the half-time break
-  Team second_half_kickoff_ = Team::Blue;
 };
 
 }  // namespace ubersim::referee
