@@ -20,7 +20,7 @@ TEST(LcmTeamDoor, PrivateBusIsTheNextPortOnTheSameGroupWithTtlZero) {
 
 TEST(LcmTeamDoor, AnLcmTeamsCommandRunsOnThePrivateBus) {
   TeamGroupOptions teams;
-  teams.commands = {{Team::Yellow, "yellow_ai"}, {Team::Blue, "blue_ai"}};
+  teams.commands = {{Team::Yellow, false, "yellow_ai"}, {Team::Blue, false, "blue_ai"}};
   LcmDoorOptions door;
   EXPECT_EQ(apply_team_protocols({{"yellow", "lcm"}, {"blue", "ssl"}},
                                  "udpm://239.255.76.67:7667?ttl=0", teams, door),
@@ -36,7 +36,7 @@ TEST(LcmTeamDoor, AnLcmTeamsCommandRunsOnThePrivateBus) {
 TEST(LcmTeamDoor, BadProtocolsAreRefusedWithAReason) {
   const std::string url = "udpm://239.255.76.67:7667?ttl=0";
   TeamGroupOptions teams;
-  teams.commands = {{Team::Yellow, "yellow_ai"}};
+  teams.commands = {{Team::Yellow, false, "yellow_ai"}};
   LcmDoorOptions door;
   EXPECT_NE(apply_team_protocols({{"yellow", "dds"}}, url, teams, door).find("not ssl or lcm"),
             std::string::npos);
