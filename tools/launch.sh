@@ -88,6 +88,8 @@ usage: tools/launch.sh [options]
                        ubersim's LCM contract instead (VISION, VISION_GEOMETRY, REFEREE in,
                        RADIO_<TEAM> out, e.g. ubersim_demo_team without --sync); with --sync it
                        gets a private LCM bus that the bridge relays, timed
+  --team-deterministic with --sync and --team: the team programs' threads run one at a time in
+                       a fixed order (reruns identical also when their threads race; slower)
   --lan                with --ssl / --ssl-bridge: the command ports (grSim, simulation and robot
                        control) listen on every interface, for an AI on another PC (anyone on
                        the network may command the robots: docs/threat_model.md)
@@ -118,7 +120,7 @@ lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
 referee=none game_length="" tracked=1 game_controller="" yellow_name="" blue_name=""
 ssl_mode=0 lan=0 vision_port="" vision_interface="" vision_ttl="" ssl_local_only=0 ssl_port_offset=0 referee_given=0
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port="" open_viewer=0 ssl_bridge=0
-repeat_games=0 team_yellow="" team_blue="" team_both=""
+repeat_games=0 team_yellow="" team_blue="" team_both="" team_deterministic=0
 while [ $# -gt 0 ]; do
   if [[ $options_with_values == *[[:space:]]"$1"[[:space:]]* ]] && { [ $# -lt 2 ] || [[ $2 == --* ]]; }; then
     usage_error "$1 needs a value (tools/launch.sh --help lists the options)"
@@ -131,6 +133,7 @@ while [ $# -gt 0 ]; do
     --lockstep) lockstep=1; shift ;;
     --sync) sync=1; shift ;;
     --sync-strict) sync=1; sync_strict=1; shift ;;
+    --team-deterministic) team_deterministic=1; shift ;;
     --sync-clients) sync_clients=$2; shift 2 ;;
     --referee)
       referee_given=1
@@ -306,6 +309,9 @@ for team in yellow blue; do
     usage_error "--team $team: the $team demo team plays that colour (--demo $demo)"
   fi
 done
+if [ "$team_deterministic" = 1 ] && { [ "$sync" = 0 ] || [ -z "$team_yellow$team_blue$team_both" ]; }; then
+  usage_error "--team-deterministic: only with --sync and --team"
+fi
 [ -z "$log_file" ] || [ -d "$(dirname "$log_file")" ] ||
   usage_error "--log: no folder '$(dirname "$log_file")' to write '$log_file' into"
 [ -z "$scenario" ] || check_config --scenario scenarios scenario "$scenario"
@@ -548,6 +554,7 @@ if [ "$sync" = 1 ]; then
   done
   # One program playing both colours (an SSL program such as Utama-Core's runner).
   [ -z "$team_both" ] || bridge_args+=(--team-command both "$team_both")
+  [ "$team_deterministic" = 0 ] || bridge_args+=(--team-deterministic)
   [ -z "$team_yellow$team_blue$team_both" ] || bridge_args+=(--team-output-dir "$log_dir")
   physics_args+=(--sync)
   radio_args+=(--sync --sync-clients "${sync_clients:-$clients}")

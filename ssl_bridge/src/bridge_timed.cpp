@@ -90,7 +90,8 @@ void SslBridge::send_timed_geometry() {
 void SslBridge::run_teams_to(double t) {
   const bool running = teams_->run_to(
       to_ns(t), [this](std::int64_t now_ns) { return at_quiescence(now_ns); },
-      [this](std::int64_t promise_ns) { promise(promise_ns); }, [this] { return host_.stopping(); });
+      [this](std::int64_t promise_ns) { promise(promise_ns); },
+      [this] { return host_.stopping(); });
   if (!running && teams_->exited()) teams_ended();
 }
 

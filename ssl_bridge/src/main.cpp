@@ -197,6 +197,10 @@ void add_team_options(CLI::App& app, Options& options) {
                  "call the time shim does not know) before it is named")
       ->capture_default_str()
       ->check(ubersim::in_range(0.1, 600.0));
+  app.add_flag("--team-deterministic", options.bridge.teams.controller.deterministic,
+               "run the team programs' threads one at a time in a fixed order (the time shim's "
+               "deterministic mode, docs/timeshim.md): reruns identical also for programs whose "
+               "threads race at one sim instant; slower");
   app.add_option("--team-protocol", options.team_protocols,
                  "COLOUR PROTOCOL: ssl (default) or lcm: the COLOUR team's --team-command speaks "
                  "LCM (VISION, REFEREE, ... in, RADIO_<TEAM> out) on a private bus the bridge "

@@ -49,6 +49,8 @@ expect_usage_error "--team: colour 'green' is not yellow, blue or both" -- --tea
 expect_usage_error "--team yellow: yellow has a program already" -- --team both 'true' --team yellow 'true' --log-dir "$work/logs"
 expect_usage_error "--team yellow: the yellow demo team plays that colour" -- --demo yellow --team yellow 'true' --log-dir "$work/logs"
 expect_usage_error "--team needs a colour and a command" -- --team blue
+expect_usage_error "--team-deterministic: only with --sync and --team" -- --team-deterministic --team blue 'true' --log-dir "$work/logs"
+expect_usage_error "--team both: an LCM program plays one colour" -- --team both 'lcm:true' --log-dir "$work/logs"
 expect_usage_error "--seed: 'x' is not a whole number" -- --seed x --log-dir "$work/logs"
 expect_usage_error "--sync-clients: 3 is not in [0, 2]" -- --sync-clients 3 --log-dir "$work/logs"
 expect_usage_error "--viewer-port: 0 is not in [1, 65535]" -- --viewer-port 0 --log-dir "$work/logs"

@@ -99,7 +99,7 @@ def classify(sources, text, position):
     for index, name in enumerate(names):
         if name in ("subscribe", "subscribe_unhurried"):
             return "reads"
-        if name == "publish":
+        if name in ("publish", "publish_encoded"):
             return "publishes"
         if name in ("", "of", "channel_name", "make_tuple", "array") or name.startswith("std"):
             continue
