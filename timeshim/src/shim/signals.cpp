@@ -29,8 +29,8 @@ int real_sigtimedwait(const sigset_t* set, siginfo_t* info, const timespec* time
 // signal is added to the set: at the deadline it ends the kernel's wait
 // (taken by it, not by a handler).
 int sigtimedwait_until(const sigset_t* set, siginfo_t* info, std::int64_t deadline) {
-  constexpr timespec kZero{0, 0};
-  const int ready = real_sigtimedwait(set, info, &kZero);
+  constexpr timespec kNoWait{0, 0};
+  const int ready = real_sigtimedwait(set, info, &kNoWait);
   if (ready > 0 || deadline <= shim::view_now()) {
     shim::charge_call();
     return ready;
