@@ -237,9 +237,6 @@ def main():
     batches.sort(key=lambda batch: -len(batch[0]))  # the longest first: the cores end together
     runner = Batches(clang_tidy, build_dir, headers)
     workers = len(os.sched_getaffinity(0))
-    # At the lowest priority: under ctest it runs beside the other tests (tests/lint/
-    # CMakeLists.txt), whose real-time programs then get the cores whenever they want them.
-    os.nice(19)
     try:
         with ThreadPoolExecutor(max_workers=workers) as pool:
             results = list(pool.map(runner.check, batches))
