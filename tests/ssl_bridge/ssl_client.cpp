@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <iostream>
 #include <stdexcept>
 #include <vector>
 
@@ -207,6 +208,31 @@ std::optional<RobotControlResponse> control(UdpClient& client, const RobotContro
   RobotControlResponse response;
   if (!bytes || !response.ParseFromString(*bytes)) return std::nullopt;
   return response;
+}
+
+std::optional<TeamArguments> parse_team_arguments(int argc, char** argv, const char* program) {
+  std::string team;
+  TeamArguments arguments;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string option = argv[i];
+    if (option == "--team") {
+      team = argv[i + 1];
+    } else if (option == "--vision-port") {
+      arguments.vision_port = std::atoi(argv[i + 1]);
+    } else if (option == "--port") {
+      arguments.port = std::atoi(argv[i + 1]);
+    } else {
+      std::cerr << program << ": unknown option " << option << "\n";
+      return std::nullopt;
+    }
+  }
+  if (team != "yellow" && team != "blue") {
+    std::cerr << "usage: " << program << " --team yellow|blue [--vision-port P] [--port P]\n";
+    return std::nullopt;
+  }
+  arguments.yellow = team == "yellow";
+  if (arguments.port == 0) arguments.port = arguments.yellow ? 10302 : 10301;
+  return arguments;
 }
 
 }  // namespace ssl_test

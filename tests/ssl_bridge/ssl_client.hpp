@@ -90,4 +90,15 @@ std::optional<SimulatorResponse> command(UdpClient& client, const SimulatorComma
 std::optional<RobotControlResponse> control(UdpClient& client, const RobotControl& request,
                                             double timeout_s = 3);
 
+// The command line of the test teams (ssl_sync_team, ssl_timed_team):
+// --team yellow|blue [--vision-port P] [--port P]; the port defaults to the
+// team's robot control port (10302 yellow, 10301 blue).
+struct TeamArguments {
+  bool yellow = true;
+  int vision_port = 10020;
+  int port = 0;
+};
+// nullopt after one line on stderr naming `program` (the caller exits 2).
+std::optional<TeamArguments> parse_team_arguments(int argc, char** argv, const char* program);
+
 }  // namespace ssl_test

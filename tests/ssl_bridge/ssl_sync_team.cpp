@@ -75,28 +75,13 @@ RobotControl chase(const World& world) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string team;
-  int vision_port = 10020;
-  int port = 0;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string option = argv[i];
-    if (option == "--team") {
-      team = argv[i + 1];
-    } else if (option == "--vision-port") {
-      vision_port = std::atoi(argv[i + 1]);
-    } else if (option == "--port") {
-      port = std::atoi(argv[i + 1]);
-    } else {
-      std::cerr << "ssl_sync_team: unknown option " << option << "\n";
-      return 2;
-    }
-  }
-  if (team != "yellow" && team != "blue") {
-    std::cerr << "usage: ssl_sync_team --team yellow|blue [--vision-port P] [--port P]\n";
-    return 2;
-  }
-  const bool yellow = team == "yellow";
-  if (port == 0) port = yellow ? 10302 : 10301;
+  const std::optional<ssl_test::TeamArguments> arguments =
+      ssl_test::parse_team_arguments(argc, argv, "ssl_sync_team");
+  if (!arguments) return 2;
+  const bool yellow = arguments->yellow;
+  const std::string team = yellow ? "yellow" : "blue";
+  const int vision_port = arguments->vision_port;
+  const int port = arguments->port;
   struct sigaction action {};
   action.sa_handler = on_signal;
   ::sigaction(SIGINT, &action, nullptr);
