@@ -75,6 +75,7 @@ void TeamGroup::start() {
                                    : options_.output_dir + "/team_" + command.colour() + ".log";
     const pid_t pid = controller_.spawn({"/bin/sh", "-c", command.command}, output);
     pids_.push_back(pid);
+    exit_reported_.push_back(false);
     spdlog::info("team {}: started under the time shim (pid {}): {}{}", command.colour(), pid,
                  command.command, output.empty() ? "" : ", output in " + output);
   }
@@ -86,6 +87,7 @@ bool TeamGroup::run_to(std::int64_t until_ns, const AtQuiescence& at_quiescence,
     if (exited_ || should_stop()) return false;
     const timeshim::Quiescence q = controller_.wait_quiescent(kLook);
     report_problems();
+    report_exits("");
     if (q.state == timeshim::GroupState::Exited) {
       exited_ = true;
       spdlog::warn("timeshim: every process of the team group has ended");
@@ -113,8 +115,25 @@ void TeamGroup::report_problems() {
   }
 }
 
+// Each command's end, once, with its status and the group's sim time: what
+// the batch runner reads (docs/batch.md). `when` says why it ended, if known;
+// an end of its own during the run is a warning (its team has no control now).
+void TeamGroup::report_exits(const char* when) {
+  for (std::size_t i = 0; i < pids_.size(); ++i) {
+    if (exit_reported_[i]) continue;
+    const std::optional<int> status = controller_.exit_status(pids_[i]);
+    if (!status) continue;
+    exit_reported_[i] = true;
+    spdlog::log(*when == '\0' ? spdlog::level::warn : spdlog::level::info,
+                "team {}: the program exited with status {} at sim time {:.3f} s{}",
+                options_.commands[i].colour(), *status,
+                static_cast<double>(controller_.now_ns()) / 1e9, when);
+  }
+}
+
 void TeamGroup::stop() {
   if (exited_) return;
+  report_exits("");
   for (pid_t pid : descendants()) ::kill(pid, SIGTERM);
   // Their handlers run in sim time: let it run freely for a moment.
   const auto give_up = std::chrono::steady_clock::now() + kEndGrace;
@@ -125,6 +144,7 @@ void TeamGroup::stop() {
     }
   }
   report_problems();
+  report_exits(", when the bridge stopped it");
 }
 
 }  // namespace ubersim::ssl

@@ -74,6 +74,25 @@ GAME_TIMEOUT = 120
 """
 
 
+# Team programs started by the batch under the time shim (team COMMAND,
+# docs/batch.md): the C++ SSL test team (tests/ssl_bridge/ssl_timed_team: a
+# receiver thread, a 50 Hz loop, wall-clock reads) as yellow, the demo team
+# without --sync on LCM as blue. The same point twice: two games, same seed.
+TIMED_TEAM = os.path.join(BUILD, "bin", "ssl_timed_team")
+TEAM_PROGRAMS = """SCENARIO = division_b_6v6
+VISION_PROFILE = cmdragons02
+RADIO_PROFILE = cmdragons02
+GAME = division_b
+GAME_LENGTH = 4
+GAMES_PER_POINT = 1
+SEED = 5
+YELLOW = team "{bin}/ssl_timed_team --team {team}"
+BLUE = team "lcm:{bin}/ubersim_demo_team --team {team} --config-dir {config_dir}"
+SWEEP = vision.LATENCY 0.035 0.035
+GAME_TIMEOUT = 60
+"""
+
+
 def event_log_counts(game_dir):
     """Game events by type, and the result line, of a game's event log."""
     counts, result = {}, None
@@ -163,6 +182,28 @@ class BatchTest(unittest.TestCase):
              "experiment.cfg:12: REFEREE: 'no-such-gc' is not an executable file"),
             (SHORT + f"REFEREE = official {STANDIN_GC}\n",  # SHORT is MODE = fast
              "experiment.cfg:12: REFEREE: the official game controller referees in its CI mode"),
+            # Team programs under the time shim (team COMMAND).
+            (SHORT.replace("YELLOW = demo", "YELLOW = team"),
+             "experiment.cfg:8: YELLOW: expected team COMMAND (the program's command line"),
+            (SHORT.replace("YELLOW = demo", "YELLOW = team prog"),
+             "experiment.cfg:8: YELLOW: a team program runs under the time shim, on the "
+             "simulation's clock: MODE must be sync"),
+            (SHORT.replace("MODE = fast", "MODE = sync").replace(
+                "BLUE = demo", "BLUE = team 'prog --lcm-url {lcm_url}'"),
+             "experiment.cfg:9: BLUE: {lcm_url}: expected only {bin}, {team}, {config_dir} or "
+             "{seed}"),
+            (SHORT.replace("MODE = fast", "MODE = sync") + "BOTH = team prog\n",
+             "experiment.cfg:8: YELLOW: BOTH (line 12) names one program for both "
+             "colours: leave out YELLOW and BLUE"),
+            (SHORT.replace("MODE = fast", "MODE = sync").replace("YELLOW = demo\nBLUE = demo\n", "")
+             + "BOTH = team lcm:prog\n",
+             "experiment.cfg:10: BOTH: an LCM program plays one colour"),
+            (SHORT.replace("MODE = fast", "MODE = sync").replace("YELLOW = demo\nBLUE = demo\n", "")
+             + "BOTH = prog\n", "experiment.cfg:10: BOTH: expected team COMMAND, got 'prog'"),
+            (SHORT + "TEAM_DETERMINISTIC = yes\n",
+             "experiment.cfg:12: TEAM_DETERMINISTIC: only with a team program"),
+            (SHORT + "TEAM_DETERMINISTIC = maybe\n",
+             "experiment.cfg:12: TEAM_DETERMINISTIC: expected yes or no, got 'maybe'"),
         ]
         for text, message in cases:
             path = experiment(self.folder, text)
@@ -210,6 +251,64 @@ class BatchTest(unittest.TestCase):
         # Seed 3: the demo teams score once, and the GC decides it is a goal.
         self.assertEqual(games[0]["yellow_goals"], "1")
         self.assertIn("GOAL:1", games[0]["event_types"])
+
+    @unittest.skipUnless(os.access(TIMED_TEAM, os.X_OK) and os.access(
+        os.path.join(BUILD, "bin", "ubersim_ssl_bridge"), os.X_OK),
+        "ssl_timed_team or ubersim_ssl_bridge is not built (protobuf)")
+    def test_team_programs_play_under_the_time_shim_and_the_same_seed_gives_the_same_game(self):
+        out = os.path.join(self.folder, "teams")
+        run = run_batch(experiment(self.folder, TEAM_PROGRAMS), "--out", out)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        games = rows(out)
+        self.assertEqual(len(games), 2)
+        for g in games:
+            self.assertEqual(g["status"], "ok", g)
+            self.assertGreater(float(g["sim_time"]), 4.0)
+            self.assertGreater(float(g["speed"]), 0.0)
+            # Neither team was dropped; each program ran until the bridge stopped
+            # it at the game's end (SIGTERM: 143); the shim found nothing to name.
+            self.assertEqual((g["yellow_without_control"], g["blue_without_control"]),
+                             ("0.0", "0.0"), g)
+            self.assertEqual((g["yellow_team_status"], g["blue_team_status"]), ("143", "143"), g)
+            self.assertEqual(g["timeshim_problems"], "0", g)
+            # The bridge hosted them (their CPU is the bridge's: it reaps them).
+            self.assertIn("ssl_bridge", results_module.cpu_by_process(g))
+            with open(os.path.join(g["log_dir"], "ssl_bridge.log")) as f:
+                bridge = f.read()
+            for team in ("yellow", "blue"):
+                self.assertIn(f"registered as timed sync client ssl_bridge_{team}", bridge)
+            with open(os.path.join(g["log_dir"], "team_yellow.log")) as f:
+                self.assertIn("loop 200 steady 4.000000000", f.read())  # its clock: sim time
+        # The same seed: the same game, event for event, and the same team output.
+        for column in results_module.GAME_OUTCOME_COLUMNS + ["event_types"]:
+            self.assertEqual(games[0][column], games[1][column], column)
+        logs = []
+        for g in games:
+            with open(os.path.join(g["log_dir"], "events.jsonl")) as f:
+                events = [line for line in f if '"result"' not in line]
+            with open(os.path.join(g["log_dir"], "team_yellow.log")) as f:
+                logs.append((events, f.read()))
+        self.assertEqual(logs[0], logs[1])
+        self.assertEqual(ubersim_processes_under(self.folder), [])
+
+    @unittest.skipUnless(os.access(os.path.join(BUILD, "bin", "ubersim_ssl_bridge"), os.X_OK),
+                         "ubersim_ssl_bridge is not built (protobuf)")
+    def test_a_team_program_that_exits_under_the_time_shim_fails_its_game(self):
+        text = TEAM_PROGRAMS.replace("SWEEP = vision.LATENCY 0.035 0.035\n", "").replace(
+            'YELLOW = team "{bin}/ssl_timed_team --team {team}"',
+            "YELLOW = team \"sh -c 'sleep 2; echo yellow gives up; exit 7'\"")
+        out = os.path.join(self.folder, "out")
+        run = run_batch(experiment(self.folder, text), "--out", out)
+        self.assertEqual(run.returncode, 3, run.stdout + run.stderr)
+        (g,) = rows(out)
+        self.assertEqual(g["status"], "failed", g)
+        # sleep 2 is 2 s of sim time: the program ends then, on the group's clock.
+        self.assertIn("yellow's team program exited with status 7 at sim time 2.000 s, before "
+                      "the game ended (see team_yellow.log)", g["reason"])
+        self.assertEqual((g["yellow_team_status"], g["blue_team_status"]), ("7", "143"), g)
+        with open(os.path.join(g["log_dir"], "team_yellow.log")) as f:
+            self.assertIn("yellow gives up", f.read())
+        self.assertEqual(ubersim_processes_under(self.folder), [])
 
     def test_a_crashing_team_program_fails_its_game_with_logs_and_the_batch_goes_on(self):
         text = SHORT.replace("YELLOW = demo", 'YELLOW = "sh -c \'echo yellow crashes; exit 7\'"')

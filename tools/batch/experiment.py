@@ -18,8 +18,13 @@ KEYS = {
     "GAME_LENGTH": "s of sim time per game",
     "GAMES_PER_POINT": "games at each sweep point",
     "SEED": "seed of the first game of each point; game k runs with SEED + k",
-    "YELLOW": "demo, or the yellow team's command line",
-    "BLUE": "demo, or the blue team's command line",
+    "YELLOW": "demo, the yellow team's command line (a sync client of its own), or team COMMAND "
+              "(any program, started under the time shim: tools/launch.sh --team)",
+    "BLUE": "demo, the blue team's command line, or team COMMAND",
+    "BOTH": "team COMMAND: one program under the time shim plays both colours (then no YELLOW "
+            "and BLUE)",
+    "TEAM_DETERMINISTIC": "no (default) or yes: the team programs' threads run one at a time "
+                          "in a fixed order (tools/launch.sh --team-deterministic)",
     "MODE": "sync (reproducible, as fast as the teams answer) or fast (as fast as possible)",
     "GAME_TIMEOUT": "s of wall time after which a game counts as failed",
     "JUDGING": "adaptive (the referee judges the states where a rule could decide) or "
@@ -27,9 +32,12 @@ KEYS = {
     "REFEREE": "builtin (ubersim's automatic referee) or official PATH (the official "
                "ssl-game-controller at PATH, in its CI mode; MODE = sync)",
 }
-OPTIONAL = {"SWEEP", "GAME_TIMEOUT", "MODE", "JUDGING", "REFEREE"}
+OPTIONAL = {"SWEEP", "GAME_TIMEOUT", "MODE", "JUDGING", "REFEREE", "BOTH", "TEAM_DETERMINISTIC"}
 DEFAULTS = {"GAME_TIMEOUT": ["900"], "MODE": ["sync"], "JUDGING": ["adaptive"],
-            "REFEREE": ["builtin"]}
+            "REFEREE": ["builtin"], "TEAM_DETERMINISTIC": ["no"]}
+# What a team program's command line (team COMMAND) may name: it gets its bus
+# and its clock from the SSL bridge, so not {lcm_url} nor {sync}.
+TEAM_PLACEHOLDERS = {"bin": "", "team": "", "config_dir": "", "seed": 0}
 
 # Short names of the files a sweep key may change: kind folder, experiment key
 # naming the file.
@@ -109,7 +117,8 @@ class Experiment:
                     f"{entry['where']}: unknown key '{key}': expected one of "
                     f"{', '.join(sorted(KEYS))} or SWEEP, SWEEP_<n>")
         for key in KEYS:
-            if key not in entries and key not in OPTIONAL:
+            if key not in entries and key not in OPTIONAL and not (
+                    key in ("YELLOW", "BLUE") and "BOTH" in entries):
                 raise ExperimentError(f"{path}: missing key {key} ({KEYS[key]})")
         for key, value in DEFAULTS.items():
             entries.setdefault(key, {"where": path, "values": value})
@@ -137,10 +146,8 @@ class Experiment:
             raise ExperimentError(f"{entries['JUDGING']['where']}: JUDGING: expected adaptive or "
                                   f"every_step, got '{self.judging}'")
         self.referee, self.game_controller = self._referee(entries["REFEREE"])
-        self.teams = {}
-        for team in ("YELLOW", "BLUE"):
-            values = entries[team]["values"]
-            self.teams[team.lower()] = " ".join(values)
+        self.teams, self.team_programs = {}, {}
+        self._teams(entries)
         names = {"SCENARIO": ("scenarios", self.scenario),
                  "VISION_PROFILE": ("vision", self.vision_profile),
                  "RADIO_PROFILE": ("radio", self.radio_profile),
@@ -152,6 +159,67 @@ class Experiment:
         self.sweeps = []
         for key in sorted(k for k in entries if k.startswith("SWEEP")):
             self.sweeps.append(self._sweep(entries, key, bin_dir, config_dir))
+
+    def _teams(self, entries):
+        """self.teams: {colour: "demo" or a command line} of the teams started
+        as they are; self.team_programs: {colour or "both": command} of those
+        the SSL bridge starts under the time shim (team COMMAND; "lcm:COMMAND"
+        speaks LCM, as in tools/launch.sh --team)."""
+        if "BOTH" in entries:
+            for key in ("YELLOW", "BLUE"):
+                if key in entries:
+                    raise ExperimentError(
+                        f"{entries[key]['where']}: {key}: BOTH (line "
+                        f"{entries['BOTH']['where'].rpartition(':')[2]}) names one program for "
+                        f"both colours: leave out YELLOW and BLUE")
+            command = self._team_program(entries["BOTH"], "BOTH", required=True)
+            if command.startswith("lcm:"):
+                raise ExperimentError(f"{entries['BOTH']['where']}: BOTH: an LCM program plays "
+                                      f"one colour (YELLOW = team lcm:COMMAND)")
+            self.team_programs["both"] = command
+        for key in ("YELLOW", "BLUE"):
+            if key not in entries:
+                continue
+            command = self._team_program(entries[key], key)
+            if command is None:
+                self.teams[key.lower()] = " ".join(entries[key]["values"])
+            else:
+                self.team_programs[key.lower()] = command
+        entry = entries["TEAM_DETERMINISTIC"]
+        if entry["values"] not in (["yes"], ["no"]):
+            raise ExperimentError(f"{entry['where']}: TEAM_DETERMINISTIC: expected yes or no, "
+                                  f"got '{' '.join(entry['values'])}'")
+        self.team_deterministic = entry["values"] == ["yes"]
+        if self.team_deterministic and not self.team_programs:
+            raise ExperimentError(f"{entry['where']}: TEAM_DETERMINISTIC: only with a team "
+                                  f"program (YELLOW, BLUE or BOTH = team COMMAND)")
+
+    def _team_program(self, entry, key, required=False):
+        """The command of `team COMMAND`, checked; None for another value."""
+        values, where = entry["values"], entry["where"]
+        if values[0] != "team":
+            if required:
+                raise ExperimentError(f"{where}: {key}: expected team COMMAND, got "
+                                      f"'{' '.join(values)}'")
+            return None
+        command = " ".join(values[1:]).strip()
+        if not command or command == "lcm:":
+            raise ExperimentError(f"{where}: {key}: expected team COMMAND (the program's "
+                                  f"command line after 'team'), got nothing")
+        if self.mode != "sync":
+            raise ExperimentError(f"{where}: {key}: a team program runs under the time shim, "
+                                  f"on the simulation's clock: MODE must be sync")
+        try:
+            command.format(**TEAM_PLACEHOLDERS)
+        except (KeyError, IndexError) as error:
+            raise ExperimentError(
+                f"{where}: {key}: {{{error.args[0]}}}: expected only {{bin}}, {{team}}, "
+                f"{{config_dir}} or {{seed}} in a team program's command line (it gets its "
+                f"bus and clock from the SSL bridge)") from None
+        except ValueError as error:  # a lone brace
+            raise ExperimentError(f"{where}: {key}: {error} (write {{{{ and }}}} for a "
+                                  f"brace)") from None
+        return command
 
     def _referee(self, entry):
         """("builtin", None) or ("official", absolute path of the game controller)."""
@@ -230,6 +298,8 @@ class Experiment:
                     "referee": self.referee,
                     "game_controller": self.game_controller,
                     "teams": self.teams,
+                    "team_programs": self.team_programs,
+                    "team_deterministic": self.team_deterministic,
                     "timeout": self.game_timeout,
                 })
         return specs

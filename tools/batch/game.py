@@ -180,6 +180,75 @@ def _team_command(spec, team, config_dir, lcm_url):
     return shlex.split(text)
 
 
+def _bridge_command(spec, common, config_dir):
+    """The SSL bridge that starts the team programs (team COMMAND) under the
+    time shim, as tools/launch.sh --sync --team COLOUR 'COMMAND' has it do
+    (docs/timeshim.md, "Integration with sync mode"). It logs at info level:
+    each program's end and status are info lines (team_exits)."""
+    bridge = [f"{spec['bin_dir']}/ubersim_ssl_bridge", *[c for c in common if c != "-q"],
+              "--sync", "--tracked", "--listen-address", "127.0.0.1", "--local-only",
+              "--team-output-dir", spec["game_dir"]]
+    for colour, template in sorted(spec["team_programs"].items()):
+        command = template.format(bin=spec["bin_dir"], team=colour, config_dir=config_dir,
+                                  seed=spec["seed"])
+        if command.startswith("lcm:"):
+            bridge += ["--team-protocol", colour, "lcm"]
+            command = command[len("lcm:"):]
+        bridge += ["--team-command", colour, command]
+    if spec.get("team_deterministic"):
+        bridge.append("--team-deterministic")
+    return bridge
+
+
+# The bridge's line for the end of a team program (ssl_bridge/src/team_group.cpp).
+TEAM_EXIT = re.compile(r"team (yellow|blue|both): the program exited with status (\d+) at sim "
+                       r"time ([0-9.]+) s(, when the bridge stopped it)?")
+# The time shim's findings (a thread blocked in a call it does not know, a busy
+# thread, a program without the shim), as the bridge logs them.
+TIMESHIM_PROBLEM = re.compile(r"\] timeshim: (?!every process of the team group has ended)")
+
+
+def team_exits(bridge_log):
+    """{colour: (status, sim time, ended on its own)} of the team programs that
+    ended, from the bridge's log."""
+    exits = {}
+    if not os.path.exists(bridge_log):
+        return exits
+    with open(bridge_log, errors="replace") as f:
+        for match in TEAM_EXIT.finditer(f.read()):
+            exits[match.group(1)] = (int(match.group(2)), float(match.group(3)),
+                                     match.group(4) is None)
+    return exits
+
+
+def early_team_exit(bridge_log, game_end=None):
+    """The reason a game fails when a team program ended on its own before the
+    game did (before game_end, s of sim time, when given): its team has no
+    control from then on. None when none did."""
+    for colour, (status, t, own) in sorted(team_exits(bridge_log).items()):
+        if own and (game_end is None or t < game_end):
+            return (f"{colour}'s team program exited with status {status} at sim time {t:.3f} s, "
+                    f"before the game ended (see team_{colour}.log)")
+    return None
+
+
+def team_figures(game_dir, team_programs):
+    """results.csv's columns of the team programs: each colour's exit status
+    ("" for a team not started under the time shim) and the time shim's
+    findings about them (timeshim_problems: lines in ssl_bridge.log)."""
+    bridge_log = os.path.join(game_dir, "ssl_bridge.log")
+    exits = team_exits(bridge_log)
+    figures = {"yellow_team_status": "", "blue_team_status": "", "timeshim_problems": ""}
+    for colour in team_programs:
+        status = exits.get(colour, ("",))[0]
+        for team in (("yellow", "blue") if colour == "both" else (colour,)):
+            figures[f"{team}_team_status"] = status
+    if team_programs and os.path.exists(bridge_log):
+        with open(bridge_log, errors="replace") as f:
+            figures["timeshim_problems"] = len(TIMESHIM_PROBLEM.findall(f.read()))
+    return figures
+
+
 class ProcessSet:
     """The game's processes; each logs to <game_dir>/<name>.log."""
 
@@ -407,6 +476,7 @@ def run_driver(spec):
         radio += ["--sync", "--sync-clients", "2"]
     referee, referee_ready = _referee_command(spec, lcm_url, config_dir, events_path)
     wall_start = time.monotonic()
+    next_team_look = wall_start
     reason = None
     try:
         processes.start("physics", physics)
@@ -417,8 +487,10 @@ def run_driver(spec):
             processes.start("referee", referee)
             reason = _wait_for_line(processes, "referee", referee_ready, 30)
         if reason is None:
-            for team in ("yellow", "blue"):
+            for team in sorted(spec["teams"]):
                 processes.start(team, _team_command(spec, team, config_dir, lcm_url))
+            if spec.get("team_programs"):
+                processes.start("ssl_bridge", _bridge_command(spec, common, config_dir))
         if reason is None and not sync:
             time.sleep(0.5)  # every listener subscribed before the game starts
             processes.start("referee", referee)
@@ -433,6 +505,11 @@ def run_driver(spec):
                     reason = (f"{name} exited with status {status} before the game ended "
                               f"(see {name}.log)")
                 break
+            if spec.get("team_programs") and time.monotonic() >= next_team_look:
+                next_team_look = time.monotonic() + 0.5
+                reason = early_team_exit(os.path.join(game_dir, "ssl_bridge.log"))
+                if reason is not None:
+                    break
             if time.monotonic() - wall_start > spec["timeout"]:
                 reason = f"no result within GAME_TIMEOUT = {spec['timeout']} s of wall time"
                 break
@@ -443,8 +520,12 @@ def run_driver(spec):
     by_type, result_line = read_events(events_path)
     if reason is None and (result_line is None or not result_line.get("game_over")):
         reason = "the referee ended without a finished game (see referee.log)"
+    if reason is None and spec.get("team_programs"):
+        reason = early_team_exit(os.path.join(game_dir, "ssl_bridge.log"), result_line["t"])
     if reason is not None:
         result = failed(spec, reason)
+        if spec.get("team_programs"):
+            result.update(team_figures(game_dir, spec["team_programs"]))
     else:
         sim_time = result_line["t"]
         # A team whose client was dropped played part of the game without
@@ -465,6 +546,7 @@ def run_driver(spec):
             # As fast as possible physics waits for the vision, so this is 0
             # unless something went wrong; never lost silently (docs/vision.md).
             "vision_frames_lost": vision_frames_lost(os.path.join(game_dir, "vision.log")),
+            **team_figures(game_dir, spec.get("team_programs", {})),
             "cpu": processes.cpu,
             "log_dir": game_dir,
         }

@@ -12,7 +12,8 @@ GAME_COLUMNS = [
     "yellow_possession", "blue_possession", "yellow_fouls", "blue_fouls",
     "yellow_yellow_cards", "blue_yellow_cards", "yellow_red_cards", "blue_red_cards", "events",
     "sim_time", "wall_time", "speed", "yellow_without_control", "blue_without_control",
-    "vision_frames_lost", "reason", "log_dir",
+    "vision_frames_lost", "yellow_team_status", "blue_team_status", "timeshim_problems",
+    "reason", "log_dir",
 ]
 # Columns that depend only on what happened in the game (not on the machine):
 # two runs of the same experiment in sync mode give the same values.

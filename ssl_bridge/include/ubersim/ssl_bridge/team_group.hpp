@@ -67,10 +67,12 @@ class TeamGroup {
 
  private:
   void report_problems();
+  void report_exits(const char* when);
 
   TeamGroupOptions options_;
   timeshim::Controller controller_;
   std::vector<pid_t> pids_;
+  std::vector<bool> exit_reported_;  // per command: its end was logged
   std::int64_t promised_ns_ = -1;
   bool exited_ = false;
   std::uint64_t quiescences_ = 0;
