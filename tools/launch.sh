@@ -33,6 +33,10 @@ usage: tools/launch.sh [options]
   --sync               sync mode: as fast as the demo teams' answers allow, latency exact and
                        runs reproducible (docs/sync.md); the demo teams answer every frame
   --sync-strict        in sync mode, a client that misses the timeout fails the run
+  --sync-timeout S     in sync mode, s of wall time a sync client may hold the simulation back
+                       before the radio emulator drops it (default 1; with --team: 30, as the
+                       time shim names a team thread that is stuck after 2 s, and a team
+                       program that computes long at one sim instant must not be dropped)
   --sync-clients N     clients physics waits for at the start (default: the demo teams started;
                        with --ssl-bridge, 2: each colour no demo team plays is an SSL team's)
   --referee [builtin|official]
@@ -111,11 +115,11 @@ usage_error() {
 
 # Options that take a value. A missing one (the end of the line, or the next
 # option in its place) is an error here, not an unbound $2 below.
-options_with_values=" --scenario --field --profile --speed --sync-clients --game-length --cpu --seed
+options_with_values=" --scenario --field --profile --speed --sync-clients --sync-timeout --game-length --cpu --seed
   --game-controller --yellow-name --blue-name --duration --lcm-url --channel-prefix --demo --demo-mode --log --log-dir --viewer-port
   --vision-port --vision-interface --vision-ttl --ssl-port-offset "
 
-scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" truth_every_step=0 seed="" duration=""
+scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" sync_timeout="" truth_every_step=0 seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
 referee=none game_length="" tracked=1 game_controller="" yellow_name="" blue_name=""
 ssl_mode=0 lan=0 vision_port="" vision_interface="" vision_ttl="" ssl_local_only=0 ssl_port_offset=0 referee_given=0
@@ -135,6 +139,7 @@ while [ $# -gt 0 ]; do
     --sync-strict) sync=1; sync_strict=1; shift ;;
     --team-deterministic) team_deterministic=1; shift ;;
     --sync-clients) sync_clients=$2; shift 2 ;;
+    --sync-timeout) sync_timeout=$2; shift 2 ;;
     --referee)
       referee_given=1
       case "${2:-}" in builtin|official) referee=$2; shift 2 ;; *) referee=builtin; shift ;; esac ;;
@@ -299,6 +304,8 @@ if [ "$repeat_games" = 1 ]; then
   [ "$sync" = 0 ] || usage_error "--repeat-games: not with --sync (physics holds at the end of a synced game)"
 fi
 [ -z "$sync_clients" ] || check_whole --sync-clients "$sync_clients" 0 2
+[ -z "$sync_timeout" ] || check_positive --sync-timeout "$sync_timeout"
+[ -z "$sync_timeout" ] || [ "$sync" = 1 ] || usage_error "--sync-timeout: only with --sync"
 # 0 (any free port) would print an address nobody can open.
 [ -z "$viewer_port" ] || check_whole --viewer-port "$viewer_port" 1 65535
 case "$demo" in yellow|blue|both|none) ;; *) usage_error "--demo: '$demo' is not yellow, blue, both or none" ;; esac
@@ -558,6 +565,10 @@ if [ "$sync" = 1 ]; then
   [ -z "$team_yellow$team_blue$team_both" ] || bridge_args+=(--team-output-dir "$log_dir")
   physics_args+=(--sync)
   radio_args+=(--sync --sync-clients "${sync_clients:-$clients}")
+  # Team programs under the time shim: a stuck thread is named by the shim
+  # (--team-grace); the radio's limit is for a team that computes that long.
+  [ -n "$sync_timeout" ] || [ -z "$team_yellow$team_blue$team_both" ] || sync_timeout=30
+  [ -z "$sync_timeout" ] || radio_args+=(--sync-timeout "$sync_timeout")
   [ "$sync_strict" = 1 ] && radio_args+=(--sync-strict)
   demo_args+=(--sync)
   bridge_args+=(--sync)

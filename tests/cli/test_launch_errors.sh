@@ -53,6 +53,9 @@ expect_usage_error "--team-deterministic: only with --sync and --team" -- --team
 expect_usage_error "--team both: an LCM program plays one colour" -- --team both 'lcm:true' --log-dir "$work/logs"
 expect_usage_error "--seed: 'x' is not a whole number" -- --seed x --log-dir "$work/logs"
 expect_usage_error "--sync-clients: 3 is not in [0, 2]" -- --sync-clients 3 --log-dir "$work/logs"
+expect_usage_error "--sync-timeout: 0 is not greater than 0" -- --sync --sync-timeout 0 --log-dir "$work/logs"
+expect_usage_error "--sync-timeout: only with --sync" -- --sync-timeout 5 --log-dir "$work/logs"
+expect_usage_error "--sync-timeout needs a value" -- --sync --sync-timeout
 expect_usage_error "--viewer-port: 0 is not in [1, 65535]" -- --viewer-port 0 --log-dir "$work/logs"
 expect_usage_error "--game-length: 0 is not greater than 0" -- --game-length 0 --log-dir "$work/logs"
 expect_usage_error "--repeat-games: only with --referee" -- --repeat-games --log-dir "$work/logs"
