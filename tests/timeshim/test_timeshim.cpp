@@ -545,6 +545,20 @@ TEST(Timeshim, DeterministicModeRunsPythonThreadsAndAForkedChildInAFixedOrder) {
   EXPECT_EQ(first.calls, second.calls);
 }
 
+TEST(Timeshim, DeterministicModeGivesPythonTheSameStringHashesOnEveryRun) {
+  if (!have_python()) GTEST_SKIP() << "no /usr/bin/python3";
+  TempDir dir;
+  // CPython seeds its str hashes at random per process, and the order of a
+  // set of strings follows them: the mode sets PYTHONHASHSEED (to 0).
+  const std::vector<std::string> argv = {
+      "/usr/bin/python3", "-c",
+      "print(hash('ubersim'), list({'kick', 'pass', 'dribble', 'chip', 'block', 'mark'}))"};
+  const GroupRun first = run_program(dir, argv, deterministic_in(dir));
+  ASSERT_EQ(first.exit_status, 0) << first.output;
+  const GroupRun second = run_program(dir, argv, deterministic_in(dir));
+  EXPECT_EQ(first.output, second.output);
+}
+
 TEST(Timeshim, DeterministicModeKeepsTheSimTimesOfEveryWait) {
   TempDir dir;
   std::vector<std::vector<std::string>> programs = {{TIMESHIM_PROBE, "threads"},

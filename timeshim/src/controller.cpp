@@ -164,6 +164,11 @@ pid_t Controller::spawn(const std::vector<std::string>& argv, const std::string&
       env_strings.emplace_back(*entry);
     }
   }
+  // Deterministic mode: CPython's string hashes (the order of a set of str)
+  // the same on every run, as addresses below, unless the caller chose a seed.
+  if (options_.deterministic && std::getenv("PYTHONHASHSEED") == nullptr) {
+    env_strings.emplace_back("PYTHONHASHSEED=0");
+  }
   std::vector<char*> envp;
   envp.reserve(env_strings.size() + 1);
   for (auto& entry : env_strings) envp.push_back(entry.data());
