@@ -52,6 +52,10 @@ void ProcessHost::send_truth_demand(Clock::time_point now) {
   if (truth_demand_) truth_demand_->send_now(now);
 }
 
+void ProcessHost::renew_truth_demand(Clock::time_point now) {
+  if (truth_demand_) truth_demand_->tick(now);
+}
+
 void ProcessHost::stop(int status) {
   if (!stop_status_) stop_status_ = status;
 }

@@ -91,7 +91,13 @@ void SslBridge::run_teams_to(double t) {
   const bool running = teams_->run_to(
       to_ns(t), [this](std::int64_t now_ns) { return at_quiescence(now_ns); },
       [this](std::int64_t promise_ns) { promise(promise_ns); },
-      [this] { return host_.stopping(); });
+      [this] {
+        // Called every 200 ms at most while the group runs, which may hold
+        // this loop for seconds: physics forgets a demand not heard for 3 s,
+        // and the tracked frames' states would then depend on wall time.
+        host_.renew_truth_demand(std::chrono::steady_clock::now());
+        return host_.stopping();
+      });
   if (!running && teams_->exited()) teams_ended();
 }
 

@@ -144,6 +144,10 @@ class ProcessHost {
   // for): before something that lets physics step in sync mode (a
   // registration, the first schedule), which must know it by then.
   void send_truth_demand(Clock::time_point now);
+  // Sends the demand if it changed or a second has passed, as the wait loop
+  // does: for a program whose own work keeps it out of that loop for longer
+  // (the SSL bridge running its team programs), lest physics forget it.
+  void renew_truth_demand(Clock::time_point now);
 
   // Ends run() after the current turn with `status` (a fatal condition: 1).
   void stop(int status);
