@@ -311,6 +311,7 @@ void SslBridge::on_ack(const sim_control_ack_t& ack) {
     error->set_message("physics refused the request: " + ack.message);
   }
   if (pending->awaiting.empty()) answer(*pending);
+  if (teams_ && pending_by_request_.empty()) register_timed_teams();
 }
 
 void SslBridge::answer(PendingResponse& pending) {
@@ -336,6 +337,7 @@ void SslBridge::expire_pending(std::chrono::steady_clock::time_point now) {
     answer(*pending);
     it = pending_by_request_.begin();
   }
+  if (teams_ && pending_by_request_.empty()) register_timed_teams();
 }
 
 bool SslBridge::decoded(const std::vector<uint8_t>& bytes, google::protobuf::Message& message,

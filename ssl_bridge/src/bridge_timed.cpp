@@ -106,8 +106,11 @@ void SslBridge::run_teams_to(double t) {
 // The teams register once their programs are up (the group's first
 // quiescence: a team slow to start does not hold physics past its timeout) and
 // the field's geometry is here, so that every run's first frame comes with it.
+// A simulation control command the teams sent while they started (Utama-Core
+// places every robot and the ball) is acknowledged first: physics, held at
+// sim time 0 until they register, applies it there on every run.
 void SslBridge::register_timed_teams() {
-  if (!teams_up_ || timed_geometry_.empty()) return;
+  if (!teams_up_ || timed_geometry_.empty() || !pending_by_request_.empty()) return;
   const auto now = std::chrono::steady_clock::now();
   for (Team team : timed_teams_) {
     SyncClient& client = sync_clients_[static_cast<int>(team)];
@@ -125,21 +128,22 @@ void SslBridge::register_timed_teams() {
 }
 
 bool SslBridge::at_quiescence(std::int64_t now_ns) {
+  bool answered = false;
+  sockaddr_in from{};
+  // Control commands before the registration (see register_timed_teams).
+  while (auto bytes = control_socket_.receive(from)) {
+    handle_control_datagram(*bytes, from);
+    answered = true;
+  }
   teams_up_ = true;
   register_timed_teams();
   if (lcm_door_) lcm_door_->drain(now_ns);  // RADIO_<TEAM> to the main bus, t_sent = now
-  bool answered = false;
-  sockaddr_in from{};
   for (Team team : kTeams) {
     UdpSocket& socket = team == Team::Blue ? blue_socket_ : yellow_socket_;
     while (auto bytes = socket.receive(from)) {
       handle_robot_datagram(team, *bytes, from);
       answered = true;  // its RobotControlResponse went back
     }
-  }
-  while (auto bytes = control_socket_.receive(from)) {
-    handle_control_datagram(*bytes, from);
-    answered = true;
   }
   return answered;
 }
