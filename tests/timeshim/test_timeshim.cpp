@@ -545,16 +545,27 @@ TEST(Timeshim, DeterministicModeRunsPythonThreadsAndAForkedChildInAFixedOrder) {
   EXPECT_EQ(first.calls, second.calls);
 }
 
-TEST(Timeshim, DeterministicModeGivesPythonTheSameStringHashesOnEveryRun) {
+TEST(Timeshim, DeterministicModeGivesPythonTheSameHashesAndRandomBytesOnEveryRun) {
   if (!have_python()) GTEST_SKIP() << "no /usr/bin/python3";
   TempDir dir;
   // CPython seeds its str hashes at random per process, and the order of a
-  // set of strings follows them: the mode sets PYTHONHASHSEED (to 0).
+  // set of strings follows them: the mode sets PYTHONHASHSEED (to 0). Its
+  // random module and uuid4 take their seed and bytes from getrandom, which
+  // the mode serves from a stream of the thread's place in the group; a
+  // forked child gets a stream of its own.
   const std::vector<std::string> argv = {
       "/usr/bin/python3", "-c",
-      "print(hash('ubersim'), list({'kick', 'pass', 'dribble', 'chip', 'block', 'mark'}))"};
+      "import os, random, uuid\n"
+      "print(hash('ubersim'), list({'kick', 'pass', 'dribble', 'chip', 'block', 'mark'}))\n"
+      "print(os.urandom(8).hex(), random.random(), uuid.uuid4())\n"
+      "r, w = os.pipe()\n"
+      "if os.fork() == 0:\n"
+      "    os.write(w, os.urandom(8).hex().encode()); os._exit(0)\n"
+      "os.wait(); child = os.read(r, 16).decode()\n"
+      "print('child', child, child != os.urandom(8).hex())\n"};
   const GroupRun first = run_program(dir, argv, deterministic_in(dir));
   ASSERT_EQ(first.exit_status, 0) << first.output;
+  EXPECT_NE(first.output.find(" True\n"), std::string::npos) << first.output;
   const GroupRun second = run_program(dir, argv, deterministic_in(dir));
   EXPECT_EQ(first.output, second.output);
 }
