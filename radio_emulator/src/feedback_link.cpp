@@ -4,17 +4,17 @@
 
 namespace ubersim::radio {
 namespace {
-constexpr double kLongAgo = -std::numeric_limits<double>::infinity();
+constexpr double kNoSampleYet = -std::numeric_limits<double>::infinity();
 }
 
 FeedbackLink::FeedbackLink(const RadioProfile& profile, Team team, std::uint64_t seed)
     : profile_(profile),
       team_(team),
       random_(seed, team, Direction::Feedback),
-      next_sample_(kLongAgo) {}
+      next_sample_(kNoSampleYet) {}
 
 void FeedbackLink::reset() {
-  next_sample_ = kLongAgo;
+  next_sample_ = kNoSampleYet;
   grid_origin_ = 0;
   in_flight_.clear();
 }
@@ -44,7 +44,7 @@ std::vector<radio_feedback_t> FeedbackLink::on_sim_state(const sim_state_t& stat
 }
 
 double FeedbackLink::sample_phase() const {
-  return next_sample_ == kLongAgo ? 0.0 : grid_origin_;
+  return next_sample_ == kNoSampleYet ? 0.0 : grid_origin_;
 }
 
 void FeedbackLink::sample(const sim_state_t& state) {

@@ -17,10 +17,6 @@ constexpr double kPlacedTolerance = 0.05;  // m
 // A placement the simulation never carried out (refused, lost) is given up after this.
 constexpr double kPlacementWait = 1.0;  // s
 
-Team team_of(const robot_state_t& robot) {
-  return robot.team == team_t::BLUE ? Team::Blue : Team::Yellow;
-}
-
 }  // namespace
 
 std::string short_number(double value) {

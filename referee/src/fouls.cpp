@@ -7,13 +7,6 @@
 #include "ubersim/referee/autoref_rules.hpp"
 
 namespace ubersim::referee {
-namespace {
-
-Team team_of(const robot_state_t& robot) {
-  return robot.team == team_t::BLUE ? Team::Blue : Team::Yellow;
-}
-
-}  // namespace
 
 std::optional<GameEvent> double_touch(const BallTouch& kicker, const BallTouch& last_touch) {
   if (last_touch.id == kicker.id) return std::nullopt;  // still the kick itself

@@ -14,7 +14,7 @@
 namespace ubersim::ssl {
 namespace {
 
-constexpr const char* kSender = "ubersim_ssl_bridge_grsim";
+constexpr const char* kGrsimSender = "ubersim_ssl_bridge_grsim";
 // Asked of the kernel for the port's receive buffer, so a burst waits there
 // rather than being lost (the kernel caps it at net.core.rmem_max).
 constexpr int kReceiveBufferBytes = 4 << 20;
@@ -149,7 +149,7 @@ void GrsimPort::handle_replacement(const grSim_Replacement& replacement) {
   errors.insert(errors.end(), translation.errors.begin(), translation.errors.end());
   for (sim_control_t& request : translation.requests) {
     request.request_id = next_request_id_++;
-    request.sender = kSender;
+    request.sender = kGrsimSender;
     ubersim::publish(bus_, channels_, topics::kSimControl, request);
     ++counters_["grSim SIM_CONTROL requests"];
   }
@@ -162,7 +162,7 @@ void GrsimPort::count_errors(const Errors& errors, const std::string& what) {
 }
 
 void GrsimPort::on_ack(const sim_control_ack_t& ack) {
-  if (ack.sender != kSender || ack.ok) return;
+  if (ack.sender != kGrsimSender || ack.ok) return;
   ++counters_["grSim SIM_CONTROL requests refused by physics"];
   bad_input_.warn("grsim_refused", "physics refused a grSim replacement: " + ack.message);
 }

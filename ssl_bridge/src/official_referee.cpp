@@ -6,7 +6,7 @@
 namespace ubersim::ssl {
 namespace {
 
-constexpr double kMicroseconds = 1e6;
+constexpr double kMicrosecondsPerSecond = 1e6;
 constexpr double kMillimetres = 1e3;
 // SSL rules: a restart is taken once the ball moved this far.
 constexpr double kInPlayDistance = 0.05;  // m
@@ -107,14 +107,15 @@ referee_t OfficialRefereeTracker::translate(const Referee& in, const sim_state_t
   out.sim_time = now;
   out.next_judge_time = now;  // the official game controller does not say when it judges next
   out.stage = static_cast<int8_t>(in.stage());
-  out.stage_time_left = static_cast<double>(in.stage_time_left()) / kMicroseconds;
+  out.stage_time_left = static_cast<double>(in.stage_time_left()) / kMicrosecondsPerSecond;
   out.command = static_cast<int8_t>(in.command());
   out.command_counter = static_cast<int32_t>(in.command_counter());
   out.command_time = command_time_;
   out.has_next_command = in.has_next_command();
   out.next_command = static_cast<int8_t>(in.next_command());
   out.ball_in_play = ball_in_play_;
-  out.action_time_left = static_cast<double>(in.current_action_time_remaining()) / kMicroseconds;
+  out.action_time_left =
+      static_cast<double>(in.current_action_time_remaining()) / kMicrosecondsPerSecond;
   const auto& place = in.designated_position();
   // A position that is not a number is no position: nothing NaN reaches the teams.
   out.has_designated_position =

@@ -111,18 +111,34 @@ def header_filter(source_dir):
     return "^" + re.sub(r"([.^$|()\[\]*+?{}\\])", r"\\\1", source_dir) + "/"
 
 
+MAIN = re.compile(r"^\s*int\s+main\s*\(", re.MULTILINE)
+
+
+def defines_main(path):
+    with open(path, encoding="utf-8", errors="replace") as stream:
+        return MAIN.search(stream.read()) is not None
+
+
 def make_batches(units, source_dir, batch_size):
-    """Units with the same flags and configuration, batch_size at a time:
-    (units, their common compile_commands.json entry, configuration) per batch."""
+    """Units with the same flags and configuration, up to batch_size in a batch and at
+    most one program's main() (two would not compile as one file, and the batch would be
+    split and checked again): (units, their common compile_commands.json entry,
+    configuration) per batch."""
     groups = {}
     for path, entry in units.items():
         key = (flags_without_file(entry), nearest_config(path, source_dir))
         groups.setdefault(key, []).append((path, entry))
     batches = []
     for (_, config), members in groups.items():
-        for start in range(0, len(members), batch_size):
-            chunk = members[start:start + batch_size]
-            batches.append(([path for path, _ in chunk], chunk[0][1], config))
+        mains = [member for member in members if defines_main(member[0])]
+        others = [member for member in members if not defines_main(member[0])]
+        count = max(len(mains), -(-len(members) // batch_size))
+        chunks = [[main] for main in mains] + [[] for _ in range(count - len(mains))]
+        for member in others:
+            min(chunks, key=len).append(member)
+        for chunk in chunks:
+            if chunk:
+                batches.append(([path for path, _ in chunk], chunk[0][1], config))
     return batches
 
 

@@ -10,10 +10,8 @@
 namespace ubersim::report {
 namespace {
 
-constexpr int kRobot = 0;
-constexpr int kStepsPerCommand = 4;  // 60 Hz, the radio's packet rate, at 240 Hz physics
-constexpr double kStartX = -5.5;     // m, where drive_scenario puts the robot
-constexpr double kSettle = 0.1;      // s: a jointed robot comes to rest on its wheels
+constexpr double kStartX = -5.5;  // m, where drive_scenario puts the robot
+constexpr double kSettle = 0.1;   // s: a jointed robot comes to rest on its wheels
 
 // Records the yellow robot's ground truth and detections while it is in scope.
 struct Recorder {

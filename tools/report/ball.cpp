@@ -9,8 +9,6 @@
 namespace ubersim::report {
 namespace {
 
-constexpr int kRobot = 0;
-constexpr int kStepsPerCommand = 4;   // 60 Hz radio
 constexpr double kAtRest = 0.005;     // m/s: slower counts as stopped (5 um of roll left)
 constexpr double kFireTimeout = 1.0;  // s: the kicker must have fired by then
 constexpr double kGap = 0.002;        // m between ball and kicker face (within KICKER_REACH)

@@ -10,11 +10,6 @@
 #include "ubersim/config_paths.hpp"
 
 namespace ubersim::report {
-namespace {
-
-constexpr int kStepsPerCommand = 4;  // 60 Hz radio at 240 Hz physics
-
-}  // namespace
 
 ExperimentSetup::ExperimentSetup(RigPaths paths, std::string ball)
     : paths_(std::move(paths)), ball_name_(std::move(ball)) {

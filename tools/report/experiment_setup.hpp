@@ -13,6 +13,11 @@
 
 namespace ubersim::report {
 
+// The robot every experiment drives (YELLOW_0 of the scenarios below).
+constexpr int kRobot = 0;
+// Physics steps per radio command: the radio's 60 Hz packets at 240 Hz physics.
+constexpr int kStepsPerCommand = 4;
+
 class ExperimentSetup {
  public:
   // Reads the physics config (gravity) and the ball config; throws ConfigError.

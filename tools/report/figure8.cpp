@@ -10,7 +10,6 @@
 namespace ubersim::report {
 namespace {
 
-constexpr int kRobot = 0;
 constexpr double kControlRate = 60;  // Hz, ubersim_demo_team's default --rate
 constexpr int kPathSamples = 4000;   // points of the intended curve per lap
 

@@ -8,7 +8,8 @@
 namespace ubersim::physics {
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// The start of a search for a least or greatest value.
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 // Reference-face choice prefers the first polygon unless the second separates
 // clearly more (keeps contacts from flickering between two nearly equal faces).
 constexpr double kReferenceFaceTolerance = 1e-5;  // m, well below any contact depth that matters
@@ -26,10 +27,10 @@ int clip_segment(const Vec2 in[2], Vec2 normal, double offset, Vec2 out[2]) {
 
 double max_separation(const std::vector<Vec2>& av, const std::vector<Vec2>& an,
                       const std::vector<Vec2>& bv, std::size_t* edge) {
-  double best = -kInfinity;
+  double best = -kUnbounded;
   std::size_t best_edge = 0;
   for (std::size_t i = 0; i < av.size(); ++i) {
-    double s = kInfinity;
+    double s = kUnbounded;
     for (const Vec2& v : bv) s = std::min(s, dot(an[i], v - av[i]));
     if (s > best) {
       best = s;
@@ -65,7 +66,7 @@ bool collide_polygons(const std::vector<Vec2>& a_vertices, const std::vector<Vec
 
   // Incident edge: the one facing the reference face most directly.
   std::size_t inc_edge = 0;
-  double most_opposed = kInfinity;
+  double most_opposed = kUnbounded;
   for (std::size_t j = 0; j < inc_n.size(); ++j) {
     const double d = dot(inc_n[j], n);
     if (d < most_opposed) {
@@ -92,7 +93,7 @@ bool collide_polygons(const std::vector<Vec2>& a_vertices, const std::vector<Vec
   }
   if (contact->count == 0) {
     // Clipping left nothing (a corner against a short face): use the deepest vertex.
-    double deepest = kInfinity;
+    double deepest = kUnbounded;
     Vec2 point;
     for (const Vec2& p : inc_v) {
       const double separation = dot(n, p - v1);

@@ -35,25 +35,20 @@ using ubersim::timeshim::ThreadState;
 
 namespace {
 
-template <typename Fn>
-Fn real(const char* name) {
-  return shim::next_symbol<Fn>(name);
-}
-
 int real_mutex_trylock(pthread_mutex_t* mutex) {
-  static const auto next = real<int (*)(pthread_mutex_t*)>("pthread_mutex_trylock");
+  static const auto next = shim::next_symbol<int (*)(pthread_mutex_t*)>("pthread_mutex_trylock");
   return next(mutex);
 }
 int real_mutex_lock(pthread_mutex_t* mutex) {
-  static const auto next = real<int (*)(pthread_mutex_t*)>("pthread_mutex_lock");
+  static const auto next = shim::next_symbol<int (*)(pthread_mutex_t*)>("pthread_mutex_lock");
   return next(mutex);
 }
 int real_mutex_unlock(pthread_mutex_t* mutex) {
-  static const auto next = real<int (*)(pthread_mutex_t*)>("pthread_mutex_unlock");
+  static const auto next = shim::next_symbol<int (*)(pthread_mutex_t*)>("pthread_mutex_unlock");
   return next(mutex);
 }
 int real_sem_trywait(sem_t* semaphore) {
-  static const auto next = real<int (*)(sem_t*)>("sem_trywait");
+  static const auto next = shim::next_symbol<int (*)(sem_t*)>("sem_trywait");
   return next(semaphore);
 }
 
@@ -207,7 +202,7 @@ void det_await_fd(int fd, short events, int flags) {
   if (!deterministic() || !holds_token()) return;
   if ((flags & MSG_DONTWAIT) != 0 || (::fcntl(fd, F_GETFL) & O_NONBLOCK) != 0) return;
   static const auto real_ppoll =
-      real<int (*)(pollfd*, nfds_t, const timespec*, const sigset_t*)>("ppoll");
+      shim::next_symbol<int (*)(pollfd*, nfds_t, const timespec*, const sigset_t*)>("ppoll");
   constexpr timespec kZero{0, 0};
   for (;;) {
     pollfd wanted{fd, events, 0};
@@ -260,7 +255,8 @@ namespace ubersim::timeshim::shim {
 int real_pthread_create(pthread_t* thread, const pthread_attr_t* attributes,
                         void* (*routine)(void*), void* argument) {
   static const auto next =
-      real<int (*)(pthread_t*, const pthread_attr_t*, void* (*)(void*), void*)>("pthread_create");
+      shim::next_symbol<int (*)(pthread_t*, const pthread_attr_t*, void* (*)(void*), void*)>(
+          "pthread_create");
   return next(thread, attributes, routine, argument);
 }
 
@@ -298,34 +294,35 @@ __attribute__((visibility("default"))) int pthread_mutex_unlock(pthread_mutex_t*
 __attribute__((visibility("default"))) int pthread_cond_wait(pthread_cond_t* cond,
                                                              pthread_mutex_t* mutex) {
   if (shim::segment() == nullptr || !shim::deterministic()) {
-    static const auto next = real<int (*)(pthread_cond_t*, pthread_mutex_t*)>("pthread_cond_wait");
+    static const auto next =
+        shim::next_symbol<int (*)(pthread_cond_t*, pthread_mutex_t*)>("pthread_cond_wait");
     return next(cond, mutex);
   }
   return shim::det_cond_wait(cond, mutex, kNoDeadline);
 }
 
 __attribute__((visibility("default"))) int pthread_cond_signal(pthread_cond_t* cond) {
-  static const auto next = real<int (*)(pthread_cond_t*)>("pthread_cond_signal");
+  static const auto next = shim::next_symbol<int (*)(pthread_cond_t*)>("pthread_cond_signal");
   if (shim::deterministic()) shim::det_wake(DetObject::Cond, cond, false, true);
   return next(cond);
 }
 
 __attribute__((visibility("default"))) int pthread_cond_broadcast(pthread_cond_t* cond) {
-  static const auto next = real<int (*)(pthread_cond_t*)>("pthread_cond_broadcast");
+  static const auto next = shim::next_symbol<int (*)(pthread_cond_t*)>("pthread_cond_broadcast");
   if (shim::deterministic()) shim::det_wake(DetObject::Cond, cond, false, false);
   return next(cond);
 }
 
 __attribute__((visibility("default"))) int sem_wait(sem_t* semaphore) {
   if (shim::segment() == nullptr || !shim::deterministic()) {
-    static const auto next = real<int (*)(sem_t*)>("sem_wait");
+    static const auto next = shim::next_symbol<int (*)(sem_t*)>("sem_wait");
     return next(semaphore);
   }
   return shim::det_sem_wait(semaphore, kNoDeadline);
 }
 
 __attribute__((visibility("default"))) int sem_post(sem_t* semaphore) noexcept {
-  static const auto next = real<int (*)(sem_t*)>("sem_post");
+  static const auto next = shim::next_symbol<int (*)(sem_t*)>("sem_post");
   const int result = next(semaphore);
   if (result == 0 && shim::deterministic()) {
     shim::det_wake(DetObject::Sem, semaphore, is_shared(semaphore), false);
@@ -335,12 +332,12 @@ __attribute__((visibility("default"))) int sem_post(sem_t* semaphore) noexcept {
 }
 
 __attribute__((visibility("default"))) int pthread_join(pthread_t thread, void** result) {
-  static const auto next = real<int (*)(pthread_t, void**)>("pthread_join");
+  static const auto next = shim::next_symbol<int (*)(pthread_t, void**)>("pthread_join");
   return handing_over([&] { return next(thread, result); });
 }
 
 __attribute__((visibility("default"))) pid_t waitpid(pid_t pid, int* status, int options) {
-  static const auto next = real<pid_t (*)(pid_t, int*, int)>("waitpid");
+  static const auto next = shim::next_symbol<pid_t (*)(pid_t, int*, int)>("waitpid");
   if ((options & WNOHANG) != 0) return next(pid, status, options);
   return handing_over([&] { return next(pid, status, options); });
 }
@@ -351,7 +348,7 @@ __attribute__((visibility("default"))) pid_t wait(int* status) {
 
 __attribute__((visibility("default"))) pid_t wait4(pid_t pid, int* status, int options,
                                                    struct rusage* usage) noexcept {
-  static const auto next = real<pid_t (*)(pid_t, int*, int, struct rusage*)>("wait4");
+  static const auto next = shim::next_symbol<pid_t (*)(pid_t, int*, int, struct rusage*)>("wait4");
   if ((options & WNOHANG) != 0) return next(pid, status, options, usage);
   return handing_over([&] { return next(pid, status, options, usage); });
 }
@@ -363,18 +360,18 @@ __attribute__((visibility("default"))) pid_t wait3(int* status, int options,
 
 __attribute__((visibility("default"))) int waitid(idtype_t type, id_t id, siginfo_t* info,
                                                   int options) {
-  static const auto next = real<int (*)(idtype_t, id_t, siginfo_t*, int)>("waitid");
+  static const auto next = shim::next_symbol<int (*)(idtype_t, id_t, siginfo_t*, int)>("waitid");
   if ((options & WNOHANG) != 0) return next(type, id, info, options);
   return handing_over([&] { return next(type, id, info, options); });
 }
 
 __attribute__((visibility("default"))) int sigwaitinfo(const sigset_t* set, siginfo_t* info) {
-  static const auto next = real<int (*)(const sigset_t*, siginfo_t*)>("sigwaitinfo");
+  static const auto next = shim::next_symbol<int (*)(const sigset_t*, siginfo_t*)>("sigwaitinfo");
   return handing_over([&] { return next(set, info); });
 }
 
 __attribute__((visibility("default"))) int sigwait(const sigset_t* set, int* signal_number) {
-  static const auto next = real<int (*)(const sigset_t*, int*)>("sigwait");
+  static const auto next = shim::next_symbol<int (*)(const sigset_t*, int*)>("sigwait");
   return handing_over([&] { return next(set, signal_number); });
 }
 
@@ -383,7 +380,7 @@ __attribute__((visibility("default"))) int sigwait(const sigset_t* set, int* sig
 // has ended (and what ends with it, a pipe's last writer, shows), as on
 // every run.
 __attribute__((visibility("default"))) int kill(pid_t pid, int signal_number) noexcept {
-  static const auto next = real<int (*)(pid_t, int)>("kill");
+  static const auto next = shim::next_symbol<int (*)(pid_t, int)>("kill");
   const int result = next(pid, signal_number);
   if (result == 0 && signal_number != 0) handing_over([] { return 0; });
   return result;
@@ -391,7 +388,7 @@ __attribute__((visibility("default"))) int kill(pid_t pid, int signal_number) no
 
 __attribute__((visibility("default"))) int pthread_kill(pthread_t thread,
                                                         int signal_number) noexcept {
-  static const auto next = real<int (*)(pthread_t, int)>("pthread_kill");
+  static const auto next = shim::next_symbol<int (*)(pthread_t, int)>("pthread_kill");
   const int result = next(thread, signal_number);
   if (result == 0 && signal_number != 0) handing_over([] { return 0; });
   return result;
@@ -400,17 +397,17 @@ __attribute__((visibility("default"))) int pthread_kill(pthread_t thread,
 // A thread that yields (a spin wait for another thread) lets the others
 // that want to run have their turns first.
 __attribute__((visibility("default"))) int sched_yield() noexcept {
-  static const auto next = real<int (*)()>("sched_yield");
+  static const auto next = shim::next_symbol<int (*)()>("sched_yield");
   return handing_over([&] { return next(); });
 }
 
 __attribute__((visibility("default"))) int pause() {
-  static const auto next = real<int (*)()>("pause");
+  static const auto next = shim::next_symbol<int (*)()>("pause");
   return handing_over([&] { return next(); });
 }
 
 __attribute__((visibility("default"))) int sigsuspend(const sigset_t* mask) {
-  static const auto next = real<int (*)(const sigset_t*)>("sigsuspend");
+  static const auto next = shim::next_symbol<int (*)(const sigset_t*)>("sigsuspend");
   return handing_over([&] { return next(mask); });
 }
 

@@ -88,7 +88,7 @@ int lock_until(pthread_mutex_t* mutex, std::int64_t deadline) {
   return result > 0 ? 0 : errno;
 }
 
-bool valid(const timespec* t) {
+bool valid_deadline(const timespec* t) {
   return t != nullptr && t->tv_nsec >= 0 && t->tv_nsec < shim::kNsPerSecond;
 }
 
@@ -104,7 +104,7 @@ __attribute__((visibility("default"))) int pthread_mutex_timedlock(pthread_mutex
         shim::next_symbol<int (*)(pthread_mutex_t*, const timespec*)>("pthread_mutex_timedlock");
     return next(mutex, deadline);
   }
-  if (!valid(deadline)) return EINVAL;
+  if (!valid_deadline(deadline)) return EINVAL;
   shim::sim_clock(CLOCK_REALTIME, &offset);
   return lock_until(mutex, shim::to_ns(*deadline) - offset);
 }
@@ -116,7 +116,7 @@ __attribute__((visibility("default"))) int pthread_mutex_clocklock(pthread_mutex
   if (shim::segment() == nullptr || !shim::sim_clock(clock, &offset)) {
     return real_clocklock(mutex, clock, deadline);
   }
-  if (!valid(deadline)) return EINVAL;
+  if (!valid_deadline(deadline)) return EINVAL;
   return lock_until(mutex, shim::to_ns(*deadline) - offset);
 }
 

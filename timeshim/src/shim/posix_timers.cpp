@@ -31,7 +31,7 @@ namespace {
 constexpr std::uint64_t kTag = 0x7ee5000000000000ULL;
 constexpr std::uint64_t kTagMask = 0xffff000000000000ULL;
 // The clock's offset from sim time, by slot (what an absolute time means).
-std::atomic<std::int64_t> clock_offsets[kMaxThreads];
+std::atomic<std::int64_t> slot_clock_offsets[kMaxThreads];
 
 std::size_t index_of(const ThreadSlot& slot) {
   return static_cast<std::size_t>(&slot - shim::segment()->threads);
@@ -50,16 +50,6 @@ ThreadSlot* sim_timer(timer_t id) {
     return nullptr;
   }
   return &slot;
-}
-
-itimerspec current(const ThreadSlot& slot) {
-  itimerspec value{};
-  const std::int64_t deadline = slot.deadline_ns.load();
-  if (deadline != kNoDeadline) {
-    value.it_value = shim::to_timespec(std::max<std::int64_t>(1, deadline - shim::view_now()));
-  }
-  value.it_interval = shim::to_timespec(slot.interval_ns.load());
-  return value;
 }
 
 struct ThreadCall {
@@ -104,7 +94,7 @@ timer_t create_sim_timer(clockid_t clock, const sigevent* event) {
   slot->timer_tid.store(event != nullptr ? event->_sigev_un._tid : 0);
   slot->timer_overrun.store(0);
   slot->interval_ns.store(0);
-  clock_offsets[index_of(*slot)].store(offset);
+  slot_clock_offsets[index_of(*slot)].store(offset);
   slot->state.store(static_cast<std::uint32_t>(ThreadState::Timer));
   ensure_helper();
   return id;
@@ -117,11 +107,11 @@ int set_sim_timer(timer_t id, int flags, const itimerspec* value, itimerspec* ol
     errno = EINVAL;
     return -1;
   }
-  if (old_value != nullptr) *old_value = current(*slot);
+  if (old_value != nullptr) *old_value = shim::timer_setting(*slot);
   const std::int64_t start = to_ns(value->it_value);
   std::int64_t deadline = kNoDeadline;
   if (start != 0) {
-    deadline = (flags & TIMER_ABSTIME) != 0 ? start - clock_offsets[index_of(*slot)].load()
+    deadline = (flags & TIMER_ABSTIME) != 0 ? start - slot_clock_offsets[index_of(*slot)].load()
                                             : deadline_after(view_now(), start);
   }
   slot->interval_ns.store(to_ns(value->it_interval));
@@ -138,7 +128,7 @@ int get_sim_timer(timer_t id, itimerspec* value) {
     errno = EINVAL;
     return -1;
   }
-  *value = current(*slot);
+  *value = shim::timer_setting(*slot);
   return 0;
 }
 

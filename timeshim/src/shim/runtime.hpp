@@ -15,6 +15,9 @@
 namespace ubersim::timeshim::shim {
 
 inline constexpr std::int64_t kNsPerSecond = 1000000000;
+// The fds the shim keeps per-fd state for (timers, socket timeouts); a higher fd
+// keeps the kernel's wall-time behaviour.
+inline constexpr int kMaxFd = 65536;
 
 // The next definition of `name` after the shim (libc's), resolved once.
 template <typename Fn>

@@ -30,7 +30,7 @@ int sleep_for(std::int64_t duration_ns, ShimCall call, timespec* remaining) {
   return result;
 }
 
-bool valid(const timespec* t) {
+bool valid_time(const timespec* t) {
   return t != nullptr && t->tv_nsec >= 0 && t->tv_nsec < shim::kNsPerSecond && t->tv_sec >= 0;
 }
 
@@ -44,7 +44,7 @@ __attribute__((visibility("default"))) int nanosleep(const timespec* duration,
     static const auto real = shim::next_symbol<int (*)(const timespec*, timespec*)>("nanosleep");
     return real(duration, remaining);
   }
-  if (!valid(duration)) {
+  if (!valid_time(duration)) {
     errno = EINVAL;
     return -1;
   }
@@ -63,7 +63,7 @@ __attribute__((visibility("default"))) int clock_nanosleep(clockid_t clock, int 
         shim::next_symbol<int (*)(clockid_t, int, const timespec*, timespec*)>("clock_nanosleep");
     return real(clock, flags, request, remaining);
   }
-  if (!valid(request)) return EINVAL;
+  if (!valid_time(request)) return EINVAL;
   if ((flags & TIMER_ABSTIME) == 0) {
     return sleep_for(shim::to_ns(*request), ShimCall::ClockNanosleep, remaining);
   }
@@ -154,7 +154,7 @@ __attribute__((visibility("default"))) int sem_timedwait(sem_t* semaphore,
     static const auto real = shim::next_symbol<int (*)(sem_t*, const timespec*)>("sem_timedwait");
     return real(semaphore, deadline);
   }
-  if (!valid(deadline)) {
+  if (!valid_time(deadline)) {
     errno = EINVAL;
     return -1;
   }
@@ -170,7 +170,7 @@ __attribute__((visibility("default"))) int sem_clockwait(sem_t* semaphore, clock
         shim::next_symbol<int (*)(sem_t*, clockid_t, const timespec*)>("sem_clockwait");
     return real(semaphore, clock, deadline);
   }
-  if (!valid(deadline)) {
+  if (!valid_time(deadline)) {
     errno = EINVAL;
     return -1;
   }

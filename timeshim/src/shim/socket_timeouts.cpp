@@ -22,9 +22,8 @@ using ubersim::timeshim::ShimCall;
 
 namespace {
 
-// Receive and send timeouts in ns by fd (0: none). Sockets with higher fds
-// keep the kernel's (wall-time) timeout.
-constexpr int kMaxFd = 65536;
+// Receive and send timeouts in ns by fd (0: none).
+using shim::kMaxFd;
 std::atomic<std::int64_t> receive_timeout_ns[kMaxFd];
 std::atomic<std::int64_t> send_timeout_ns[kMaxFd];
 
@@ -74,11 +73,6 @@ ssize_t receive_until(int fd, std::int64_t timeout, Receive&& receive, short eve
   }
 }
 
-template <typename Fn>
-Fn real(const char* name) {
-  return shim::next_symbol<Fn>(name);
-}
-
 }  // namespace
 
 extern "C" {
@@ -86,7 +80,8 @@ extern "C" {
 __attribute__((visibility("default"))) int setsockopt(int fd, int level, int option,
                                                       const void* value,
                                                       socklen_t length) noexcept {
-  static const auto next = real<int (*)(int, int, int, const void*, socklen_t)>("setsockopt");
+  static const auto next =
+      shim::next_symbol<int (*)(int, int, int, const void*, socklen_t)>("setsockopt");
   std::atomic<std::int64_t>* table = timeout_table(level, option);
   if (table == nullptr || fd < 0 || fd >= kMaxFd || shim::segment() == nullptr ||
       length < static_cast<socklen_t>(sizeof(timeval))) {
@@ -109,7 +104,8 @@ __attribute__((visibility("default"))) int setsockopt(int fd, int level, int opt
 
 __attribute__((visibility("default"))) int getsockopt(int fd, int level, int option, void* value,
                                                       socklen_t* length) noexcept {
-  static const auto next = real<int (*)(int, int, int, void*, socklen_t*)>("getsockopt");
+  static const auto next =
+      shim::next_symbol<int (*)(int, int, int, void*, socklen_t*)>("getsockopt");
   const std::atomic<std::int64_t>* table = timeout_table(level, option);
   const std::int64_t timeout = table == nullptr ? 0 : timeout_in(table, fd);
   if (timeout == 0 || *length < static_cast<socklen_t>(sizeof(timeval))) {
@@ -123,7 +119,7 @@ __attribute__((visibility("default"))) int getsockopt(int fd, int level, int opt
 }
 
 __attribute__((visibility("default"))) ssize_t recv(int fd, void* buffer, size_t size, int flags) {
-  static const auto next = real<ssize_t (*)(int, void*, size_t, int)>("recv");
+  static const auto next = shim::next_symbol<ssize_t (*)(int, void*, size_t, int)>("recv");
   const std::int64_t timeout = timeout_of(fd);
   if (timeout == 0 || !blocking(fd, flags)) {
     shim::det_await_fd(fd, POLLIN, flags);
@@ -136,7 +132,7 @@ __attribute__((visibility("default"))) ssize_t recvfrom(int fd, void* buffer, si
                                                         int flags, sockaddr* from,
                                                         socklen_t* from_length) {
   static const auto next =
-      real<ssize_t (*)(int, void*, size_t, int, sockaddr*, socklen_t*)>("recvfrom");
+      shim::next_symbol<ssize_t (*)(int, void*, size_t, int, sockaddr*, socklen_t*)>("recvfrom");
   const std::int64_t timeout = timeout_of(fd);
   if (timeout == 0 || !blocking(fd, flags)) {
     shim::det_await_fd(fd, POLLIN, flags);
@@ -148,7 +144,7 @@ __attribute__((visibility("default"))) ssize_t recvfrom(int fd, void* buffer, si
 }
 
 __attribute__((visibility("default"))) ssize_t recvmsg(int fd, msghdr* message, int flags) {
-  static const auto next = real<ssize_t (*)(int, msghdr*, int)>("recvmsg");
+  static const auto next = shim::next_symbol<ssize_t (*)(int, msghdr*, int)>("recvmsg");
   const std::int64_t timeout = timeout_of(fd);
   if (timeout == 0 || !blocking(fd, flags)) {
     shim::det_await_fd(fd, POLLIN, flags);
@@ -158,19 +154,19 @@ __attribute__((visibility("default"))) ssize_t recvmsg(int fd, msghdr* message, 
 }
 
 __attribute__((visibility("default"))) ssize_t read(int fd, void* buffer, size_t size) {
-  static const auto next = real<ssize_t (*)(int, void*, size_t)>("read");
+  static const auto next = shim::next_symbol<ssize_t (*)(int, void*, size_t)>("read");
   const std::int64_t timeout = timeout_of(fd);
   if (timeout == 0 || !blocking(fd, 0)) {
     shim::det_await_fd(fd, POLLIN, 0);
     return next(fd, buffer, size);
   }
-  static const auto next_recv = real<ssize_t (*)(int, void*, size_t, int)>("recv");
+  static const auto next_recv = shim::next_symbol<ssize_t (*)(int, void*, size_t, int)>("recv");
   return receive_until(fd, timeout, [&](int more) { return next_recv(fd, buffer, size, more); });
 }
 
 __attribute__((visibility("default"))) int accept4(int fd, sockaddr* address, socklen_t* length,
                                                    int flags) {
-  static const auto next = real<int (*)(int, sockaddr*, socklen_t*, int)>("accept4");
+  static const auto next = shim::next_symbol<int (*)(int, sockaddr*, socklen_t*, int)>("accept4");
   const std::int64_t timeout = timeout_of(fd);
   if (timeout == 0 || !blocking(fd, 0)) {
     shim::det_await_fd(fd, POLLIN, 0);
@@ -195,7 +191,7 @@ __attribute__((visibility("default"))) int accept(int fd, sockaddr* address, soc
 
 __attribute__((visibility("default"))) ssize_t send(int fd, const void* buffer, size_t size,
                                                     int flags) {
-  static const auto next = real<ssize_t (*)(int, const void*, size_t, int)>("send");
+  static const auto next = shim::next_symbol<ssize_t (*)(int, const void*, size_t, int)>("send");
   const std::int64_t timeout = timeout_in(send_timeout_ns, fd);
   if (timeout == 0 || !blocking(fd, flags)) return next(fd, buffer, size, flags);
   return receive_until(
@@ -207,7 +203,8 @@ __attribute__((visibility("default"))) ssize_t sendto(int fd, const void* buffer
                                                       int flags, const sockaddr* to,
                                                       socklen_t to_length) {
   static const auto next =
-      real<ssize_t (*)(int, const void*, size_t, int, const sockaddr*, socklen_t)>("sendto");
+      shim::next_symbol<ssize_t (*)(int, const void*, size_t, int, const sockaddr*, socklen_t)>(
+          "sendto");
   const std::int64_t timeout = timeout_in(send_timeout_ns, fd);
   if (timeout == 0 || !blocking(fd, flags)) return next(fd, buffer, size, flags, to, to_length);
   return receive_until(
@@ -216,7 +213,7 @@ __attribute__((visibility("default"))) ssize_t sendto(int fd, const void* buffer
 }
 
 __attribute__((visibility("default"))) ssize_t sendmsg(int fd, const msghdr* message, int flags) {
-  static const auto next = real<ssize_t (*)(int, const msghdr*, int)>("sendmsg");
+  static const auto next = shim::next_symbol<ssize_t (*)(int, const msghdr*, int)>("sendmsg");
   const std::int64_t timeout = timeout_in(send_timeout_ns, fd);
   if (timeout == 0 || !blocking(fd, flags)) return next(fd, message, flags);
   return receive_until(
@@ -225,17 +222,18 @@ __attribute__((visibility("default"))) ssize_t sendmsg(int fd, const msghdr* mes
 }
 
 __attribute__((visibility("default"))) ssize_t write(int fd, const void* buffer, size_t size) {
-  static const auto next = real<ssize_t (*)(int, const void*, size_t)>("write");
+  static const auto next = shim::next_symbol<ssize_t (*)(int, const void*, size_t)>("write");
   const std::int64_t timeout = timeout_in(send_timeout_ns, fd);
   if (timeout == 0 || !blocking(fd, 0)) return next(fd, buffer, size);
-  static const auto next_send = real<ssize_t (*)(int, const void*, size_t, int)>("send");
+  static const auto next_send =
+      shim::next_symbol<ssize_t (*)(int, const void*, size_t, int)>("send");
   return receive_until(
       fd, timeout, [&](int more) { return next_send(fd, buffer, size, more); }, POLLOUT,
       ShimCall::SocketSend);
 }
 
 __attribute__((visibility("default"))) int close(int fd) {
-  static const auto next = real<int (*)(int)>("close");
+  static const auto next = shim::next_symbol<int (*)(int)>("close");
   if (fd >= 0 && fd < kMaxFd) {
     receive_timeout_ns[fd].store(0, std::memory_order_relaxed);
     send_timeout_ns[fd].store(0, std::memory_order_relaxed);

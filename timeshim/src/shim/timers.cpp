@@ -23,10 +23,10 @@ using ubersim::timeshim::ThreadState;
 
 namespace {
 
-constexpr int kMaxFd = 65536;
+using ubersim::timeshim::shim::kMaxFd;
 std::atomic<ThreadSlot*> timers[kMaxFd];
 // The clock's offset from sim time, by fd (what an absolute time means).
-std::atomic<std::int64_t> clock_offsets[kMaxFd];
+std::atomic<std::int64_t> fd_clock_offsets[kMaxFd];
 
 ThreadSlot* timer_of(int fd) {
   if (fd < 0 || fd >= kMaxFd) return nullptr;
@@ -44,19 +44,19 @@ void drain(int fd) {
   ::fcntl(fd, F_SETFL, flags);
 }
 
-itimerspec current(const ThreadSlot& slot) {
-  itimerspec value{};
-  const std::int64_t deadline = slot.deadline_ns.load();
-  if (deadline != kNoDeadline) {
-    value.it_value = shim::to_timespec(std::max<std::int64_t>(1, deadline - shim::view_now()));
-  }
-  value.it_interval = shim::to_timespec(slot.interval_ns.load());
-  return value;
-}
-
 }  // namespace
 
 namespace ubersim::timeshim::shim {
+
+itimerspec timer_setting(const ThreadSlot& slot) {
+  itimerspec value{};
+  const std::int64_t deadline = slot.deadline_ns.load();
+  if (deadline != kNoDeadline) {
+    value.it_value = to_timespec(std::max<std::int64_t>(1, deadline - view_now()));
+  }
+  value.it_interval = to_timespec(slot.interval_ns.load());
+  return value;
+}
 
 void forget_timer(int fd) {
   if (fd < 0 || fd >= kMaxFd) return;
@@ -87,7 +87,7 @@ __attribute__((visibility("default"))) int timerfd_create(clockid_t clock, int f
   slot->timer_kind.store(static_cast<std::uint32_t>(ubersim::timeshim::TimerKind::Fd));
   slot->interval_ns.store(0);
   slot->state.store(static_cast<std::uint32_t>(ThreadState::Timer));
-  clock_offsets[fd].store(offset);
+  fd_clock_offsets[fd].store(offset);
   timers[fd].store(slot);
   shim::ensure_helper();
   return fd;
@@ -107,11 +107,11 @@ __attribute__((visibility("default"))) int timerfd_settime(int fd, int flags,
     errno = EINVAL;
     return -1;
   }
-  if (old_value != nullptr) *old_value = current(*slot);
+  if (old_value != nullptr) *old_value = shim::timer_setting(*slot);
   const std::int64_t start = shim::to_ns(value->it_value);
   std::int64_t deadline = kNoDeadline;
   if (start != 0) {
-    deadline = (flags & TFD_TIMER_ABSTIME) != 0 ? start - clock_offsets[fd].load()
+    deadline = (flags & TFD_TIMER_ABSTIME) != 0 ? start - fd_clock_offsets[fd].load()
                                                 : shim::deadline_after(shim::view_now(), start);
   }
   drain(fd);
@@ -128,7 +128,7 @@ __attribute__((visibility("default"))) int timerfd_gettime(int fd, itimerspec* v
     static const auto real = shim::next_symbol<int (*)(int, itimerspec*)>("timerfd_gettime");
     return real(fd, value);
   }
-  *value = current(*slot);
+  *value = shim::timer_setting(*slot);
   return 0;
 }
 

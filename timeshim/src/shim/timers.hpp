@@ -9,6 +9,10 @@
 
 namespace ubersim::timeshim::shim {
 
+// What timer_gettime/timerfd_gettime say of a timer's slot: the time left to
+// its next expiry (at least 1 ns while armed) and its interval.
+itimerspec timer_setting(const ThreadSlot& slot);
+
 // The fd is closed: its timer, if it is one of the shim's, goes.
 void forget_timer(int fd);
 

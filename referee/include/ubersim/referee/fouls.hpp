@@ -6,12 +6,18 @@
 #include <optional>
 #include <ubersim/field_geometry_t.hpp>
 #include <ubersim/sim_state_t.hpp>
+#include <ubersim/team_t.hpp>
 
 #include "ubersim/referee/autoref.hpp"
 #include "ubersim/referee/autoref_config.hpp"
 #include "ubersim/referee/situations.hpp"
 
 namespace ubersim::referee {
+
+// The team a robot of a simulation state plays for.
+inline Team team_of(const robot_state_t& robot) {
+  return robot.team == team_t::BLUE ? Team::Blue : Team::Yellow;
+}
 
 // The robot that took a kick-off or free kick (`kicker`) touched the ball
 // again (`last_touch`, a later touch) before any other robot did. The event is
