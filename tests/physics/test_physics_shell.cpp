@@ -20,16 +20,26 @@
 namespace ubersim::physics::testing {
 namespace {
 
+// Every SIM_STATE published on the host's bus, into `states`.
+void record_states(ProcessHost& host, std::vector<sim_state_t>& states) {
+  subscribe(
+      host.bus(), host.channels(), topics::kSimState,
+      [&states](const sim_state_t& s) { states.push_back(s); }, 100000);
+}
+
+ShellOptions as_fast_as_possible() {
+  ShellOptions options;
+  options.speed = 0;
+  return options;
+}
+
 TEST(PhysicsShell, PublishesAtTheConfiguredRateAndStopsAtItsDuration) {
   WorldSetup setup = load_world_setup(kConfigDir, "field2002_5v5", "default");
   setup.physics.state_publish_rate = 60;  // every 4th step at 240 Hz
   ProcessHost host("memq://", ChannelNames(), "physics");
   std::vector<sim_state_t> states;
-  subscribe(
-      host.bus(), host.channels(), topics::kSimState,
-      [&](const sim_state_t& s) { states.push_back(s); }, 100000);
-  ShellOptions options;
-  options.speed = 0;
+  record_states(host, states);
+  ShellOptions options = as_fast_as_possible();
   options.duration = 1.0;
   PhysicsShell shell(setup, host, options);
   EXPECT_EQ(shell.run(), 0);
@@ -47,8 +57,7 @@ TEST(PhysicsShell, PublishesAtTheConfiguredRateAndStopsAtItsDuration) {
 TEST(PhysicsShell, CommandsOverTheBusMoveRobots) {
   WorldSetup setup = load_world_setup(kConfigDir, "division_b_6v6", "default");
   ProcessHost host("memq://", ChannelNames(), "physics");
-  ShellOptions options;
-  options.speed = 0;
+  ShellOptions options = as_fast_as_possible();
   options.duration = 1.0;
   PhysicsShell shell(setup, host, options);
   sim_commands_t packet{};
@@ -186,11 +195,8 @@ TEST(PhysicsShell, WaitForVisionHoldsTheFirstStateUntilTheVisionListens) {
   WorldSetup setup = load_world_setup(kConfigDir, "field2002_5v5", "default");
   ProcessHost host("memq://", ChannelNames(), "physics");
   std::vector<sim_state_t> states;
-  subscribe(
-      host.bus(), host.channels(), topics::kSimState,
-      [&](const sim_state_t& s) { states.push_back(s); }, 100000);
-  ShellOptions options;
-  options.speed = 0;
+  record_states(host, states);
+  ShellOptions options = as_fast_as_possible();
   options.duration = 0.5;
   options.wait_for_vision = true;
   PhysicsShell shell(setup, host, options);
