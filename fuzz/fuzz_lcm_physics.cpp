@@ -2,7 +2,7 @@
 // validation (issue 13, item 3). Each input is one datagram on one of the
 // channels physics subscribes to (physics_inputs.hpp), delivered through the
 // real MessageBus (decode_bounded, the subscriptions ubersim_physics makes)
-// into a real PhysicsServer and World (ODE) of the Division B scenario,
+// into a real PhysicsShell and World (ODE) of the Division B scenario,
 // which then steps 0.1 s. What must hold for every input:
 //  * nothing crashes, leaks or allocates beyond the fuzz build's limits;
 //  * every SIM_STATE physics publishes, during the input and after the
@@ -20,7 +20,7 @@
 #include "fuzz_support.hpp"
 #include "physics_inputs.hpp"
 #include "ubersim/message_bus.hpp"
-#include "ubersim/physics/physics_server.hpp"
+#include "ubersim/physics/physics_shell.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/topics.hpp"
 
@@ -102,13 +102,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ubersim::ProcessHost host("memq://", ubersim::ChannelNames(), "physics");
   ubersim::MessageBus& bus = host.bus();
   const ubersim::ChannelNames& channels = host.channels();
-  ubersim::physics::ServerOptions options;
+  ubersim::physics::ShellOptions options;
   options.scenario = "division_b_6v6";
   options.speed = -1;  // lockstep: it steps when told, whatever the wall clock does
   options.truth_on_demand = true;
   options.sync_referee = (data[0] & ubersim::fuzz::kSyncRefereeBit) != 0;
   options.sync = options.sync_referee || (data[0] & ubersim::fuzz::kSyncBit) != 0;
-  ubersim::physics::PhysicsServer server(division_b(), host, options);
+  ubersim::physics::PhysicsShell shell(division_b(), host, options);
   ubersim::subscribe(
       bus, channels, ubersim::topics::kSimState,
       [](const ubersim::sim_state_t& state) {
@@ -128,7 +128,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   while (bus.handle_pending() > 0) {
   }
   ubersim::sim_state_t state{};
-  server.world().fill_state(state);
+  shell.world().fill_state(state);
   if (!finite(state)) std::abort();
   return 0;
 }

@@ -3,7 +3,7 @@
 // field) robots with each drive model; beside each, in the same run, the same
 // scene stepped by bare ODE (no framework, no messages), so the figure reads
 // as ubersim's overhead over bare ODE. The ubersim figure is the full server
-// (PhysicsServer on its ProcessHost) running as fast as possible with SIM_STATE published every
+// (PhysicsShell on its ProcessHost) running as fast as possible with SIM_STATE published every
 // step (memq:// by default, or any LCM URL) and commands arriving on
 // SIM_COMMANDS at 60 Hz.
 //
@@ -23,7 +23,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/logging.hpp"
-#include "ubersim/physics/physics_server.hpp"
+#include "ubersim/physics/physics_shell.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/process_main.hpp"
 #include "ubersim/topics.hpp"
@@ -96,24 +96,24 @@ struct CommandFeeder {
 double run_server(const WorldSetup& setup, const std::string& url, double sim_seconds, double speed,
                   ServerStats* stats_out = nullptr) {
   ProcessHost host(with_receive_buffer(url), ChannelNames(), "physics");
-  ServerOptions options;
+  ShellOptions options;
   options.scenario = "benchmark";
   options.speed = speed;
   options.duration = sim_seconds;
-  PhysicsServer server(setup, host, options);
+  PhysicsShell shell(setup, host, options);
   CommandFeeder feeder;
   feeder.bus = &host.bus();
   feeder.commands_channel = channel_name(host.channels(), topics::kSimCommands);
-  feeder.dt = server.world().dt();
-  for (const auto& r : server.world().robots()) feeder.robots.emplace_back(r->team(), r->id());
+  feeder.dt = shell.world().dt();
+  for (const auto& r : shell.world().robots()) feeder.robots.emplace_back(r->team(), r->id());
   host.bus().subscribe_raw(
       channel_name(host.channels(), topics::kSimState),
       [&feeder](const std::string&, const void*, std::size_t, std::int64_t) { feeder.on_state(); });
-  server.run();
+  shell.run();
   // The host stops a run on Ctrl-C; the bench stops with it rather than go on to the next run.
   if (host.shutdown().requested()) throw std::runtime_error("stopped (Ctrl-C)");
-  if (stats_out != nullptr) *stats_out = server.stats();
-  return sim_seconds / server.stats().wall_seconds;
+  if (stats_out != nullptr) *stats_out = shell.stats();
+  return sim_seconds / shell.stats().wall_seconds;
 }
 
 double run_world_only(const WorldSetup& setup, double sim_seconds) {

@@ -14,7 +14,7 @@
 #include "ubersim/field_side.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/process_main.hpp"
-#include "ubersim/referee/auto_runner.hpp"
+#include "ubersim/referee/autoref_shell.hpp"
 #include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/scene_io.hpp"
 #include "ubersim/referee/sim_link.hpp"

@@ -3,7 +3,8 @@
 // SSL-Vision wrapper packets out (from VISION / VISION_GEOMETRY), the SSL
 // simulation protocol in (simulation control -> SIM_CONTROL, robot control ->
 // RADIO_<TEAM>, feedback from RADIO_FEEDBACK_<TEAM>), and grSim's own protocol
-// (grSim_Packet on 20011, Robots_Status back). See docs/ssl_bridge.md.
+// (grSim_Packet on 20011, Robots_Status back). See docs/ssl_bridge.md; its
+// shell (SslBridgeShell) is ssl_bridge_shell.cpp.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
@@ -12,76 +13,15 @@
 #include <utility>
 #include <vector>
 
+#include "ssl_bridge_shell.hpp"
 #include "ubersim/cli.hpp"
-#include "ubersim/config.hpp"
-#include "ubersim/config_paths.hpp"
-#include "ubersim/process_host.hpp"
 #include "ubersim/process_main.hpp"
-#include "ubersim/robot_config.hpp"
 #include "ubersim/ssl_bridge/bridge.hpp"
 #include "ubersim/ssl_bridge/grsim_port.hpp"
 
 namespace {
 
-struct Options {
-  ubersim::CommonOptions common;
-  ubersim::ssl::BridgeOptions bridge;
-  ubersim::ssl::GrsimOptions grsim;
-  std::string robot_type = "omni4_ssl";
-  std::string ball = "ssl_golf_ball";
-  std::vector<std::pair<std::string, std::string>> team_commands;   // --team-command
-  std::vector<std::pair<std::string, std::string>> team_protocols;  // --team-protocol
-  double team_grace = 2.0;
-};
-
-int run(Options& options) {
-  using namespace ubersim;
-  const std::string config_dir = options.common.config_root();
-  const RobotTypeConfig robot = load_robot_config(config_dir, options.robot_type);
-  // Robot specs start from the same file (its keys, BASE chain resolved).
-  options.bridge.base_robot_type = ssl::base_robot_type(
-      ConfigFile::load(resolve_config(config_dir, "robots", options.robot_type)), robot,
-      ConfigFile::load(resolve_config(config_dir, "balls", options.ball)).real("RADIUS"));
-  options.bridge.sim_control.new_robot_type = options.robot_type;
-  options.bridge.sim_control.robot_radius = robot.radius;
-  options.bridge.wheels = ssl::wheel_mapping(robot);
-  options.bridge.geometry.max_robot_radius = robot.radius;
-  options.bridge.geometry.ball_model = ssl::load_ball_model(config_dir, options.ball);
-  if (!options.bridge.wheels) {
-    spdlog::warn(
-        "robot type {} has no wheel in each quadrant: wheel_velocity commands will be "
-        "answered with an error",
-        options.robot_type);
-  }
-
-  ProcessHost host(options.common, "ssl_bridge");
-  ssl::SslBridge bridge(host, options.bridge);
-  bridge.start();
-  host.after_wake([&](ProcessHost::Clock::time_point now) { bridge.tick(now); });
-  std::optional<ssl::GrsimPort> grsim;
-  if (options.grsim.port > 0) {
-    options.grsim.listen_address = options.bridge.listen_address;
-    options.grsim.sim_control = options.bridge.sim_control;
-    options.grsim.translation.wheels = options.bridge.wheels;
-    options.grsim.translation.spinner_speed = robot.dribbler_max_speed;
-    grsim.emplace(host.bus(), host.channels(), options.grsim);
-    grsim->start();
-    // Wakes the loop when the grSim port has something due (a packet held
-    // for its interval, a repeat, a stop); the work is done in tick().
-    constexpr auto kIdle = std::chrono::hours(1);
-    ProcessHost::Timer& wake = host.every(kIdle, [](ProcessHost::Clock::time_point) {});
-    host.after_wake([&](ProcessHost::Clock::time_point now) {
-      grsim->tick(now);
-      wake.due_at(grsim->next_wake().value_or(now + kIdle));
-    });
-  }
-  host.at_stop([&] {
-    bridge.stop();
-    bridge.log_summary();
-    if (grsim) grsim->log_summary();
-  });
-  return host.run(std::chrono::milliseconds(50));
-}
+using ubersim::ssl::SslBridgeOptions;
 
 // Where vision, referee messages and tracked frames go (docs/ssl_bridge.md, "Where the
 // multicast goes"); --local-only excludes every interface and TTL option.
@@ -183,7 +123,7 @@ void add_grsim_options(CLI::App& app, ubersim::ssl::GrsimOptions& g) {
 }
 
 // Team programs the bridge starts under the time shim (docs/timeshim.md).
-void add_team_options(CLI::App& app, Options& options) {
+void add_team_options(CLI::App& app, SslBridgeOptions& options) {
   app.add_option("--team-command", options.team_commands,
                  "COLOUR COMMAND: with --sync, start COMMAND (/bin/sh -c) under the time shim as "
                  "the COLOUR (yellow, blue, or both: one program for both) team's program, a "
@@ -212,7 +152,7 @@ void add_team_options(CLI::App& app, Options& options) {
 }
 
 // The --team-command pairs as commands; an error text when they are not valid.
-std::string take_team_commands(Options& options) {
+std::string take_team_commands(SslBridgeOptions& options) {
   auto& teams = options.bridge.teams;
   for (const auto& [colour, command] : options.team_commands) {
     if (colour != "yellow" && colour != "blue" && colour != "both") {
@@ -237,7 +177,7 @@ std::string take_team_commands(Options& options) {
 }
 
 int parse_and_run(int argc, char** argv) {
-  Options options;
+  SslBridgeOptions options;
   auto& b = options.bridge;
   CLI::App app{"ubersim SSL protocol bridge: SSL-Vision out, SSL simulation protocol in"};
   ubersim::add_common_options(app, options.common);
@@ -274,7 +214,7 @@ int parse_and_run(int argc, char** argv) {
     spdlog::info("UBERSIM_SSL_LOCAL_ONLY=1: SSL multicast stays on this host (as --local-only)");
     b.local_only = true;
   }
-  return run(options);
+  return ubersim::ssl::run_ssl_bridge(options);
 }
 
 }  // namespace

@@ -10,11 +10,11 @@
 #include <fstream>
 #include <regex>
 #include <set>
-#include <sstream>
 #include <ubersim/referee_t.hpp>
 #include <ubersim/sim_state_t.hpp>
 
 #include "e2e_support.hpp"
+#include "read_file.hpp"
 #include "sync_logs.hpp"
 
 using namespace e2e;
@@ -33,12 +33,7 @@ std::string game_controller() {
   return path == nullptr ? "" : path;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using ubersim::test::read_file;
 
 struct GameRun {
   int status = -1;

@@ -7,15 +7,14 @@
 #include <unistd.h>
 
 #include <cmath>
-#include <fstream>
 #include <regex>
 #include <set>
-#include <sstream>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/sim_commands_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
 
 #include "e2e_support.hpp"
+#include "read_file.hpp"
 #include "sync_logs.hpp"
 
 using namespace e2e;
@@ -30,12 +29,7 @@ struct GameRun {
   std::string radio_log;
 };
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using ubersim::test::read_file;
 
 // One game in sync mode, recorded; the script ends it after `duration` s of sim time.
 GameRun run_game(const TempDir& dir, const std::string& name, std::vector<std::string> options) {

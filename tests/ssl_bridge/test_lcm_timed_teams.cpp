@@ -10,59 +10,30 @@
 // ISOLATED: own network namespace, so the league's ports are free.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/vision_schedule_t.hpp>
 
-#include "e2e_support.hpp"
-#include "sync_logs.hpp"
+#include "timed_game.hpp"
 
 using namespace e2e;
 
 namespace {
 
-struct Game {
-  int status = -1;
-  std::string output, bridge_log, radio_log;
-  std::map<std::string, ChannelLog> log;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 std::string demo_team(const std::string& colour) {
   return std::string("lcm:") + UBERSIM_BIN_DIR + "/ubersim_demo_team --team " + colour;
 }
 
-Game play(const TempDir& dir, const std::string& name, bool hog) {
-  const std::string log = dir.path(name + ".lcmlog");
-  const std::string logs = dir.path(name + "_logs");
-  std::optional<CpuHog> load;
-  if (hog) load.emplace();
-  Launch launch(
-      {"--sync", "--team", "yellow", demo_team("yellow"), "--team", "blue", demo_team("blue"),
-       "--no-tracked", "--duration", "5", "--seed", "7", "--log", log, "--log-dir", logs},
-      dir);
-  Game game;
-  game.status = launch.script().wait(120);
-  game.output = launch.output();
-  game.bridge_log = read_file(logs + "/ssl_bridge.log");
-  game.radio_log = read_file(logs + "/radio.log");
-  if (game.status == 0) game.log = read_log_by_channel(log);
-  return game;
+// One game of 5 s of sim time, seed 7: a demo team on each side.
+TimedGame play(const TempDir& dir, const std::string& name, bool hog) {
+  return play_timed_game(dir, name, demo_team("yellow"), demo_team("blue"), "5", "7", hog);
 }
 
 // Every command packet was sent when the team had just been handed a frame:
 // its t_sent is the sim time the bridge handed the team a step's frames (the
 // step's t_state in SIM_VISION_SCHEDULE), later than the capture time the
 // demo team itself writes into it.
-void check_team(const Game& game, const std::string& channel) {
+void check_team(const TimedGame& game, const std::string& channel) {
   SCOPED_TRACE(channel);
   std::map<double, double> capture_of;  // handed at -> the latest capture handed then (s)
   for (const auto& step :
@@ -90,7 +61,7 @@ void check_team(const Game& game, const std::string& channel) {
 
 TEST(LcmTimedTeams, UnchangedLcmTeamsPlayAReproducibleSyncGameUnderTheTimeShim) {
   TempDir dir;
-  const Game first = play(dir, "first", false);
+  const TimedGame first = play(dir, "first", false);
   ASSERT_EQ(first.status, 0) << first.output << first.bridge_log << first.radio_log;
   EXPECT_NE(first.radio_log.find("sync: no client was dropped"), std::string::npos)
       << first.radio_log;
@@ -102,7 +73,7 @@ TEST(LcmTimedTeams, UnchangedLcmTeamsPlayAReproducibleSyncGameUnderTheTimeShim) 
   check_team(first, "RADIO_YELLOW");
   check_team(first, "RADIO_BLUE");
 
-  const Game second = play(dir, "second", true);
+  const TimedGame second = play(dir, "second", true);
   ASSERT_EQ(second.status, 0) << second.output << second.bridge_log << second.radio_log;
   for (const std::string& channel : reproducible_channels()) {
     ASSERT_TRUE(first.log.count(channel)) << channel << " was not recorded";

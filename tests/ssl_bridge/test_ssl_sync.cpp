@@ -6,12 +6,11 @@
 // bytes. ISOLATED: own network namespace, so the league's ports are free.
 #include <gtest/gtest.h>
 
-#include <fstream>
-#include <sstream>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/vision_frame_t.hpp>
 
 #include "e2e_support.hpp"
+#include "read_file.hpp"
 #include "sync_logs.hpp"
 
 using namespace e2e;
@@ -26,12 +25,7 @@ struct SslGame {
   std::string bridge_log, radio_log;
 };
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using ubersim::test::read_file;
 
 // One game of `seconds` s of sim time, both teams SSL programs, recorded.
 SslGame play(const TempDir& dir, const std::string& name, const std::string& seed,

@@ -11,14 +11,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <regex>
-#include <sstream>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/sim_state_t.hpp>
 
-#include "e2e_support.hpp"
-#include "sync_logs.hpp"
+#include "timed_game.hpp"
 
 using namespace e2e;
 
@@ -26,38 +23,11 @@ namespace {
 
 constexpr const char* kPython = "/usr/bin/python3";
 
-struct Game {
-  int status = -1;
-  std::string output, bridge_log, radio_log, yellow_log, blue_log;
-  std::map<std::string, ChannelLog> log;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-Game play(const TempDir& dir, const std::string& name, const std::string& seed, bool hog) {
-  const std::string log = dir.path(name + ".lcmlog");
-  const std::string logs = dir.path(name + "_logs");
-  std::optional<CpuHog> load;
-  if (hog) load.emplace();
-  Launch launch(
-      {"--sync", "--team", "yellow", std::string(UBERSIM_SSL_TIMED_TEAM_EXE) + " --team yellow",
-       "--team", "blue", std::string(kPython) + " " + UBERSIM_SSL_TIMED_TEAM_PY + " --team blue",
-       "--no-tracked", "--duration", "4", "--seed", seed, "--log", log, "--log-dir", logs},
-      dir);
-  Game game;
-  game.status = launch.script().wait(120);
-  game.output = launch.output();
-  game.bridge_log = read_file(logs + "/ssl_bridge.log");
-  game.radio_log = read_file(logs + "/radio.log");
-  game.yellow_log = read_file(logs + "/team_yellow.log");
-  game.blue_log = read_file(logs + "/team_blue.log");
-  if (game.status == 0) game.log = read_log_by_channel(log);
-  return game;
+// One game of 4 s of sim time: the C++ team yellow, the Python team blue.
+TimedGame play(const TempDir& dir, const std::string& name, const std::string& seed, bool hog) {
+  return play_timed_game(dir, name, std::string(UBERSIM_SSL_TIMED_TEAM_EXE) + " --team yellow",
+                         std::string(kPython) + " " + UBERSIM_SSL_TIMED_TEAM_PY + " --team blue",
+                         "4", seed, hog);
 }
 
 // The times a team's loop printed ("loop N steady|monotonic S ...").
@@ -77,7 +47,7 @@ bool on_grid(double t) {
   return std::fabs(t / 0.02 - std::round(t / 0.02)) < 1e-6;
 }
 
-void check_team(const Game& game, const std::string& channel, const std::string& team_log) {
+void check_team(const TimedGame& game, const std::string& channel, const std::string& team_log) {
   SCOPED_TRACE(channel);
   const auto packets = decode_all<ubersim::radio_packet_t>(game.log.at(channel));
   const auto states = decode_all<ubersim::sim_state_t>(game.log.at("SIM_STATE"));
@@ -107,7 +77,7 @@ void check_team(const Game& game, const std::string& channel, const std::string&
 TEST(TimedTeams, UnchangedTeamsPlayAReproducibleSyncGameUnderTheTimeShim) {
   if (access(kPython, X_OK) != 0) GTEST_SKIP() << kPython << " not found: the Python team needs it";
   TempDir dir;
-  const Game first = play(dir, "first", "7", false);
+  const TimedGame first = play(dir, "first", "7", false);
   ASSERT_EQ(first.status, 0) << first.output << first.bridge_log << first.radio_log;
   EXPECT_NE(first.radio_log.find("sync: no client was dropped"), std::string::npos)
       << first.radio_log;
@@ -117,7 +87,7 @@ TEST(TimedTeams, UnchangedTeamsPlayAReproducibleSyncGameUnderTheTimeShim) {
   check_team(first, "RADIO_YELLOW", first.yellow_log);
   check_team(first, "RADIO_BLUE", first.blue_log);
 
-  const Game second = play(dir, "second", "7", true);
+  const TimedGame second = play(dir, "second", "7", true);
   ASSERT_EQ(second.status, 0) << second.output << second.bridge_log << second.radio_log;
   for (const std::string& channel : reproducible_channels()) {
     ASSERT_TRUE(first.log.count(channel)) << channel << " was not recorded";

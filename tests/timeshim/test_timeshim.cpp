@@ -13,7 +13,6 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
@@ -22,6 +21,7 @@
 #include <vector>
 
 #include "child_process.hpp"
+#include "read_file.hpp"
 #include "temp_dir.hpp"
 #include "ubersim/timeshim/controller.hpp"
 
@@ -32,12 +32,7 @@ using ubersim::test::TempDir;
 
 constexpr double kEpoch = 1767225600.0;  // ControllerOptions' default, in s
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using ubersim::test::read_file;
 
 // The "label value" lines a probe printed, in order.
 using Seen = std::vector<std::pair<std::string, double>>;

@@ -13,7 +13,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <iterator>
 #include <memory>
@@ -25,6 +24,7 @@
 #include "cdp_client.hpp"
 #include "e2e_support.hpp"
 #include "latest_message.hpp"
+#include "read_file.hpp"
 #include "ubersim/cli.hpp"
 #include "ubersim/message_bus.hpp"
 
@@ -47,10 +47,7 @@ bool port_open(int port) {
   return open;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using ubersim::test::read_file;
 
 // Polls `probe` every 100 ms until `done` holds for its value; returns the last value.
 json poll(const std::function<json()>& probe, const std::function<bool(const json&)>& done,

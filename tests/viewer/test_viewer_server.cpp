@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "read_file.hpp"
 #include "ubersim/viewer/web_server.hpp"
 
 namespace ubersim::viewer {
@@ -66,10 +67,7 @@ std::string http_get(std::uint16_t port, const std::string& path) {
   return socket.receive_until([](const std::string&) { return false; });
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(file), {});
-}
+using ubersim::test::read_file;
 
 void websocket_handshake(Socket& socket) {
   socket.send(

@@ -1,4 +1,4 @@
-// ubersim_vision: the overhead-camera vision server, emulated (see vision_process.hpp).
+// ubersim_vision: the overhead-camera vision server, emulated (see vision_shell.hpp).
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -9,7 +9,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/process_main.hpp"
-#include "ubersim/vision/vision_process.hpp"
+#include "ubersim/vision/vision_shell.hpp"
 
 namespace {
 

@@ -1,7 +1,8 @@
 #pragma once
 // The process host: what every ubersim program has around its core, in one
-// place (docs/design.md, "The process host"). A program is a core plus one
-// short wiring block:
+// place (docs/design.md, "The process host"). A program is its core plus its
+// shell (PhysicsShell, VisionShell, ViewerShell ...), which hands the host
+// what the core needs:
 //
 //   ProcessHost host(options.common, "viewer");
 //   subscribe(host.bus(), host.channels(), topics::kSimState,

@@ -1,4 +1,4 @@
-// ubersim_physics: the physics server (see physics_server.hpp and
+// ubersim_physics: the physics server (see physics_shell.hpp and
 // docs/physics.md). Exits 0 on SIGINT/SIGTERM or after --duration.
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/logging.hpp"
-#include "ubersim/physics/physics_server.hpp"
+#include "ubersim/physics/physics_shell.hpp"
 #include "ubersim/physics/single_instance.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/process_main.hpp"
@@ -87,7 +87,7 @@ int run(int argc, char** argv) {
     ubersim::physics::put_on_field(setup, ubersim::load_field_config(common.config_root(), field));
   }
   setup.seed = seed;
-  ubersim::physics::ServerOptions options;
+  ubersim::physics::ShellOptions options;
   options.scenario = scenario;
   options.speed = lockstep ? -1.0 : speed;
   options.paused = paused;
@@ -97,8 +97,8 @@ int run(int argc, char** argv) {
   options.truth_on_demand = !truth_every_step;
   options.wait_for_vision = wait_for_vision;
   ubersim::ProcessHost host(common, "physics");
-  ubersim::physics::PhysicsServer server(std::move(setup), host, options);
-  return server.run();
+  ubersim::physics::PhysicsShell shell(std::move(setup), host, options);
+  return shell.run();
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 #pragma once
 // Sync mode in the radio emulator process (docs/sync.md): joins the
-// SyncCoordinator and the emulator's links. The program's wiring block
-// (main.cpp) hands it what comes on SYNC_CLIENT and SIM_VISION_SCHEDULE and the
+// SyncCoordinator and the emulator's links. The program's shell
+// (RadioShell, radio_shell.cpp) hands it what comes on SYNC_CLIENT and SIM_VISION_SCHEDULE and the
 // teams' radio packets, which it takes as answers, and calls tick() after every
 // wakeup; it publishes on SIM_SYNC_HORIZON how far physics may step: the
 // earliest t_apply any command not yet forwarded can still get. Each client it

@@ -3,7 +3,7 @@
 // one per simulation step or fewer) and the field geometry, and returns what a
 // game controller plus an autoref would decide: the referee command and stage,
 // score, game events, and the ball/robot placement that starts each restart.
-// No LCM in here: `ubersim_referee auto` (auto_runner) puts it on the bus, and
+// No LCM in here: `ubersim_referee auto` (AutoRefShell) puts it on the bus, and
 // every rule has a unit test that builds the situation and checks the decision.
 //
 // Numbering of stages, commands and event types is that of the SSL game

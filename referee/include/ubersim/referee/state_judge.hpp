@@ -2,7 +2,7 @@
 // What `ubersim_referee auto` does with one SIM_STATE, without the bus: which
 // states it judges, the AutoReferee's decision, and what goes out because of
 // it (referee_t on REFEREE, a placement on SIM_CONTROL, event log lines).
-// auto_runner puts it on the bus; fuzz_lcm_consumers feeds it hostile states.
+// AutoRefShell puts it on the bus; fuzz_lcm_consumers feeds it hostile states.
 #include <cstdint>
 #include <functional>
 #include <optional>

@@ -1,8 +1,8 @@
 #pragma once
-// The physics server without its transport: the world, what SIM_CONTROL does
+// The physics program without its transport: the world, what SIM_CONTROL does
 // to it, the mode (speed, pause, sync), sync mode's horizons and which states
 // go out. It knows nothing of LCM, reads no clock and names no other process:
-// the server (physics_server.hpp) subscribes, calls the on_* methods (with the
+// its shell (PhysicsShell) subscribes, calls the on_* methods (with the
 // wall time where one matters) and publishes the Output each returns, in its
 // order; its pacing (physics_pacing.hpp) decides when to step. The same shape
 // as the other simulation cores (docs/design.md, "One shape for the cores").
@@ -86,7 +86,7 @@ class PhysicsCore {
   // Forgets truth consumers not heard for 3 s (logged).
   void expire_demand(Clock::time_point wall);
   // In how many steps (1..max_steps) the next wanted state comes, max_steps if
-  // none before. Steps nobody sees a state of need not run on time (the server
+  // none before. Steps nobody sees a state of need not run on time (the shell
   // sleeps until that step is due). 1 when every step's state goes out.
   std::int64_t steps_to_wanted_state(std::int64_t max_steps) const;
 
@@ -112,7 +112,7 @@ class PhysicsCore {
   bool below_referee_horizon() const {
     return world_.time() + world_.dt() * 1e-6 < referee_horizon_;
   }
-  // Sync mode: what holds physics at the horizon. The server names it.
+  // Sync mode: what holds physics at the horizon. The shell names it.
   struct HorizonBound {
     // Registration: the radio emulator's clients are still registering.
     enum class By { NoHorizonYet, Registration, Horizon, Referee };

@@ -1,4 +1,4 @@
-// The server on its process host in-process on memq:// (no network):
+// The shell on its process host in-process on memq:// (no network):
 // publication rate, commands over the bus, the end of --duration, the start
 // gate; and the core's referee horizon and which states it publishes.
 #include <gtest/gtest.h>
@@ -13,28 +13,38 @@
 
 #include "physics_test_support.hpp"
 #include "ubersim/physics/physics_core.hpp"
-#include "ubersim/physics/physics_server.hpp"
+#include "ubersim/physics/physics_shell.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/topics.hpp"
 
 namespace ubersim::physics::testing {
 namespace {
 
-TEST(PhysicsServer, PublishesAtTheConfiguredRateAndStopsAtItsDuration) {
+// Every SIM_STATE published on the host's bus, into `states`.
+void record_states(ProcessHost& host, std::vector<sim_state_t>& states) {
+  subscribe(
+      host.bus(), host.channels(), topics::kSimState,
+      [&states](const sim_state_t& s) { states.push_back(s); }, 100000);
+}
+
+ShellOptions as_fast_as_possible() {
+  ShellOptions options;
+  options.speed = 0;
+  return options;
+}
+
+TEST(PhysicsShell, PublishesAtTheConfiguredRateAndStopsAtItsDuration) {
   WorldSetup setup = load_world_setup(kConfigDir, "field2002_5v5", "default");
   setup.physics.state_publish_rate = 60;  // every 4th step at 240 Hz
   ProcessHost host("memq://", ChannelNames(), "physics");
   std::vector<sim_state_t> states;
-  subscribe(
-      host.bus(), host.channels(), topics::kSimState,
-      [&](const sim_state_t& s) { states.push_back(s); }, 100000);
-  ServerOptions options;
-  options.speed = 0;
+  record_states(host, states);
+  ShellOptions options = as_fast_as_possible();
   options.duration = 1.0;
-  PhysicsServer server(setup, host, options);
-  EXPECT_EQ(server.run(), 0);
+  PhysicsShell shell(setup, host, options);
+  EXPECT_EQ(shell.run(), 0);
   host.bus().handle_pending();
-  EXPECT_EQ(server.world().step_index(), 240);
+  EXPECT_EQ(shell.world().step_index(), 240);
   // One at start (step 0), then one per 1/60 s of sim time.
   ASSERT_EQ(states.size(), 61u);
   for (std::size_t i = 1; i < states.size(); ++i) {
@@ -44,26 +54,25 @@ TEST(PhysicsServer, PublishesAtTheConfiguredRateAndStopsAtItsDuration) {
   EXPECT_EQ(states.back().num_robots, 10);
 }
 
-TEST(PhysicsServer, CommandsOverTheBusMoveRobots) {
+TEST(PhysicsShell, CommandsOverTheBusMoveRobots) {
   WorldSetup setup = load_world_setup(kConfigDir, "division_b_6v6", "default");
   ProcessHost host("memq://", ChannelNames(), "physics");
-  ServerOptions options;
-  options.speed = 0;
+  ShellOptions options = as_fast_as_possible();
   options.duration = 1.0;
-  PhysicsServer server(setup, host, options);
+  PhysicsShell shell(setup, host, options);
   sim_commands_t packet{};
   packet.team = 1;
   packet.t_apply = 0.25;
   packet.commands = {velocity_command(3, 1.0, 0, 0)};
   packet.num_commands = 1;
   publish(host.bus(), host.channels(), topics::kSimCommands, packet);
-  const double x0 = server.world().robot(Team::Blue, 3)->planar_state().x;
-  EXPECT_EQ(server.run(), 0);
-  const Robot& robot = *server.world().robot(Team::Blue, 3);
+  const double x0 = shell.world().robot(Team::Blue, 3)->planar_state().x;
+  EXPECT_EQ(shell.run(), 0);
+  const Robot& robot = *shell.world().robot(Team::Blue, 3);
   EXPECT_NEAR(robot.last_command_time(), 0.25, 1e-9);
   // Blue faces -x: 1 m/s forward is towards -x.
   EXPECT_LT(robot.planar_state().x, x0 - 0.3);
-  EXPECT_EQ(server.stats().packets_received, 1);
+  EXPECT_EQ(shell.stats().packets_received, 1);
 }
 
 // With --sync-referee physics steps up to the state the referee judges next;
@@ -182,23 +191,20 @@ TEST(PhysicsCore, PingCountsTheCommandsAppliedAtARobotTypesLimit) {
   EXPECT_EQ(command_summary(core.world().counters()).rfind("commands: 2 applied", 0), 0u);
 }
 
-TEST(PhysicsServer, WaitForVisionHoldsTheFirstStateUntilTheVisionListens) {
+TEST(PhysicsShell, WaitForVisionHoldsTheFirstStateUntilTheVisionListens) {
   WorldSetup setup = load_world_setup(kConfigDir, "field2002_5v5", "default");
   ProcessHost host("memq://", ChannelNames(), "physics");
   std::vector<sim_state_t> states;
-  subscribe(
-      host.bus(), host.channels(), topics::kSimState,
-      [&](const sim_state_t& s) { states.push_back(s); }, 100000);
-  ServerOptions options;
-  options.speed = 0;
+  record_states(host, states);
+  ShellOptions options = as_fast_as_possible();
   options.duration = 0.5;
   options.wait_for_vision = true;
-  PhysicsServer server(setup, host, options);
+  PhysicsShell shell(setup, host, options);
   host.every(std::chrono::milliseconds(300), [&](ProcessHost::Clock::time_point) { host.stop(0); });
-  EXPECT_EQ(server.run(), 0);
+  EXPECT_EQ(shell.run(), 0);
   host.bus().handle_pending();
   // Nobody listened: no state, no step.
-  EXPECT_EQ(server.world().step_index(), 0);
+  EXPECT_EQ(shell.world().step_index(), 0);
   EXPECT_TRUE(states.empty());
 }
 

@@ -1,11 +1,12 @@
 #pragma once
-// The ubersim_vision process: a VisionEmulator on the process host
-// (docs/design.md, "The process host"). Subscribes SIM_STATE and SIM_GEOMETRY,
-// publishes VISION (one vision_frame_t per camera frame, in sim time) and
-// VISION_GEOMETRY (at start once the field is known, whenever it changes, and
-// every GEOMETRY_PERIOD seconds of wall-clock time, so a control program that
-// starts while physics is paused still gets it); SIM_VISION_SCHEDULE and
-// SIM_TRUTH_DEMAND say which frames come when and which ground truth they need.
+// The ubersim_vision program: a VisionEmulator (the core) and its VisionShell
+// (vision_shell.cpp) on the process host (docs/design.md, "One shape for every
+// program"). Subscribes SIM_STATE and SIM_GEOMETRY, publishes VISION (one
+// vision_frame_t per camera frame, in sim time) and VISION_GEOMETRY (at start
+// once the field is known, whenever it changes, and every GEOMETRY_PERIOD
+// seconds of wall-clock time, so a control program that starts while physics
+// is paused still gets it); SIM_VISION_SCHEDULE and SIM_TRUTH_DEMAND say which
+// frames come when and which ground truth they need.
 #include <cstdint>
 #include <optional>
 #include <string>

@@ -1,8 +1,7 @@
-#include "ubersim/referee/auto_runner.hpp"
+#include "ubersim/referee/autoref_shell.hpp"
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iostream>
 #include <ubersim/radio_packet_t.hpp>
 #include <ubersim/referee_t.hpp>
@@ -12,6 +11,7 @@
 #include "ubersim/config.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/process_host.hpp"
+#include "ubersim/referee/event_log.hpp"
 #include "ubersim/referee/referee_message.hpp"
 #include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/sim_link.hpp"
@@ -43,14 +43,12 @@ bool usable(const field_geometry_t& f) {
          f.ball_radius > 0 && f.ball_radius < 1;
 }
 
-class Runner {
+// The referee's shell: the StateJudge core on the host (subscriptions, the
+// truth demand, REFEREE and placements out, the event log, the result line).
+class AutoRefShell {
  public:
-  Runner(const AutoOptions& options, ProcessHost& host) : options_(options), host_(host) {
-    if (!options.events_file.empty()) {
-      log_.open(options.events_file);
-      if (!log_) throw std::runtime_error("cannot write the event log " + options.events_file);
-    }
-  }
+  AutoRefShell(const AutoOptions& options, ProcessHost& host)
+      : options_(options), host_(host), log_(options.events_file) {}
 
   int run() {
     start();
@@ -148,10 +146,6 @@ class Runner {
     ubersim::publish(host_.bus(), host_.channels(), topics::kReferee, *last_referee_);
   }
 
-  void write(const std::string& line) {
-    if (log_.is_open()) log_ << line << "\n" << std::flush;
-  }
-
   void on_geometry(const field_geometry_t& geometry) {
     if (encoded(geometry) == encoded(field_)) return;
     if (!usable(geometry)) {
@@ -198,7 +192,7 @@ class Runner {
       started_ = true;
       wall_start_ = host_.now();
     }
-    for (const std::string& line : out.log_lines) write(line);
+    for (const std::string& line : out.log_lines) log_.write(line);
     if (out.placement) {
       out.placement->request_id = kRequestBase + next_request_++;
       out.placement->sender = kName;
@@ -222,7 +216,7 @@ class Runner {
     const auto& s = judge_ ? judge_->state() : empty;
     const double last_time = judge_ ? judge_->last_time() : 0.0;
     const auto losses = control_losses(sync_status_, last_time);
-    write(result_line(s, last_time, wall, losses));
+    log_.write(result_line(s, last_time, wall, losses));
     // One line, the one tools/launch.sh shows: a degraded result says so on it.
     const std::string degraded = degraded_text(losses);
     std::cout << "result: yellow " << s.yellow.goals << " : " << s.blue.goals << " blue ("
@@ -233,7 +227,7 @@ class Runner {
 
   const AutoOptions& options_;
   ProcessHost& host_;
-  std::ofstream log_;
+  EventLog log_;
   field_geometry_t field_{};
   sync_status_t sync_status_{};  // the latest; all zero (nobody dropped) until one arrives
   std::optional<StateJudge> judge_;
@@ -251,8 +245,8 @@ class Runner {
 
 int run_auto_referee(const AutoOptions& options) {
   ProcessHost host(options.common, kName);
-  Runner runner(options, host);
-  return runner.run();
+  AutoRefShell shell(options, host);
+  return shell.run();
 }
 
 }  // namespace ubersim::referee

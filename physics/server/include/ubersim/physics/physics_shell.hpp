@@ -1,7 +1,7 @@
 #pragma once
-// The physics server: a PhysicsCore (physics_core.hpp) on the process host
+// The physics shell: a PhysicsCore (physics_core.hpp) on the process host
 // (process_host.hpp), with the pacing policies that step it
-// (physics_pacing.hpp). Its wiring block:
+// (physics_pacing.hpp): what the host is given.
 //
 //   subscribes SIM_COMMANDS (sim_commands_t): held until t_apply, then applied (unhurried)
 //              SIM_CONTROL  (sim_control_t):  place, setup, pause, resume, reset,
@@ -29,22 +29,22 @@
 
 namespace ubersim::physics {
 
-struct ServerOptions : CoreOptions {
+struct ShellOptions : CoreOptions {
   // Outside sync mode: publish no state and take no step until a vision
   // emulator listens (its SIM_VISION_SCHEDULE), as sync mode does, so that it
   // sees the run from sim time 0 (tools/launch.sh --speed 0 passes it).
   bool wait_for_vision = false;
 };
 
-class PhysicsServer {
+class PhysicsShell {
  public:
-  // Subscribes on the host's bus; the host must outlive the server.
-  PhysicsServer(WorldSetup setup, ProcessHost& host, ServerOptions options);
-  PhysicsServer(const PhysicsServer&) = delete;
-  PhysicsServer& operator=(const PhysicsServer&) = delete;
+  // Subscribes on the host's bus; the host must outlive the shell.
+  PhysicsShell(WorldSetup setup, ProcessHost& host, ShellOptions options);
+  PhysicsShell(const PhysicsShell&) = delete;
+  PhysicsShell& operator=(const PhysicsShell&) = delete;
 
   // Runs on the host until a signal, host.stop() or the duration. Returns the
-  // exit code. Once per server.
+  // exit code. Once per shell.
   int run();
 
   World& world() { return core_.world(); }
@@ -61,7 +61,7 @@ class PhysicsServer {
   void log_waits() const;
 
   ProcessHost& host_;
-  ServerOptions options_;
+  ShellOptions options_;
   PhysicsCore core_;
   OutputPublisher publisher_;
   ServerStats stats_;             // the loop's own figures (wall clock, waits)

@@ -2,8 +2,9 @@
 // `ubersim_referee auto`: the automatic referee on the bus. It judges the
 // SIM_STATEs where a rule could decide (AutoReferee::next_judge_time), publishes referee_t on
 // REFEREE (on each change and at 10 Hz of sim time), carries out each restart's placement through
-// the safe placement (SIM_CONTROL PLACE), and writes the event log. It runs on the process host
-// (docs/design.md, "The process host") and returns when the game is over (or on SIGINT/SIGTERM).
+// the safe placement (SIM_CONTROL PLACE), and writes the event log. Its shell (AutoRefShell, around
+// the StateJudge core) runs on the process host (docs/design.md, "One shape for every program") and
+// returns when the game is over (or on SIGINT/SIGTERM).
 #include <string>
 
 #include "ubersim/cli.hpp"

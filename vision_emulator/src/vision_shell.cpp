@@ -1,4 +1,4 @@
-#include "ubersim/vision/vision_process.hpp"
+#include "ubersim/vision/vision_shell.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -103,8 +103,8 @@ void list_frames(vision_schedule_t& schedule, const std::vector<vision_frame_t>&
 
 // Everything around the core that is not the host's: what each message does,
 // the schedule and its acknowledgements, when the truth demand is renewed, the
-// geometry. One method per input or repeat; the wiring block below hands them
-// to the host.
+// geometry. One method per input or repeat; run_vision_process below hands
+// them to the host.
 class VisionShell {
  public:
   VisionShell(ProcessHost& host, VisionEmulator& emulator)

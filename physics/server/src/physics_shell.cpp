@@ -1,4 +1,4 @@
-#include "ubersim/physics/physics_server.hpp"
+#include "ubersim/physics/physics_shell.hpp"
 
 #include "ubersim/topics.hpp"
 
@@ -21,11 +21,11 @@ Clock::duration wall_duration(double seconds) {
 // need not wake for the vision's schedules: it reads them when it wakes anyway
 // (for its next state), long before a switch to sync; switched to as fast as
 // possible at run time, it looks for them every millisecond while it waits.
-bool schedule_wakes(const ServerOptions& options) {
+bool schedule_wakes(const ShellOptions& options) {
   return options.sync || options.wait_for_vision || options.speed == 0;
 }
 
-PacingOptions pacing_options(const WorldSetup& setup, const ServerOptions& options) {
+PacingOptions pacing_options(const WorldSetup& setup, const ShellOptions& options) {
   PacingOptions pacing;
   pacing.poll_period = wall_duration(setup.physics.message_poll_period);
   pacing.max_pacing_lag = setup.physics.max_pacing_lag;
@@ -35,7 +35,7 @@ PacingOptions pacing_options(const WorldSetup& setup, const ServerOptions& optio
 
 }  // namespace
 
-PhysicsServer::PhysicsServer(WorldSetup setup, ProcessHost& host, ServerOptions options)
+PhysicsShell::PhysicsShell(WorldSetup setup, ProcessHost& host, ShellOptions options)
     : host_(host),
       options_(std::move(options)),
       core_(std::move(setup), options_),
@@ -45,7 +45,7 @@ PhysicsServer::PhysicsServer(WorldSetup setup, ProcessHost& host, ServerOptions 
   subscribe();
 }
 
-void PhysicsServer::subscribe() {
+void PhysicsShell::subscribe() {
   MessageBus& bus = host_.bus();
   const ChannelNames& channels = host_.channels();
   if (options_.sync_referee) {
@@ -79,7 +79,7 @@ void PhysicsServer::subscribe() {
   });
 }
 
-void PhysicsServer::add_timers() {
+void PhysicsShell::add_timers() {
   const auto period = wall_duration(core_.world().setup().physics.geometry_publish_period);
   host_.every(period, [this](Clock::time_point) {
     if (core_.duration_reached()) return;  // the run is over: nothing more goes out
@@ -91,7 +91,7 @@ void PhysicsServer::add_timers() {
   host_.every(period, [this](Clock::time_point now) { core_.expire_demand(now); });
 }
 
-ServerStats PhysicsServer::stats() const {
+ServerStats PhysicsShell::stats() const {
   ServerStats s = stats_;
   s.steps = core_.steps();
   s.states_published = core_.states_published();
@@ -102,7 +102,7 @@ ServerStats PhysicsServer::stats() const {
   return s;
 }
 
-int PhysicsServer::run() {
+int PhysicsShell::run() {
   const auto start = host_.now();
   publisher_.publish_geometry(core_.geometry());
   // Sync mode, and --wait-for-vision: the first state once the others listen.
@@ -113,7 +113,7 @@ int PhysicsServer::run() {
   return host_.run(pacing_);
 }
 
-void PhysicsServer::log_start() const {
+void PhysicsShell::log_start() const {
   const World& world = core_.world();
   spdlog::info("physics running: scenario {} on field {} ({:g} x {:g} m), {} robots, {} Hz, {}{}",
                options_.scenario, world.setup().field.name, world.setup().field.field_length,
@@ -125,7 +125,7 @@ void PhysicsServer::log_start() const {
                core_.paused() ? ", paused" : "");
 }
 
-void PhysicsServer::log_stop(Clock::time_point start) {
+void PhysicsShell::log_stop(Clock::time_point start) {
   const World& world = core_.world();
   const auto end = host_.now();
   pacing_.finish(end);
@@ -157,7 +157,7 @@ void PhysicsServer::log_stop(Clock::time_point start) {
       paced ? fmt::format(", {:+.1f} ms from the schedule", stats_.drift * 1e3) : std::string());
 }
 
-void PhysicsServer::log_waits() const {
+void PhysicsShell::log_waits() const {
   if (core_.sync() || !stats_.sync_waits.empty()) {
     double total = 0;
     for (const auto& [name, seconds] : stats_.sync_wait_seconds) total += seconds;

@@ -1,0 +1,90 @@
+#include "ssl_bridge_shell.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <optional>
+
+#include "ubersim/config.hpp"
+#include "ubersim/config_paths.hpp"
+#include "ubersim/process_host.hpp"
+#include "ubersim/robot_config.hpp"
+
+namespace ubersim::ssl {
+namespace {
+
+// The grSim port's wake timer while nothing is due.
+constexpr auto kIdle = std::chrono::hours(1);
+
+// The SSL bridge's shell: the SslBridge (handed the host: its sockets, sync
+// clients and truth demand) and the grSim port on the host's turns.
+class SslBridgeShell {
+ public:
+  SslBridgeShell(SslBridgeOptions& options, const RobotTypeConfig& robot, ProcessHost& host)
+      : options_(options), robot_(robot), host_(host), bridge_(host, options.bridge) {}
+  SslBridgeShell(const SslBridgeShell&) = delete;
+  SslBridgeShell& operator=(const SslBridgeShell&) = delete;
+
+  int run() {
+    bridge_.start();
+    host_.after_wake([this](ProcessHost::Clock::time_point now) { bridge_.tick(now); });
+    if (options_.grsim.port > 0) start_grsim();
+    host_.at_stop([this] {
+      bridge_.stop();
+      bridge_.log_summary();
+      if (grsim_) grsim_->log_summary();
+    });
+    return host_.run(std::chrono::milliseconds(50));
+  }
+
+ private:
+  void start_grsim() {
+    options_.grsim.listen_address = options_.bridge.listen_address;
+    options_.grsim.sim_control = options_.bridge.sim_control;
+    options_.grsim.translation.wheels = options_.bridge.wheels;
+    options_.grsim.translation.spinner_speed = robot_.dribbler_max_speed;
+    grsim_.emplace(host_.bus(), host_.channels(), options_.grsim);
+    grsim_->start();
+    // Wakes the loop when the grSim port has something due (a packet held
+    // for its interval, a repeat, a stop); the work is done in tick().
+    ProcessHost::Timer& wake = host_.every(kIdle, [](ProcessHost::Clock::time_point) {});
+    host_.after_wake([this, &wake](ProcessHost::Clock::time_point now) {
+      grsim_->tick(now);
+      wake.due_at(grsim_->next_wake().value_or(now + kIdle));
+    });
+  }
+
+  SslBridgeOptions& options_;
+  const RobotTypeConfig& robot_;
+  ProcessHost& host_;
+  SslBridge bridge_;
+  std::optional<GrsimPort> grsim_;
+};
+
+}  // namespace
+
+int run_ssl_bridge(SslBridgeOptions& options) {
+  const std::string config_dir = options.common.config_root();
+  const RobotTypeConfig robot = load_robot_config(config_dir, options.robot_type);
+  // Robot specs start from the same file (its keys, BASE chain resolved).
+  options.bridge.base_robot_type = base_robot_type(
+      ConfigFile::load(resolve_config(config_dir, "robots", options.robot_type)), robot,
+      ConfigFile::load(resolve_config(config_dir, "balls", options.ball)).real("RADIUS"));
+  options.bridge.sim_control.new_robot_type = options.robot_type;
+  options.bridge.sim_control.robot_radius = robot.radius;
+  options.bridge.wheels = wheel_mapping(robot);
+  options.bridge.geometry.max_robot_radius = robot.radius;
+  options.bridge.geometry.ball_model = load_ball_model(config_dir, options.ball);
+  if (!options.bridge.wheels) {
+    spdlog::warn(
+        "robot type {} has no wheel in each quadrant: wheel_velocity commands will be "
+        "answered with an error",
+        options.robot_type);
+  }
+
+  ProcessHost host(options.common, "ssl_bridge");
+  SslBridgeShell shell(options, robot, host);
+  return shell.run();
+}
+
+}  // namespace ubersim::ssl
