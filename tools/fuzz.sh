@@ -10,8 +10,9 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${UBERSIM_FUZZ_BUILD_DIR:-$root/build-fuzz}
 launcher=()
 if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache); fi
+# -O1 for campaigns; tools/test.sh's short runs build -O0 in a folder of their own.
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DUBERSIM_FUZZ=ON -DCMAKE_BUILD_TYPE=Release \
-  "${launcher[@]}" >/dev/null
+  -DUBERSIM_FUZZ_OPTIMIZATION="${UBERSIM_FUZZ_OPTIMIZATION:--O1}" "${launcher[@]}" >/dev/null
 cmake --build "$build" -j "$(nproc)" --target fuzzers
 [ "${1:-}" = "--build" ] && exit 0
 

@@ -10,15 +10,17 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 run_tmp=$(mktemp -d "${TMPDIR:-/tmp}/ubersim-test-run.XXXXXX")
 export TMPDIR=$run_tmp
 status=0
-# The fuzz targets, ~10 s each, in a clang build of their own (docs/fuzzing.md). That build
-# runs beside the tests at the lowest priority (nice 19): most tests wait in real time, and
-# their programs get the cores whenever they want them. Its output goes to a log.
+# The fuzz targets, ~10 s each, in a clang build of their own (docs/fuzzing.md): at -O0,
+# half the CPU of tools/fuzz.sh's -O1 build for campaigns (build-fuzz/), so in a folder of
+# its own. It runs beside the tests at the lowest priority (nice 19): most tests wait in
+# real time, and their programs get the cores whenever they want them. Its output goes to a log.
 fuzz_build=""
 if [ $# -eq 0 ] && command -v clang++ >/dev/null 2>&1; then
-  fuzz_dir=${UBERSIM_FUZZ_BUILD_DIR:-$root/build-fuzz}
+  fuzz_dir=${UBERSIM_TEST_FUZZ_BUILD_DIR:-$root/build-fuzz-test}
   mkdir -p "$fuzz_dir/tmp"
   fuzz_log=$fuzz_dir/build.log
-  TMPDIR=$fuzz_dir/tmp nice -n 19 "$root/tools/fuzz.sh" --build >"$fuzz_log" 2>&1 &
+  TMPDIR=$fuzz_dir/tmp UBERSIM_FUZZ_BUILD_DIR=$fuzz_dir UBERSIM_FUZZ_OPTIMIZATION=-O0 \
+    nice -n 19 "$root/tools/fuzz.sh" --build >"$fuzz_log" 2>&1 &
   fuzz_build=$!
   trap 'kill "$fuzz_build" 2>/dev/null' EXIT
   echo "tools/test.sh: building the fuzz targets beside the tests (log: $fuzz_log)"
