@@ -91,9 +91,17 @@ usage: tools/launch.sh [options]
                        to team_COLOUR.log in the log folder. 'lcm:COMMAND': the program speaks
                        ubersim's LCM contract instead (VISION, VISION_GEOMETRY, REFEREE in,
                        RADIO_<TEAM> out, e.g. ubersim_demo_team without --sync); with --sync it
-                       gets a private LCM bus that the bridge relays, timed
+                       gets a private LCM bus that the bridge relays, timed. 'grsim:COMMAND':
+                       the program speaks grSim's protocol (SSL-Vision in, grSim_Packet to UDP
+                       20011 out, e.g. NeonFC-SSL); with --sync its grSim commands are timed
+                       too, and grSim commands for a colour no 'grsim:' program plays are
+                       dropped
   --team-deterministic with --sync and --team: the team programs' threads run one at a time in
                        a fixed order (reruns identical also when their threads race; slower)
+  --team-charge-us US, --team-yield-after-ms MS
+                       with --sync and --team: sim time charged per call of a team's thread that
+                       polls without blocking (default 1), and the charge after which it pauses
+                       (default 1); larger: a team that polls plays faster (docs/timeshim.md)
   --lan                with --ssl / --ssl-bridge: the command ports (grSim, simulation and robot
                        control) listen on every interface, for an AI on another PC (anyone on
                        the network may command the robots: docs/threat_model.md)
@@ -107,6 +115,15 @@ usage: tools/launch.sh [options]
 USAGE
 }
 
+# A --team command without its protocol prefix (lcm:, grsim:).
+team_program() {
+  case $1 in
+    lcm:*) printf '%s' "${1#lcm:}" ;;
+    grsim:*) printf '%s' "${1#grsim:}" ;;
+    *) printf '%s' "$1" ;;
+  esac
+}
+
 # A bad command line: one line on stderr, exit 2, nothing started.
 usage_error() {
   echo "launch: $*" >&2
@@ -117,14 +134,14 @@ usage_error() {
 # option in its place) is an error here, not an unbound $2 below.
 options_with_values=" --scenario --field --profile --speed --sync-clients --sync-timeout --game-length --cpu --seed
   --game-controller --yellow-name --blue-name --duration --lcm-url --channel-prefix --demo --demo-mode --log --log-dir --viewer-port
-  --vision-port --vision-interface --vision-ttl --ssl-port-offset "
+  --vision-port --vision-interface --vision-ttl --ssl-port-offset --team-charge-us --team-yield-after-ms "
 
 scenario="" field="" profile=cmdragons02 speed=1 lockstep=0 sync=0 sync_strict=0 sync_clients="" sync_timeout="" truth_every_step=0 seed="" duration=""
 lcm_url="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}" prefix="" cpu=""
 referee=none game_length="" tracked=1 game_controller="" yellow_name="" blue_name=""
 ssl_mode=0 lan=0 vision_port="" vision_interface="" vision_ttl="" ssl_local_only=0 ssl_port_offset=0 referee_given=0
 vision=1 radio=1 demo=none demo_mode=play log_file="" log_dir="" quiet=0 viewer=0 viewer_port="" open_viewer=0 ssl_bridge=0
-repeat_games=0 team_yellow="" team_blue="" team_both="" team_deterministic=0
+repeat_games=0 team_yellow="" team_blue="" team_both="" team_deterministic=0 team_charge_us="" team_yield_after_ms=""
 while [ $# -gt 0 ]; do
   if [[ $options_with_values == *[[:space:]]"$1"[[:space:]]* ]] && { [ $# -lt 2 ] || [[ $2 == --* ]]; }; then
     usage_error "$1 needs a value (tools/launch.sh --help lists the options)"
@@ -138,6 +155,8 @@ while [ $# -gt 0 ]; do
     --sync) sync=1; shift ;;
     --sync-strict) sync=1; sync_strict=1; shift ;;
     --team-deterministic) team_deterministic=1; shift ;;
+    --team-charge-us) team_charge_us=$2; shift 2 ;;
+    --team-yield-after-ms) team_yield_after_ms=$2; shift 2 ;;
     --sync-clients) sync_clients=$2; shift 2 ;;
     --sync-timeout) sync_timeout=$2; shift 2 ;;
     --referee)
@@ -319,6 +338,13 @@ done
 if [ "$team_deterministic" = 1 ] && { [ "$sync" = 0 ] || [ -z "$team_yellow$team_blue$team_both" ]; }; then
   usage_error "--team-deterministic: only with --sync and --team"
 fi
+for option in charge-us yield-after-ms; do
+  value=team_${option//-/_}
+  [ -n "${!value}" ] || continue
+  { [ "$sync" = 1 ] && [ -n "$team_yellow$team_blue$team_both" ]; } ||
+    usage_error "--team-$option: only with --sync and --team"
+  check_number "--team-$option" "${!value}" 0 10000
+done
 [ -z "$log_file" ] || [ -d "$(dirname "$log_file")" ] ||
   usage_error "--log: no folder '$(dirname "$log_file")' to write '$log_file' into"
 [ -z "$scenario" ] || check_config --scenario scenarios scenario "$scenario"
@@ -552,16 +578,20 @@ if [ "$sync" = 1 ]; then
   case "$demo" in yellow|blue) clients=1 ;; both) clients=2 ;; esac
   [ "$ssl_bridge" = 1 ] && clients=2
   # Team programs (--team) run under the time shim in the bridge's team group.
-  for team in yellow blue; do
+  # 'lcm:COMMAND': an LCM team, on a private bus the bridge relays; 'grsim:COMMAND':
+  # a team that speaks grSim's protocol (docs/timeshim.md).
+  for team in yellow blue both; do
     team_command=team_$team
     [ -n "${!team_command}" ] || continue
-    bridge_args+=(--team-command "$team" "${!team_command#lcm:}")
-    # 'lcm:COMMAND': an LCM team, on a private bus the bridge relays (docs/timeshim.md).
-    [[ ${!team_command} != lcm:* ]] || bridge_args+=(--team-protocol "$team" lcm)
+    bridge_args+=(--team-command "$team" "$(team_program "${!team_command}")")
+    case ${!team_command} in
+      lcm:*) bridge_args+=(--team-protocol "$team" lcm) ;;
+      grsim:*) bridge_args+=(--team-protocol "$team" grsim) ;;
+    esac
   done
-  # One program playing both colours (an SSL program such as Utama-Core's runner).
-  [ -z "$team_both" ] || bridge_args+=(--team-command both "$team_both")
   [ "$team_deterministic" = 0 ] || bridge_args+=(--team-deterministic)
+  [ -z "$team_charge_us" ] || bridge_args+=(--team-charge-us "$team_charge_us")
+  [ -z "$team_yield_after_ms" ] || bridge_args+=(--team-yield-after-ms "$team_yield_after_ms")
   [ -z "$team_yellow$team_blue$team_both" ] || bridge_args+=(--team-output-dir "$log_dir")
   physics_args+=(--sync)
   radio_args+=(--sync --sync-clients "${sync_clients:-$clients}")
@@ -676,9 +706,9 @@ done
 [ "$ssl_bridge" = 1 ] && start ssl_bridge "$bin_dir/ubersim_ssl_bridge" "${common[@]}" "${bridge_args[@]}"
 # Without --sync a team program runs in real time next to the set.
 if [ "$sync" = 0 ]; then
-  [ -z "$team_yellow" ] || start team_yellow sh -c "${team_yellow#lcm:}"
-  [ -z "$team_blue" ] || start team_blue sh -c "${team_blue#lcm:}"
-  [ -z "$team_both" ] || start team_both sh -c "$team_both"
+  [ -z "$team_yellow" ] || start team_yellow sh -c "$(team_program "$team_yellow")"
+  [ -z "$team_blue" ] || start team_blue sh -c "$(team_program "$team_blue")"
+  [ -z "$team_both" ] || start team_both sh -c "$(team_program "$team_both")"
 fi
 [ "$viewer" = 1 ] && start viewer "$bin_dir/ubersim_viewer" "${common[@]}" --port "$viewer_port"
 if [ "$open_viewer" = 1 ]; then

@@ -170,6 +170,7 @@ void SslBridge::send_vision(const SSL_WrapperPacket& packet) {
 
 void SslBridge::on_vision(const vision_frame_t& frame) {
   const bool last_of_step = timed_mode() && timed_frames_due_ > 0 && --timed_frames_due_ == 0;
+  if (timed_mode()) timed_captured_ = std::max(timed_captured_, frame.t_capture);
   if (!forwardable(frame)) {
     ++counters_["vision frames dropped (not finite)"];
     bad_input_.warn("vision_not_finite",
@@ -190,7 +191,9 @@ void SslBridge::on_vision(const vision_frame_t& frame) {
     }
   }
   // Tracked frames wait as long as this frame did: capture -> now (sim time).
-  if (tracked_ && state_.get() && state_.sim_time() >= frame.t_capture) {
+  // Timed teams get them with the detections of the same instant instead
+  // (deliver_timed): how far physics is ahead of this frame depends on timing.
+  if (tracked_ && !timed_mode() && state_.get() && state_.sim_time() >= frame.t_capture) {
     tracked_->set_latency(std::min(1.0, state_.sim_time() - frame.t_capture));
   }
 }
@@ -441,11 +444,11 @@ void SslBridge::handle_robot_datagram(Team team, const std::vector<uint8_t>& byt
   // mode the empty packet is the answer "nothing to send" (docs/sync.md).
   const bool publish = options_.sync ? answers.has_value() : packet.num_commands > 0;
   if (publish) {
-    packet.sequence = ++radio_sequence_[static_cast<int>(team)];
     packet.t_sent = answers.value_or(state_.sim_time());
-    if (timed(team) && !sync_clients_[static_cast<int>(team)].joined()) {
-      timed_early_[static_cast<int>(team)].push_back(packet);  // sent once it registered
+    if (timed(team)) {
+      publish_timed_radio(team, std::move(packet));
     } else {
+      packet.sequence = ++radio_sequence_[static_cast<int>(team)];
       ubersim::publish(bus_, channels_, topics::kRadio.of(team), packet);
     }
   }

@@ -69,7 +69,10 @@ void SslBridge::deliver_timed() {
     if (referee_out_.send(bytes)) ++counters_["referee packets sent"];
   });
   if (tracked_out_) {
-    send_until(timed_tracked_, timed_publication_, [this](const std::string& bytes) {
+    // Tracked frames of the states up to the latest capture handed over: as
+    // late as the detections, and the same on every run (every state up to a
+    // frame's capture is here before the frame: physics sent it first).
+    send_until(timed_tracked_, timed_captured_, [this](const std::string& bytes) {
       if (tracked_out_->send(bytes)) ++counters_["tracked packets sent"];
     });
   }
@@ -127,6 +130,20 @@ void SslBridge::register_timed_teams() {
   }
 }
 
+void SslBridge::add_timed_door(std::function<bool(std::int64_t now_ns)> drain,
+                               std::function<void()> ended) {
+  timed_doors_.push_back({std::move(drain), std::move(ended)});
+}
+
+void SslBridge::publish_timed_radio(Team team, radio_packet_t packet) {
+  packet.sequence = ++radio_sequence_[static_cast<int>(team)];
+  if (!sync_clients_[static_cast<int>(team)].joined()) {
+    timed_early_[static_cast<int>(team)].push_back(std::move(packet));  // sent once it registered
+    return;
+  }
+  ubersim::publish(bus_, channels_, topics::kRadio.of(team), packet);
+}
+
 bool SslBridge::at_quiescence(std::int64_t now_ns) {
   bool answered = false;
   sockaddr_in from{};
@@ -138,6 +155,7 @@ bool SslBridge::at_quiescence(std::int64_t now_ns) {
   teams_up_ = true;
   register_timed_teams();
   if (lcm_door_) lcm_door_->drain(now_ns);  // RADIO_<TEAM> to the main bus, t_sent = now
+  for (const TimedDoor& door : timed_doors_) answered = door.drain(now_ns) || answered;
   for (Team team : kTeams) {
     UdpSocket& socket = team == Team::Blue ? blue_socket_ : yellow_socket_;
     while (auto bytes = socket.receive(from)) {
@@ -164,6 +182,7 @@ void SslBridge::promise(std::int64_t promise_ns) {
 // them), and what was held back for them goes out now.
 void SslBridge::teams_ended() {
   if (lcm_door_) lcm_door_->stop_holding();
+  for (const TimedDoor& door : timed_doors_) door.ended();
   for (Team team : timed_teams_) sync_clients_[static_cast<int>(team)].leave();
   if (!timed_geometry_.empty()) vision_out_.send(timed_geometry_);
   for (const std::string& bytes : timed_vision_) vision_out_.send(bytes);

@@ -1,6 +1,7 @@
 #include "ubersim/ssl_bridge/grsim_port.hpp"
 
 #include <arpa/inet.h>
+#include <spdlog/spdlog.h>
 #include <sys/socket.h>
 
 #include <algorithm>
@@ -47,11 +48,29 @@ GrsimPort::GrsimPort(MessageBus& bus, const ChannelNames& channels, GrsimOptions
   ubersim::subscribe(bus_, channels_, topics::kSimControlAck,
                      [this](const sim_control_ack_t& a) { on_ack(a); });
   for (Team team : kTeams) {
-    ubersim::subscribe(
-        bus_, channels_, topics::kRadioFeedback.of(team), [this, team](const radio_feedback_t& f) {
-          status_.on_feedback(team, f, [this, team](int32_t id) { return book_.kick(team, id); });
-        });
+    ubersim::subscribe(bus_, channels_, topics::kRadioFeedback.of(team),
+                       [this, team](const radio_feedback_t& f) { on_feedback(team, f); });
   }
+}
+
+void GrsimPort::gate(std::vector<Team> timed_teams, PublishTimed publish) {
+  timed_teams_ = std::move(timed_teams);
+  publish_timed_ = std::move(publish);
+  gated_ = !timed_teams_.empty();
+}
+
+bool GrsimPort::timed(Team team) const {
+  return std::find(timed_teams_.begin(), timed_teams_.end(), team) != timed_teams_.end();
+}
+
+// A timed team's status follows the group's sim time: its feedback waits until
+// the group reaches the time it was sent (drain_timed).
+void GrsimPort::on_feedback(Team team, const radio_feedback_t& feedback) {
+  if (gated_ && timed(team)) {
+    held_feedback_.emplace_back(team, feedback);
+    return;
+  }
+  status_.on_feedback(team, feedback, [this, team](int32_t id) { return book_.kick(team, id); });
 }
 
 void GrsimPort::start() {
@@ -61,45 +80,104 @@ void GrsimPort::start() {
       options_.listen_address, options_.port, options_.blue_status_port,
       options_.yellow_status_port, options_.command_hold,
       options_.command_hold > 0 ? "" : " never (--grsim-command-hold 0)");
+  for (Team team : timed_teams_) {
+    spdlog::info(
+        "grSim protocol: the {} team's program runs under the time shim: its grSim commands are "
+        "read at the team group's quiescences and stamped with its sim time; other colours' "
+        "grSim commands are dropped while it runs",
+        team_name(team));
+  }
   bus_.watch(socket_.fd(), [this] { on_readable(); });
 }
 
 void GrsimPort::on_readable() {
   const Clock::time_point now = Clock::now();
   for (int i = 0; i < kGrsimDatagramsPerWakeup; ++i) {
-    sockaddr_in from{};
-    iovec io{buffer_.data(), buffer_.size()};
-    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(std::uint32_t))];
-    msghdr message{};
-    message.msg_name = &from;
-    message.msg_namelen = sizeof from;
-    message.msg_iov = &io;
-    message.msg_iovlen = 1;
-    message.msg_control = control;
-    message.msg_controllen = sizeof control;
-    const ssize_t size = recvmsg(socket_.fd(), &message, MSG_DONTWAIT);
-    if (size < 0) break;  // EAGAIN: drained
-    for (cmsghdr* c = CMSG_FIRSTHDR(&message); c != nullptr; c = CMSG_NXTHDR(&message, c)) {
-      if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) {
-        std::uint32_t drops = 0;
-        std::copy_n(reinterpret_cast<const char*>(CMSG_DATA(c)), sizeof drops,
-                    reinterpret_cast<char*>(&drops));
-        if (drops != kernel_drops_) {
-          counters_["grSim datagrams lost in a full socket buffer"] += drops - kernel_drops_;
-          bad_input_.warn("grsim_overflow",
-                          "grSim datagrams arrive faster than the bridge reads them: the "
-                          "kernel dropped some");
-          kernel_drops_ = drops;
-        }
-      }
-    }
-    handle_datagram(buffer_.data(), static_cast<std::size_t>(size), from, now);
+    if (!receive_one(now, Arrival::RealTime)) break;
   }
   flush(now);
 }
 
+bool GrsimPort::receive_one(Clock::time_point now, Arrival arrival) {
+  sockaddr_in from{};
+  iovec io{buffer_.data(), buffer_.size()};
+  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(std::uint32_t))];
+  msghdr message{};
+  message.msg_name = &from;
+  message.msg_namelen = sizeof from;
+  message.msg_iov = &io;
+  message.msg_iovlen = 1;
+  message.msg_control = control;
+  message.msg_controllen = sizeof control;
+  const ssize_t size = recvmsg(socket_.fd(), &message, MSG_DONTWAIT);
+  if (size < 0) return false;  // EAGAIN: drained
+  for (cmsghdr* c = CMSG_FIRSTHDR(&message); c != nullptr; c = CMSG_NXTHDR(&message, c)) {
+    if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) {
+      std::uint32_t drops = 0;
+      std::copy_n(reinterpret_cast<const char*>(CMSG_DATA(c)), sizeof drops,
+                  reinterpret_cast<char*>(&drops));
+      if (drops != kernel_drops_) {
+        counters_["grSim datagrams lost in a full socket buffer"] += drops - kernel_drops_;
+        bad_input_.warn("grsim_overflow",
+                        "grSim datagrams arrive faster than the bridge reads them: the "
+                        "kernel dropped some");
+        kernel_drops_ = drops;
+      }
+    }
+  }
+  handle_datagram(buffer_.data(), static_cast<std::size_t>(size), from, now, arrival);
+  return true;
+}
+
+bool GrsimPort::drain_timed(std::int64_t now_ns) {
+  if (!gated_) return false;
+  // The book's clock is the group's sim time from here on.
+  const Clock::time_point now{
+      std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(now_ns))};
+  const double t = static_cast<double>(now_ns) / 1e9;
+  const auto later = std::stable_partition(
+      held_feedback_.begin(), held_feedback_.end(),
+      [t](const std::pair<Team, radio_feedback_t>& held) { return held.second.t_sent <= t; });
+  for (auto it = held_feedback_.begin(); it != later; ++it) {
+    const Team team = it->first;
+    status_.on_feedback(team, it->second,
+                        [this, team](int32_t id) { return book_.kick(team, id); });
+  }
+  held_feedback_.erase(held_feedback_.begin(), later);
+  // The group is quiescent: what waits is finite (a bound against a flood from outside).
+  statuses_sent_ = false;
+  constexpr int kMostPerDrain = 1 << 16;
+  for (int i = 0; i < kMostPerDrain && receive_one(now, Arrival::AtQuiescence); ++i) {
+  }
+  for (Team team : timed_teams_) {
+    std::optional<radio_packet_t> packet;
+    if (book_.has_news(team)) {
+      packet = book_.packet(team, now);
+    } else {
+      packet = book_.due(team, now, kGrsimRepeatInterval);  // a repeat, or the silent team's stop
+    }
+    if (!packet) continue;
+    packet->t_sent = t;
+    publish_timed_(team, std::move(*packet));
+    ++counters_[std::string("grSim radio packets ") + team_name(team) + " (timed)"];
+  }
+  return statuses_sent_;
+}
+
+void GrsimPort::stop_gating() {
+  if (!gated_) return;
+  gated_ = false;
+  for (const auto& [team, feedback] : held_feedback_) {
+    const Team which = team;
+    status_.on_feedback(which, feedback,
+                        [this, which](int32_t id) { return book_.kick(which, id); });
+  }
+  held_feedback_.clear();
+  spdlog::info("grSim protocol: the team programs ended; the port follows real time again");
+}
+
 void GrsimPort::handle_datagram(const std::uint8_t* data, std::size_t size, const sockaddr_in& from,
-                                Clock::time_point now) {
+                                Clock::time_point now, Arrival arrival) {
   ++counters_["grSim datagrams"];
   grSim_Packet packet;
   Errors errors;
@@ -112,15 +190,42 @@ void GrsimPort::handle_datagram(const std::uint8_t* data, std::size_t size, cons
     return;
   }
   if (!errors.empty()) count_errors(errors, "unknown fields");
-  if (packet.has_commands()) handle_commands(packet.commands(), now);
+  if (packet.has_commands()) handle_commands(packet.commands(), now, arrival);
   if (packet.has_replacement()) handle_replacement(packet.replacement());
   // grSim answers each datagram with the robots whose status changed, to its sender.
-  if (status_.pending()) send_status(from);
+  if (status_.pending() && send_status(from)) statuses_sent_ = true;
 }
 
-void GrsimPort::handle_commands(const grSim_Commands& commands, Clock::time_point now) {
+bool GrsimPort::refused_while_gated(Team team, Arrival arrival) {
+  if (!gated_) return false;
+  const std::string name = team_name(team);
+  if (!timed(team)) {
+    ++counters_["grSim command packets dropped (" + name +
+                " is not a grSim team under the time shim)"];
+    bad_input_.warn("grsim_not_timed_" + name,
+                    "dropped a grSim command packet for " + name +
+                        ": while the bridge runs team programs under the time shim, only their "
+                        "grSim-protocol colours take grSim commands (docs/timeshim.md)");
+    return true;
+  }
+  if (arrival == Arrival::RealTime) {
+    // The group sends only while the bridge runs it, and it drains the port
+    // at each of its quiescences: this one came from a program outside it.
+    ++counters_["grSim command packets dropped (" + name + ", from outside the team group)"];
+    bad_input_.warn("grsim_outside_" + name, "dropped a grSim command packet for " + name +
+                                                 " from a program outside the team group (the " +
+                                                 name +
+                                                 " team's program runs under the time shim)");
+    return true;
+  }
+  return false;
+}
+
+void GrsimPort::handle_commands(const grSim_Commands& commands, Clock::time_point now,
+                                Arrival arrival) {
   const Team team =
       commands.has_isteamyellow() && commands.isteamyellow() ? Team::Yellow : Team::Blue;
+  if (refused_while_gated(team, arrival)) return;
   book_.heard(team, now);
   Errors errors;
   for (const grSim_Robot_Command& in : commands.robot_commands()) {
@@ -167,7 +272,8 @@ void GrsimPort::on_ack(const sim_control_ack_t& ack) {
   bad_input_.warn("grsim_refused", "physics refused a grSim replacement: " + ack.message);
 }
 
-void GrsimPort::send_status(const sockaddr_in& sender) {
+bool GrsimPort::send_status(const sockaddr_in& sender) {
+  bool sent = false;
   for (Team team : kTeams) {
     const std::optional<Robots_Status> changes = status_.changes(team);
     if (!changes) continue;
@@ -178,10 +284,12 @@ void GrsimPort::send_status(const sockaddr_in& sender) {
     changes->SerializeToString(&bytes);
     if (socket_.send_to(bytes, to)) {
       ++counters_[std::string("grSim status packets ") + team_name(team)];
+      sent = true;
     } else {
       bad_input_.warn("grsim_status_send", "could not send a grSim robot status packet");
     }
   }
+  return sent;
 }
 
 void GrsimPort::publish(Team team, radio_packet_t packet) {
@@ -193,6 +301,7 @@ void GrsimPort::publish(Team team, radio_packet_t packet) {
 }
 
 void GrsimPort::flush(Clock::time_point now) {
+  if (gated_) return;  // timed teams' packets go out at the group's quiescences
   for (Team team : kTeams) {
     const auto t = static_cast<std::size_t>(team);
     if (book_.has_news(team) && now - last_publish_[t] >= kGrsimPublishInterval) {
@@ -203,6 +312,7 @@ void GrsimPort::flush(Clock::time_point now) {
 }
 
 void GrsimPort::tick(Clock::time_point now) {
+  if (gated_) return;
   flush(now);
   for (Team team : kTeams) {
     if (std::optional<radio_packet_t> due = book_.due(team, now, kGrsimRepeatInterval)) {
@@ -212,6 +322,7 @@ void GrsimPort::tick(Clock::time_point now) {
 }
 
 std::optional<GrsimPort::Clock::time_point> GrsimPort::next_wake() const {
+  if (gated_) return std::nullopt;
   std::optional<Clock::time_point> next;
   auto sooner = [&next](Clock::time_point t) { next = next ? std::min(*next, t) : t; };
   for (Team team : kTeams) {

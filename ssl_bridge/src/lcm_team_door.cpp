@@ -48,22 +48,28 @@ std::string with_lcm_url(const std::string& command, const std::string& url) {
 std::string apply_team_protocols(const std::vector<std::pair<std::string, std::string>>& protocols,
                                  const std::string& main_url, TeamGroupOptions& teams,
                                  LcmDoorOptions& door) {
+  std::vector<std::string> given;
   for (const auto& entry : protocols) {
     const std::string& colour = entry.first;  // captured below: not a structured binding
     const std::string& protocol = entry.second;
-    if (protocol != "ssl" && protocol != "lcm") {
-      return "--team-protocol: protocol '" + protocol + "' is not ssl or lcm";
+    if (protocol != "ssl" && protocol != "lcm" && protocol != "grsim") {
+      return "--team-protocol: protocol '" + protocol + "' is not ssl, lcm or grsim";
     }
-    const auto command =
-        std::find_if(teams.commands.begin(), teams.commands.end(),
-                     [&](const TeamCommand& c) { return team_name(c.team) == colour; });
+    const auto command = std::find_if(teams.commands.begin(), teams.commands.end(),
+                                      [&](const TeamCommand& c) { return c.colour() == colour; });
     if (command == teams.commands.end()) {
       return "--team-protocol: no --team-command for '" + colour + "'";
     }
-    if (protocol == "ssl") continue;
-    if (std::count(door.teams.begin(), door.teams.end(), command->team) > 0) {
+    if (std::count(given.begin(), given.end(), colour) > 0) {
       return "--team-protocol: " + colour + " given twice";
     }
+    given.push_back(colour);
+    if (protocol == "ssl") continue;
+    if (protocol == "grsim") {
+      command->protocol = TeamProtocol::Grsim;
+      continue;
+    }
+    if (command->both) return "--team-protocol: an LCM program plays one colour, not both";
     if (door.url.empty()) {
       const std::optional<std::string> url = private_lcm_url(main_url);
       if (!url) {
@@ -73,10 +79,21 @@ std::string apply_team_protocols(const std::vector<std::pair<std::string, std::s
       door.url = *url;
     }
     if (door.url == main_url) return "--team-lcm-url: the team's bus must not be the main bus";
+    command->protocol = TeamProtocol::Lcm;
     door.teams.push_back(command->team);
     command->command = with_lcm_url(command->command, door.url);
   }
   return "";
+}
+
+std::vector<Team> grsim_teams(const TeamGroupOptions& teams) {
+  std::vector<Team> grsim;
+  for (const TeamCommand& command : teams.commands) {
+    if (command.protocol != TeamProtocol::Grsim) continue;
+    grsim.push_back(command.team);
+    if (command.both) grsim.push_back(Team::Blue);
+  }
+  return grsim;
 }
 
 LcmTeamDoor::LcmTeamDoor(MessageBus& main, const ChannelNames& channels, LcmDoorOptions options,

@@ -137,14 +137,25 @@ void add_team_options(CLI::App& app, SslBridgeOptions& options) {
                  "call the time shim does not know) before it is named")
       ->capture_default_str()
       ->check(ubersim::in_range(0.1, 600.0));
+  app.add_option("--team-charge-us", options.team_charge_us,
+                 "sim time (us) the time shim charges a team's thread per call that does not "
+                 "block, after its first 2000 since it last blocked (a polling loop)")
+      ->capture_default_str()
+      ->check(ubersim::in_range(0.0, 1e6));
+  app.add_option("--team-yield-after-ms", options.team_yield_after_ms,
+                 "charge (ms) after which such a thread pauses until sim time catches up: "
+                 "larger, fewer steps of the group (faster), coarser send times")
+      ->capture_default_str()
+      ->check(ubersim::in_range(0.0, 1e4));
   app.add_flag("--team-deterministic", options.bridge.teams.controller.deterministic,
                "run the team programs' threads one at a time in a fixed order (the time shim's "
                "deterministic mode, docs/timeshim.md): reruns identical also for programs whose "
                "threads race at one sim instant; slower");
   app.add_option("--team-protocol", options.team_protocols,
-                 "COLOUR PROTOCOL: ssl (default) or lcm: the COLOUR team's --team-command speaks "
-                 "LCM (VISION, REFEREE, ... in, RADIO_<TEAM> out) on a private bus the bridge "
-                 "relays, timed (docs/timeshim.md)")
+                 "COLOUR PROTOCOL: ssl (default), lcm or grsim: the COLOUR team's --team-command "
+                 "speaks the SSL protocols, LCM (VISION, REFEREE, ... in, RADIO_<TEAM> out) on a "
+                 "private bus the bridge relays, or grSim's (grSim_Packet to --grsim-port); "
+                 "timed (docs/timeshim.md)")
       ->type_name("COLOUR PROTOCOL");
   app.add_option("--team-lcm-url", options.bridge.lcm_door.url,
                  "the LCM teams' private bus (default: the LCM URL's group on the next port, "
@@ -173,6 +184,8 @@ std::string take_team_commands(SslBridgeOptions& options) {
   }
   teams.controller.grace =
       std::chrono::milliseconds(static_cast<std::int64_t>(options.team_grace * 1000));
+  teams.controller.charge_ns = static_cast<std::int64_t>(options.team_charge_us * 1e3);
+  teams.controller.yield_after_ns = static_cast<std::int64_t>(options.team_yield_after_ms * 1e6);
   return "";
 }
 
@@ -200,6 +213,9 @@ int parse_and_run(int argc, char** argv) {
   if (error.empty()) {
     error = ubersim::ssl::apply_team_protocols(options.team_protocols, options.common.lcm_url,
                                                b.teams, b.lcm_door);
+  }
+  if (error.empty() && options.grsim.port == 0 && !ubersim::ssl::grsim_teams(b.teams).empty()) {
+    error = "--team-protocol grsim: the grSim port is off (--grsim-port 0)";
   }
   if (!error.empty()) {
     std::fprintf(stderr, "ubersim_ssl_bridge: %s\n", error.c_str());

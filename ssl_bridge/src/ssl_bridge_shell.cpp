@@ -26,9 +26,9 @@ class SslBridgeShell {
   SslBridgeShell& operator=(const SslBridgeShell&) = delete;
 
   int run() {
-    bridge_.start();
     host_.after_wake([this](ProcessHost::Clock::time_point now) { bridge_.tick(now); });
     if (options_.grsim.port > 0) start_grsim();
+    bridge_.start();  // starts the team programs: every door of their group is open by now
     host_.at_stop([this] {
       bridge_.stop();
       bridge_.log_summary();
@@ -44,6 +44,16 @@ class SslBridgeShell {
     options_.grsim.translation.wheels = options_.bridge.wheels;
     options_.grsim.translation.spinner_speed = robot_.dribbler_max_speed;
     grsim_.emplace(host_.bus(), host_.channels(), options_.grsim);
+    // grSim-protocol team programs under the time shim: the port is one more
+    // door of the bridge's team group (docs/timeshim.md).
+    const std::vector<Team> timed = grsim_teams(options_.bridge.teams);
+    if (!timed.empty()) {
+      grsim_->gate(timed, [this](Team team, radio_packet_t packet) {
+        bridge_.publish_timed_radio(team, std::move(packet));
+      });
+      bridge_.add_timed_door([this](std::int64_t now_ns) { return grsim_->drain_timed(now_ns); },
+                             [this] { grsim_->stop_gating(); });
+    }
     grsim_->start();
     // Wakes the loop when the grSim port has something due (a packet held
     // for its interval, a repeat, a stop); the work is done in tick().

@@ -23,6 +23,8 @@ struct SslBridgeOptions {
   std::vector<std::pair<std::string, std::string>> team_commands;   // --team-command
   std::vector<std::pair<std::string, std::string>> team_protocols;  // --team-protocol
   double team_grace = 2.0;
+  double team_charge_us = 1.0;       // --team-charge-us
+  double team_yield_after_ms = 1.0;  // --team-yield-after-ms
 };
 
 // Bridges until SIGINT/SIGTERM (0). Fills in what `options.bridge` takes from

@@ -51,6 +51,8 @@ expect_usage_error "--team yellow: the yellow demo team plays that colour" -- --
 expect_usage_error "--team needs a colour and a command" -- --team blue
 expect_usage_error "--team-deterministic: only with --sync and --team" -- --team-deterministic --team blue 'true' --log-dir "$work/logs"
 expect_usage_error "--team both: an LCM program plays one colour" -- --team both 'lcm:true' --log-dir "$work/logs"
+expect_usage_error "--team-charge-us: only with --sync and --team" -- --team-charge-us 50 --team blue 'grsim:true' --log-dir "$work/logs"
+expect_usage_error "--team-yield-after-ms: 'x' is not a number" -- --sync --team-yield-after-ms x --team blue 'grsim:true' --log-dir "$work/logs"
 expect_usage_error "--seed: 'x' is not a whole number" -- --seed x --log-dir "$work/logs"
 expect_usage_error "--sync-clients: 3 is not in [0, 2]" -- --sync-clients 3 --log-dir "$work/logs"
 expect_usage_error "--sync-timeout: 0 is not greater than 0" -- --sync --sync-timeout 0 --log-dir "$work/logs"

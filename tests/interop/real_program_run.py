@@ -126,19 +126,12 @@ def descendants(pid):
     return found
 
 
-class Ubersim:
-    """tools/launch.sh with the SSL bridge (and the automatic referee), and its ground truth."""
+class Run:
+    """A run of tools/launch.sh with its process logs in LOG_DIR: ground truth, logs, events."""
 
-    def __init__(self, processes, source_dir, build_dir, referee=True):
-        self.processes = processes
+    def __init__(self, build_dir, log_dir):
         self.build_dir = build_dir
-        self.log_dir = os.path.join(processes.folder, "ubersim")
-        env = dict(os.environ, UBERSIM_BUILD_DIR=build_dir)
-        processes.start("launch", [os.path.join(source_dir, "tools", "launch.sh"), "--ssl-bridge",
-                                   *(["--referee"] if referee else []), "--log-dir",
-                                   self.log_dir], env=env)
-        if not processes.wait_for_line("launch", "Ctrl-C stops everything", 60):
-            raise AssertionError("ubersim did not start:\n" + processes.log("launch"))
+        self.log_dir = log_dir
 
     def state(self):
         """{'t': sim time, 'ball': (x, y), 'yellow': {id: (x, y)}, 'blue': {...}} or None."""
@@ -161,6 +154,20 @@ class Ubersim:
         found = re.findall(r"\] (yellow|blue) \(profile [^)]*\): received (\d+)",
                            self.log("radio.log"))
         return {team: int(n) for team, n in found}
+
+
+class Ubersim(Run):
+    """tools/launch.sh with the SSL bridge (and the automatic referee), and its ground truth."""
+
+    def __init__(self, processes, source_dir, build_dir, referee=True):
+        super().__init__(build_dir, os.path.join(processes.folder, "ubersim"))
+        self.processes = processes
+        env = dict(os.environ, UBERSIM_BUILD_DIR=build_dir)
+        processes.start("launch", [os.path.join(source_dir, "tools", "launch.sh"), "--ssl-bridge",
+                                   *(["--referee"] if referee else []), "--log-dir",
+                                   self.log_dir], env=env)
+        if not processes.wait_for_line("launch", "Ctrl-C stops everything", 60):
+            raise AssertionError("ubersim did not start:\n" + processes.log("launch"))
 
 
 def parse_state(text):

@@ -212,6 +212,7 @@ std::optional<RobotControlResponse> control(UdpClient& client, const RobotContro
 
 std::optional<TeamArguments> parse_team_arguments(int argc, char** argv, const char* program) {
   std::string team;
+  std::string protocol = "ssl";
   TeamArguments arguments;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string option = argv[i];
@@ -221,17 +222,22 @@ std::optional<TeamArguments> parse_team_arguments(int argc, char** argv, const c
       arguments.vision_port = std::atoi(argv[i + 1]);
     } else if (option == "--port") {
       arguments.port = std::atoi(argv[i + 1]);
+    } else if (option == "--protocol") {
+      protocol = argv[i + 1];
     } else {
       std::cerr << program << ": unknown option " << option << "\n";
       return std::nullopt;
     }
   }
-  if (team != "yellow" && team != "blue") {
-    std::cerr << "usage: " << program << " --team yellow|blue [--vision-port P] [--port P]\n";
+  if ((team != "yellow" && team != "blue") || (protocol != "ssl" && protocol != "grsim")) {
+    std::cerr << "usage: " << program
+              << " --team yellow|blue [--vision-port P] [--port P] [--protocol ssl|grsim]\n";
     return std::nullopt;
   }
   arguments.yellow = team == "yellow";
-  if (arguments.port == 0) arguments.port = arguments.yellow ? 10302 : 10301;
+  arguments.grsim = protocol == "grsim";
+  if (arguments.port == 0)
+    arguments.port = arguments.grsim ? 20011 : arguments.yellow ? 10302 : 10301;
   return arguments;
 }
 

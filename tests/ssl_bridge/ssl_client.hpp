@@ -91,12 +91,14 @@ std::optional<RobotControlResponse> control(UdpClient& client, const RobotContro
                                             double timeout_s = 3);
 
 // The command line of the test teams (ssl_sync_team, ssl_timed_team):
-// --team yellow|blue [--vision-port P] [--port P]; the port defaults to the
-// team's robot control port (10302 yellow, 10301 blue).
+// --team yellow|blue [--vision-port P] [--port P] [--protocol ssl|grsim]; the
+// port defaults to the team's robot control port (10302 yellow, 10301 blue),
+// with --protocol grsim to grSim's command port (20011).
 struct TeamArguments {
   bool yellow = true;
   int vision_port = 10020;
   int port = 0;
+  bool grsim = false;  // commands as grSim_Packet (ssl_timed_team only)
 };
 // nullopt after one line on stderr naming `program` (the caller exits 2).
 std::optional<TeamArguments> parse_team_arguments(int argc, char** argv, const char* program);

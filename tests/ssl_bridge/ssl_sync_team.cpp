@@ -78,6 +78,10 @@ int main(int argc, char** argv) {
   const std::optional<ssl_test::TeamArguments> arguments =
       ssl_test::parse_team_arguments(argc, argv, "ssl_sync_team");
   if (!arguments) return 2;
+  if (arguments->grsim) {
+    std::cerr << "ssl_sync_team: --protocol grsim: this team answers frames with RobotControl\n";
+    return 2;
+  }
   const bool yellow = arguments->yellow;
   const std::string team = yellow ? "yellow" : "blue";
   const int vision_port = arguments->vision_port;

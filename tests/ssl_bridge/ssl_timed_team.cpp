@@ -7,8 +7,13 @@
 // the responses without blocking. Each loop prints its own clocks:
 //   loop N steady S.SSSSSSSSS wall W.WWWWWW packets P
 // Started under the shim, S is sim time and the loop's commands are stamped
-// with it; its behaviour depends only on what it received and when.
-//   ssl_timed_team --team yellow|blue [--vision-port 10020] [--port 10301|10302]
+// with it; its behaviour depends only on what it received and when. With
+// --protocol grsim it speaks grSim's protocol instead, as grSim clients do:
+// one grSim_Packet per loop to grSim's command port (robot-local velocities),
+// and no answer to read.
+//   ssl_timed_team --team yellow|blue [--vision-port 10020] [--port 10301|10302|20011]
+//                  [--protocol ssl|grsim]
+#include <grSim_Packet.pb.h>
 #include <signal.h>
 
 #include <atomic>
@@ -32,8 +37,12 @@ void on_signal(int) {
   stop_requested = true;
 }
 
+struct Pose {
+  double x = 0, y = 0, orientation = 0;  // m, rad
+};
+
 struct Seen {
-  std::map<uint32_t, std::pair<double, double>> own;  // id -> x, y (m)
+  std::map<uint32_t, Pose> own;  // by robot id
   bool ball = false;
   double ball_x = 0, ball_y = 0;  // m
   long packets = 0;
@@ -44,7 +53,9 @@ class World {
   void update(const SSL_DetectionFrame& frame, bool yellow) {
     const std::lock_guard<std::mutex> lock(mutex_);
     for (const SSL_DetectionRobot& r : yellow ? frame.robots_yellow() : frame.robots_blue()) {
-      if (r.has_robot_id()) seen_.own[r.robot_id()] = {r.x() / 1000.0, r.y() / 1000.0};
+      if (r.has_robot_id()) {
+        seen_.own[r.robot_id()] = {r.x() / 1000.0, r.y() / 1000.0, r.orientation()};
+      }
     }
     if (frame.balls_size() > 0) {
       seen_.ball = true;
@@ -67,18 +78,51 @@ double clamp(double v, double limit) {
   return std::max(-limit, std::min(limit, v));
 }
 
-RobotControl drive_at_ball(const Seen& seen) {
-  RobotControl control;
-  if (!seen.ball) return control;
+// Each robot's velocity towards the ball (m/s, field frame), by robot id.
+std::map<uint32_t, std::pair<double, double>> velocities_at_ball(const Seen& seen) {
+  std::map<uint32_t, std::pair<double, double>> velocities;
+  if (!seen.ball) return velocities;
   for (const auto& [id, at] : seen.own) {
+    velocities[id] = {clamp(1.5 * (seen.ball_x - at.x), 1.5),
+                      clamp(1.5 * (seen.ball_y - at.y), 1.5)};
+  }
+  return velocities;
+}
+
+std::string drive_at_ball(const Seen& seen) {
+  RobotControl control;
+  for (const auto& [id, v] : velocities_at_ball(seen)) {
     RobotCommand* command = control.add_robot_commands();
     command->set_id(id);
-    MoveGlobalVelocity* v = command->mutable_move_command()->mutable_global_velocity();
-    v->set_x(static_cast<float>(clamp(1.5 * (seen.ball_x - at.first), 1.5)));
-    v->set_y(static_cast<float>(clamp(1.5 * (seen.ball_y - at.second), 1.5)));
-    v->set_angular(0.0f);
+    MoveGlobalVelocity* global = command->mutable_move_command()->mutable_global_velocity();
+    global->set_x(static_cast<float>(v.first));
+    global->set_y(static_cast<float>(v.second));
+    global->set_angular(0.0f);
   }
-  return control;
+  return control.SerializeAsString();
+}
+
+// The same in grSim's protocol: velocities in the robot's frame.
+std::string drive_at_ball_grsim(const Seen& seen, bool yellow) {
+  grSim_Packet packet;
+  grSim_Commands* commands = packet.mutable_commands();
+  commands->set_timestamp(0);
+  commands->set_isteamyellow(yellow);
+  for (const auto& [id, v] : velocities_at_ball(seen)) {
+    const double heading = seen.own.at(id).orientation;
+    grSim_Robot_Command* command = commands->add_robot_commands();
+    command->set_id(id);
+    command->set_veltangent(
+        static_cast<float>(std::cos(heading) * v.first + std::sin(heading) * v.second));
+    command->set_velnormal(
+        static_cast<float>(-std::sin(heading) * v.first + std::cos(heading) * v.second));
+    command->set_velangular(0.0f);
+    command->set_kickspeedx(0.0f);
+    command->set_kickspeedz(0.0f);
+    command->set_spinner(false);
+    command->set_wheelsspeed(false);
+  }
+  return packet.SerializeAsString();
 }
 
 double seconds_of(std::chrono::nanoseconds d) {
@@ -117,7 +161,7 @@ int main(int argc, char** argv) {
   long loops = 0, responses = 0;
   while (!stop_requested) {
     const Seen seen = world.get();
-    robots.send(drive_at_ball(seen).SerializeAsString());
+    robots.send(arguments->grsim ? drive_at_ball_grsim(seen, yellow) : drive_at_ball(seen));
     while (robots.receive(0)) ++responses;  // errors and feedback: not used here
     const auto now = Steady::now();
     const double wall = seconds_of(std::chrono::system_clock::now().time_since_epoch());

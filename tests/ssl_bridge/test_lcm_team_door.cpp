@@ -6,9 +6,11 @@
 
 using ubersim::Team;
 using ubersim::ssl::apply_team_protocols;
+using ubersim::ssl::grsim_teams;
 using ubersim::ssl::LcmDoorOptions;
 using ubersim::ssl::private_lcm_url;
 using ubersim::ssl::TeamGroupOptions;
+using ubersim::ssl::TeamProtocol;
 
 TEST(LcmTeamDoor, PrivateBusIsTheNextPortOnTheSameGroupWithTtlZero) {
   EXPECT_EQ(private_lcm_url("udpm://239.255.76.67:7667?ttl=0"), "udpm://239.255.76.67:7668?ttl=0");
@@ -38,13 +40,37 @@ TEST(LcmTeamDoor, BadProtocolsAreRefusedWithAReason) {
   TeamGroupOptions teams;
   teams.commands = {{Team::Yellow, false, "yellow_ai"}};
   LcmDoorOptions door;
-  EXPECT_NE(apply_team_protocols({{"yellow", "dds"}}, url, teams, door).find("not ssl or lcm"),
-            std::string::npos);
+  EXPECT_NE(
+      apply_team_protocols({{"yellow", "dds"}}, url, teams, door).find("not ssl, lcm or grsim"),
+      std::string::npos);
   EXPECT_NE(apply_team_protocols({{"blue", "lcm"}}, url, teams, door).find("no --team-command"),
             std::string::npos);
   EXPECT_NE(apply_team_protocols({{"yellow", "lcm"}}, "memq://", teams, door).find("udpm://"),
             std::string::npos);
   door.url = url;
   EXPECT_NE(apply_team_protocols({{"yellow", "lcm"}}, url, teams, door).find("main bus"),
+            std::string::npos);
+}
+
+TEST(LcmTeamDoor, GrsimTeamsKeepTheirCommandAndMayPlayBothColours) {
+  const std::string url = "udpm://239.255.76.67:7667?ttl=0";
+  TeamGroupOptions teams;
+  teams.commands = {{Team::Yellow, false, "yellow_ai"}, {Team::Blue, false, "blue_ai"}};
+  LcmDoorOptions door;
+  EXPECT_EQ(apply_team_protocols({{"blue", "grsim"}}, url, teams, door), "");
+  EXPECT_TRUE(door.teams.empty());
+  EXPECT_EQ(teams.commands[1].command, "blue_ai");
+  EXPECT_EQ(teams.commands[1].protocol, TeamProtocol::Grsim);
+  EXPECT_EQ(teams.commands[0].protocol, TeamProtocol::Ssl);
+  EXPECT_EQ(grsim_teams(teams), std::vector<Team>{Team::Blue});
+
+  TeamGroupOptions both;
+  both.commands = {{Team::Yellow, true, "one_ai"}};
+  EXPECT_EQ(apply_team_protocols({{"both", "grsim"}}, url, both, door), "");
+  EXPECT_EQ(grsim_teams(both), (std::vector<Team>{Team::Yellow, Team::Blue}));
+  EXPECT_NE(apply_team_protocols({{"both", "lcm"}}, url, both, door).find("one colour"),
+            std::string::npos);
+  EXPECT_NE(apply_team_protocols({{"yellow", "grsim"}, {"yellow", "ssl"}}, url, teams, door)
+                .find("given twice"),
             std::string::npos);
 }

@@ -23,11 +23,18 @@ namespace {
 
 constexpr const char* kPython = "/usr/bin/python3";
 
-// One game of 4 s of sim time: the C++ team yellow, the Python team blue.
+// The C++ team yellow and the Python team blue on the SSL protocols, 4 s.
 TimedGame play(const TempDir& dir, const std::string& name, const std::string& seed, bool hog) {
   return play_timed_game(dir, name, std::string(UBERSIM_SSL_TIMED_TEAM_EXE) + " --team yellow",
                          std::string(kPython) + " " + UBERSIM_SSL_TIMED_TEAM_PY + " --team blue",
                          "4", seed, hog);
+}
+
+// The C++ team playing both colours on grSim's protocol, 3 s.
+TimedGame play_grsim(const TempDir& dir, const std::string& name, const std::string& seed,
+                     bool hog) {
+  const std::string team = std::string("grsim:") + UBERSIM_SSL_TIMED_TEAM_EXE + " --protocol grsim";
+  return play_timed_game(dir, name, team + " --team yellow", team + " --team blue", "3", seed, hog);
 }
 
 // The times a team's loop printed ("loop N steady|monotonic S ...").
@@ -47,7 +54,8 @@ bool on_grid(double t) {
   return std::fabs(t / 0.02 - std::round(t / 0.02)) < 1e-6;
 }
 
-void check_team(const TimedGame& game, const std::string& channel, const std::string& team_log) {
+void check_team(const TimedGame& game, const std::string& channel, const std::string& team_log,
+                std::size_t min_loops = 150) {
   SCOPED_TRACE(channel);
   const auto packets = decode_all<ubersim::radio_packet_t>(game.log.at(channel));
   const auto states = decode_all<ubersim::sim_state_t>(game.log.at("SIM_STATE"));
@@ -64,12 +72,31 @@ void check_team(const TimedGame& game, const std::string& channel, const std::st
   }
   // The team's loop ran on sim time: loop N at N * 20 ms, up to where physics stopped.
   const std::vector<double> loops = loop_times(team_log);
-  ASSERT_GT(loops.size(), 150u) << team_log;
+  ASSERT_GT(loops.size(), min_loops) << team_log;
   for (std::size_t i = 0; i < loops.size(); ++i) {
     ASSERT_NEAR(loops[i], 0.02 * static_cast<double>(i), 1e-6) << "loop " << i;
   }
   EXPECT_NEAR(loops.back(), states.back().sim_time, 0.25);
-  EXPECT_GT(with_commands, 150u);
+  EXPECT_GT(with_commands, min_loops);
+}
+
+void expect_no_drop(const TimedGame& game) {
+  EXPECT_NE(game.radio_log.find("sync: no client was dropped"), std::string::npos)
+      << game.radio_log;
+  EXPECT_NE(game.radio_log.find("0 duplicated or out of order; 0 client timeouts"),
+            std::string::npos)
+      << game.radio_log;
+}
+
+void expect_same_bytes(const TimedGame& first, const TimedGame& second) {
+  for (const std::string& channel : reproducible_channels()) {
+    ASSERT_TRUE(first.log.count(channel)) << channel << " was not recorded";
+    ASSERT_TRUE(second.log.count(channel)) << channel << " was not recorded";
+    EXPECT_EQ(compare_channel(first.log.at(channel), second.log.at(channel)), "")
+        << "on " << channel;
+  }
+  EXPECT_EQ(first.yellow_log, second.yellow_log);
+  EXPECT_EQ(first.blue_log, second.blue_log);
 }
 
 }  // namespace
@@ -79,22 +106,34 @@ TEST(TimedTeams, UnchangedTeamsPlayAReproducibleSyncGameUnderTheTimeShim) {
   TempDir dir;
   const TimedGame first = play(dir, "first", "7", false);
   ASSERT_EQ(first.status, 0) << first.output << first.bridge_log << first.radio_log;
-  EXPECT_NE(first.radio_log.find("sync: no client was dropped"), std::string::npos)
-      << first.radio_log;
-  EXPECT_NE(first.radio_log.find("0 duplicated or out of order; 0 client timeouts"),
-            std::string::npos)
-      << first.radio_log;
+  expect_no_drop(first);
   check_team(first, "RADIO_YELLOW", first.yellow_log);
   check_team(first, "RADIO_BLUE", first.blue_log);
 
   const TimedGame second = play(dir, "second", "7", true);
   ASSERT_EQ(second.status, 0) << second.output << second.bridge_log << second.radio_log;
-  for (const std::string& channel : reproducible_channels()) {
-    ASSERT_TRUE(first.log.count(channel)) << channel << " was not recorded";
-    ASSERT_TRUE(second.log.count(channel)) << channel << " was not recorded";
-    EXPECT_EQ(compare_channel(first.log.at(channel), second.log.at(channel)), "")
-        << "on " << channel;
+  expect_same_bytes(first, second);
+}
+
+// The same C++ team speaking grSim's protocol (grSim_Packet to 20011), both
+// colours: its commands are read at the group's quiescences and stamped with
+// the time its loop sent them, like RobotControl.
+TEST(TimedTeams, GrsimProtocolTeamsPlayAReproducibleSyncGameUnderTheTimeShim) {
+  TempDir dir;
+  const TimedGame first = play_grsim(dir, "first", "7", false);
+  ASSERT_EQ(first.status, 0) << first.output << first.bridge_log << first.radio_log;
+  expect_no_drop(first);
+  check_team(first, "RADIO_YELLOW", first.yellow_log, 100);
+  check_team(first, "RADIO_BLUE", first.blue_log, 100);
+  for (const std::string colour : {"yellow", "blue"}) {
+    EXPECT_NE(first.bridge_log.find("grSim radio packets " + colour + " (timed)="),
+              std::string::npos)
+        << first.bridge_log;
   }
-  EXPECT_EQ(first.yellow_log, second.yellow_log);
-  EXPECT_EQ(first.blue_log, second.blue_log);
+  EXPECT_EQ(first.bridge_log.find("grSim command packets dropped"), std::string::npos)
+      << first.bridge_log;
+
+  const TimedGame second = play_grsim(dir, "second", "7", true);
+  ASSERT_EQ(second.status, 0) << second.output << second.bridge_log << second.radio_log;
+  expect_same_bytes(first, second);
 }

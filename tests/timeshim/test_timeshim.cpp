@@ -353,6 +353,19 @@ TEST(Timeshim, PollingLoopIsChargedAndEnds) {
   EXPECT_NEAR(static_cast<double>(run.advances), 1000, 2);  // one pause per 1 ms of charge
 }
 
+TEST(Timeshim, PollingThreadsPauseAtTheSameInstants) {
+  TempDir dir;
+  ControllerOptions options = options_in(dir);
+  options.charge_ns = 1000;
+  options.yield_after_ns = 1000000;
+  const GroupRun run = run_program(dir, {TIMESHIM_PROBE, "busy_clock_two"}, options);
+  ASSERT_EQ(run.exit_status, 0) << run.output;
+  EXPECT_GE(value_of(run.seen, "end"), 1.0);
+  // Paused on one grid of 1 ms: about one advance per ms for both (each
+  // pausing at its own charge would take about two).
+  EXPECT_LT(static_cast<double>(run.advances), 1100);
+}
+
 TEST(Timeshim, UnsupportedBlockingCallIsNamedNotHung) {
   TempDir dir;
   ControllerOptions options = options_in(dir);

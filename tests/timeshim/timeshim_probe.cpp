@@ -282,6 +282,23 @@ int busy_clock() {
   return 0;
 }
 
+// Two threads poll the clock until 1 s of sim time, the second starting
+// 0.4 ms later: their charged pauses fall on the same instants all the same.
+int busy_clock_two() {
+  std::thread late([] {
+    std::this_thread::sleep_for(std::chrono::microseconds(400));
+    const double start = monotonic_s();
+    while (monotonic_s() - start < 0.999) {
+    }
+  });
+  const double start = monotonic_s();
+  while (monotonic_s() - start < 1.0) {
+  }
+  late.join();
+  say("end", monotonic_s());
+  return 0;
+}
+
 // A sleep the shim cannot see (a raw syscall): must be reported by name.
 int raw_sleep() {
   timespec request{3, 0};
@@ -564,6 +581,7 @@ int main(int argc, char** argv) {
       {"forks", forks},
       {"socket_wait", socket_wait},
       {"busy_clock", busy_clock},
+      {"busy_clock_two", busy_clock_two},
       {"raw_sleep", raw_sleep},
       {"clock_cost", clock_cost},
       {"sleep_cost", sleep_cost},

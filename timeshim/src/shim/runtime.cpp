@@ -346,8 +346,13 @@ void charge_call() {
   this_thread.charge_ns += the_segment->charge_ns;
   const std::int64_t yield_after = the_segment->yield_after_ns;
   if (yield_after > 0 && this_thread.charge_ns >= yield_after) {
-    // Run no further ahead: wait until sim time reaches what this thread sees.
-    sleep_until(view_now(), ShimCall::ChargedYield);
+    // Run no further ahead: wait until sim time reaches what this thread sees,
+    // rounded up to a multiple of yield_after, so that the polling threads of
+    // a group pause at the same instants and sim time advances once for all
+    // of them (not once per thread: each advance costs the controller two
+    // looks at every thread).
+    const std::int64_t view = view_now();
+    sleep_until((view + yield_after - 1) / yield_after * yield_after, ShimCall::ChargedYield);
   }
 }
 

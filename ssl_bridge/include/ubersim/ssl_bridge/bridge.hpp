@@ -112,8 +112,13 @@ class SslBridge {
   // Sync mode: the registered teams leave.
   void stop();
   void log_summary() const;
-  // Timed teams: what says the bridge should stop (the host's stop flag), looked
-  // at while the team group runs.
+  // Timed teams: another door of the team group (the grSim port): `drain` at
+  // each quiescence (true when it sent something to the group, which then
+  // runs again at the same instant), `ended` once the team programs ended.
+  void add_timed_door(std::function<bool(std::int64_t now_ns)> drain, std::function<void()> ended);
+  // A timed team's radio packet (t_sent set): numbered in the team's sequence,
+  // with its promises; held until the team registered.
+  void publish_timed_radio(Team team, radio_packet_t packet);
 
  private:
   struct PendingResponse {
@@ -198,6 +203,11 @@ class SslBridge {
   // By Team: what a timed team sent before it registered (at sim time 0).
   std::array<std::vector<radio_packet_t>, 2> timed_early_;
   std::unique_ptr<LcmTeamDoor> lcm_door_;  // the timed teams that speak LCM
+  struct TimedDoor {
+    std::function<bool(std::int64_t)> drain;
+    std::function<void()> ended;
+  };
+  std::vector<TimedDoor> timed_doors_;     // add_timed_door
   std::vector<std::string> timed_vision_;  // vision packets waiting for their publication
   bool teams_up_ = false;                  // the group was quiescent once
   std::string timed_geometry_;             // the latest geometry packet
@@ -208,6 +218,7 @@ class SslBridge {
   std::int64_t timed_step_ = -1;  // of the latest schedule heard
   double timed_publication_ = 0;  // s, sim time the awaited frames are published at
   double timed_next_input_ = 0;   // s, the next frame's earliest publication
+  double timed_captured_ = 0;     // s, the latest capture time of the frames heard
   int timed_frames_due_ = 0;      // frames of the latest schedule not heard yet
 };
 

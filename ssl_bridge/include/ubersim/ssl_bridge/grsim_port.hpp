@@ -7,11 +7,21 @@
 // 30012 (yellow). Built to take a flood: a wakeup reads a bounded number of
 // datagrams into one buffer, a team gets at most one radio packet per
 // kGrsimPublishInterval, and nothing queues but the newest command per robot.
+//
+// Timed teams (gate(), docs/timeshim.md, "Team programs that speak grSim's
+// protocol"): for team programs the SSL bridge runs under the time shim, the
+// port is read at the team group's quiescences (drain_timed) instead: each
+// timed team's commands go out once per quiescence, stamped with the group's
+// sim time, and the book's clock (kick window, repeats, the silent team's
+// stop) is sim time. Command packets for any other colour are counted and
+// dropped while the group runs: that colour's RADIO_<TEAM> belongs to a sync
+// client, where unstamped packets would be out of order.
 #include <netinet/in.h>
 
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -52,9 +62,21 @@ struct GrsimOptions {
 class GrsimPort {
  public:
   using Clock = std::chrono::steady_clock;
+  // Publishes a timed team's radio packet (the bridge numbers it with the
+  // team's promises, and holds it until the team registered).
+  using PublishTimed = std::function<void(Team, radio_packet_t)>;
+
   GrsimPort(MessageBus& bus, const ChannelNames& channels, GrsimOptions options);
+  // Before start(): these colours are grSim-protocol teams under the time shim.
+  void gate(std::vector<Team> timed_teams, PublishTimed publish);
   // Watches the port on the bus.
   void start();
+  // At a quiescence of the team group at now_ns (sim time): every datagram the
+  // group sent is waiting; each timed team's commands go out stamped now_ns.
+  // True when a robot status went back to the group (it must run again).
+  bool drain_timed(std::int64_t now_ns);
+  // The team programs ended: back to the real-time rules.
+  void stop_gating();
   // After every wakeup: sends what waited for its interval, repeats, stops.
   void tick(Clock::time_point now);
   // When tick() has something to do next (nullopt: nothing until a datagram).
@@ -62,12 +84,22 @@ class GrsimPort {
   void log_summary() const;
 
  private:
+  // Where a datagram was read: in the bus loop, or at a team group's quiescence.
+  enum class Arrival { RealTime, AtQuiescence };
+
   void on_readable();
+  // Reads and handles one datagram; false when none waits.
+  bool receive_one(Clock::time_point now, Arrival arrival);
   void handle_datagram(const std::uint8_t* data, std::size_t size, const sockaddr_in& from,
-                       Clock::time_point now);
-  void handle_commands(const grSim_Commands& commands, Clock::time_point now);
+                       Clock::time_point now, Arrival arrival);
+  void handle_commands(const grSim_Commands& commands, Clock::time_point now, Arrival arrival);
+  // Gated: a packet for `team` read this way is dropped (counted, logged).
+  bool refused_while_gated(Team team, Arrival arrival);
+  bool timed(Team team) const;
+  void on_feedback(Team team, const radio_feedback_t& feedback);
   void handle_replacement(const grSim_Replacement& replacement);
-  void send_status(const sockaddr_in& sender);
+  // True when it sent a status packet.
+  bool send_status(const sockaddr_in& sender);
   void flush(Clock::time_point now);
   void publish(Team team, radio_packet_t packet);
   void on_ack(const sim_control_ack_t& ack);
@@ -85,6 +117,13 @@ class GrsimPort {
   std::array<Clock::time_point, 2> last_publish_{};
   std::array<std::int64_t, 2> sequence_{};
   std::int64_t next_request_id_ = 1;
+  // Timed teams (gate()): their colours, where their packets go, the feedback
+  // held until the group's sim time reaches it, and whether the group runs.
+  std::vector<Team> timed_teams_;
+  PublishTimed publish_timed_;
+  std::vector<std::pair<Team, radio_feedback_t>> held_feedback_;
+  bool gated_ = false;
+  bool statuses_sent_ = false;  // during a drain
   ThrottledLog bad_input_;
   std::map<std::string, std::uint64_t> counters_;
 };

@@ -41,12 +41,15 @@ struct LcmDoorOptions {
 std::optional<std::string> private_lcm_url(const std::string& main_url);
 // COMMAND run with LCM_DEFAULT_URL = url (for /bin/sh -c).
 std::string with_lcm_url(const std::string& command, const std::string& url);
-// The --team-protocol COLOUR PROTOCOL pairs (ssl | lcm): each LCM team goes
-// into `door` and its command gets the private bus (door.url, or the one of
-// main_url). Returns an error text for the command line, or "".
+// The --team-protocol COLOUR PROTOCOL pairs (ssl | lcm | grsim) set each
+// team command's protocol; each LCM team also goes into `door` and its
+// command gets the private bus (door.url, or the one of main_url). Returns an
+// error text for the command line, or "".
 std::string apply_team_protocols(const std::vector<std::pair<std::string, std::string>>& protocols,
                                  const std::string& main_url, TeamGroupOptions& teams,
                                  LcmDoorOptions& door);
+// The colours whose team command speaks grSim's protocol (both colours for "both").
+std::vector<Team> grsim_teams(const TeamGroupOptions& teams);
 
 class LcmTeamDoor {
  public:

@@ -25,10 +25,16 @@
 
 namespace ubersim::ssl {
 
+// What a team program speaks (--team-protocol): the SSL protocols (vision
+// multicast in, RobotControl out), ubersim's LCM contract on a private bus
+// (lcm_team_door.hpp), or grSim's (vision multicast in, grSim_Packet out).
+enum class TeamProtocol { Ssl, Lcm, Grsim };
+
 struct TeamCommand {
   Team team = Team::Yellow;
   bool both = false;    // one program plays both colours (team is then Yellow)
   std::string command;  // run as /bin/sh -c COMMAND
+  TeamProtocol protocol = TeamProtocol::Ssl;
 
   std::string colour() const { return both ? "both" : team_name(team); }
 };

@@ -1,0 +1,135 @@
+#!/usr/bin/env python3
+"""project-neon/NeonFC-SSL, one process per colour, plays a synced game unchanged under the time
+shim, on grSim's protocol (docs/timeshim.md, "Team programs that speak grSim's protocol").
+
+Runs `tools/launch.sh --sync --referee --team yellow 'grsim:NEONFC -p YELLOW' --team blue
+'grsim:NEONFC -p BLUE' --duration S` (each NeonFC in a folder of its own, for its ./logs; the
+configs setup_real_programs.sh wrote) with a charge for NeonFC's polling layers
+(--team-charge-us 50 --team-yield-after-ms 10) and 60 s of wall time before a team that keeps
+physics waiting is dropped (--sync-timeout 60: on a loaded machine the group's step between two
+frames can take longer than 1 s), samples ground truth (`ubersim_referee state`)
+every wall second while it plays, and asserts:
+  * the run ended by itself at S s of sim time, and no team was dropped;
+  * the bridge stamped grSim commands of both colours (its `grSim radio packets COLOUR (timed)`
+    counts), and no grSim command was dropped;
+  * both teams played: at least 3 robots of each moved 0.5 m or more (in the whole game: in
+    its first seconds NeonFC places its robots for the kick-off).
+It prints game seconds per wall second. S is UBERSIM_INTEROP_SECONDS (default 10; 300 by hand).
+
+Needs UBERSIM_NEONFC and the two configs (UBERSIM_NEONFC_CONFIGS), as test_neonfc.py; without
+them exits 77 (skipped) and says why. Run in a network namespace of its own
+(tests/run_isolated.sh).
+
+Usage: test_neonfc_sync.py SOURCE_DIR BUILD_DIR
+"""
+import os
+import re
+import shlex
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import real_program_run as run  # noqa: E402
+from test_neonfc import COLOURS, MIN_DISTANCE, MIN_ROBOTS_MOVED, configs  # noqa: E402
+
+WALL_LIMIT_PER_GAME_SECOND = 40  # s of wall time per s of sim time before the test gives up
+
+
+def team_command(neonfc, config, folder):
+    os.makedirs(os.path.join(folder, "logs"))
+    return f"grsim:cd {shlex.quote(folder)} && exec {shlex.quote(neonfc)} -p {shlex.quote(config)}"
+
+
+def play(processes, source_dir, build_dir, neonfc, config_of, seconds):
+    log_dir = os.path.join(processes.folder, "ubersim")
+    args = [os.path.join(source_dir, "tools", "launch.sh"), "--sync", "--referee", "--seed", "3",
+            "--duration", f"{seconds:g}", "--log-dir", log_dir,
+            "--team-charge-us", "50", "--team-yield-after-ms", "10", "--sync-timeout", "60"]
+    for colour in COLOURS:
+        folder = os.path.join(processes.folder, f"neonfc_{colour}")
+        args += ["--team", colour, team_command(neonfc, config_of[colour], folder)]
+    started = time.monotonic()
+    launch = processes.start("launch", args, env=dict(os.environ, UBERSIM_BUILD_DIR=build_dir))
+    ubersim = run.Run(build_dir, log_dir)
+    states = []
+    deadline = started + 60 + WALL_LIMIT_PER_GAME_SECOND * seconds
+    while launch.poll() is None and time.monotonic() < deadline:
+        state = ubersim.state()
+        if state:
+            states.append(state)
+        time.sleep(1)
+    wall = time.monotonic() - started
+    if launch.poll() is None:
+        processes.stop("launch", 10)
+        raise AssertionError(f"the game did not end within {wall:.0f} s of wall time:\n"
+                             + processes.log("launch")[-3000:])
+    return ubersim, states, wall, launch.returncode
+
+
+def distances(states, team):
+    """m each robot of TEAM travelled between the samples, by id."""
+    moved = {}
+    for before, after in zip(states, states[1:]):
+        for robot, (x, y) in after[team].items():
+            if robot in before[team]:
+                x0, y0 = before[team][robot]
+                moved[robot] = moved.get(robot, 0.0) + ((x - x0) ** 2 + (y - y0) ** 2) ** 0.5
+    return moved
+
+
+def check_logs(ubersim, failures):
+    radio = ubersim.log("radio.log")
+    if "sync: no client was dropped" not in radio:
+        failures.append("a team was dropped: "
+                        + "; ".join(re.findall(r"sync client dropped: [^\n]*", radio)[:2]))
+    bridge = ubersim.log("ssl_bridge.log")
+    for colour in COLOURS:
+        stamped = re.search(rf"grSim radio packets {colour} \(timed\)=(\d+)", bridge)
+        print(f"{colour}: {stamped.group(1) if stamped else 0} grSim radio packets stamped")
+        if not stamped:
+            failures.append(f"no grSim command of {colour} was stamped by the bridge")
+    if "grSim command packets dropped" in bridge:
+        failures.append("the bridge dropped grSim commands: "
+                        + ", ".join(re.findall(r"grSim command packets dropped[^=]*=\d+", bridge)))
+    for line in bridge.splitlines():
+        if "timeshim:" in line:
+            print(f"bridge: {line}")
+
+
+def main():
+    source_dir, build_dir = sys.argv[1], sys.argv[2]
+    neonfc = run.program_from_env("UBERSIM_NEONFC", "NeonFC-SSL's main (OUT/bin/neonfc)")
+    config_of = configs(neonfc)
+    run.skip_unless_loopback_multicast()
+    seconds = run.seconds_to_play(10)
+    folder = run.new_folder("ubersim-neonfc-sync-")
+    processes = run.Processes(folder)
+    failures, states, events = [], [], []
+    try:
+        ubersim, states, wall, status = play(processes, source_dir, build_dir, neonfc, config_of,
+                                             seconds)
+        print(f"{seconds:g} s of game in {wall:.1f} s of wall time (NeonFC's start included): "
+              f"{seconds / wall:.2f} game s per wall s")
+        if status != 0:
+            failures.append(f"tools/launch.sh exited {status}:\n"
+                            + processes.log("launch")[-3000:])
+        check_logs(ubersim, failures)
+        events = ubersim.events()
+    except AssertionError as error:
+        failures.append(str(error))
+    finally:
+        processes.stop_all()
+    print(run.game_summary(events))
+    for team in COLOURS:
+        run.print_team_motion(states, events, team)
+        moved = distances(states, team)
+        print(f"{team}: m moved in the game per robot "
+              + (", ".join(f"{i}: {d:.1f}" for i, d in sorted(moved.items())) or "none"))
+        if sum(1 for d in moved.values() if d >= MIN_DISTANCE) < MIN_ROBOTS_MOVED:
+            failures.append(f"{team}: fewer than {MIN_ROBOTS_MOVED} robots moved {MIN_DISTANCE} m "
+                            "(did NeonFC's grSim commands reach the radio?)")
+    return run.verdict(failures, folder)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
