@@ -20,6 +20,8 @@ namespace {
 constexpr std::chrono::milliseconds kLook{200};
 // Wall time the team programs get to end on SIGTERM (in sim time, run freely).
 constexpr std::chrono::milliseconds kEndGrace{500};
+// Wall time the group gets, before that, to finish what it does at its sim time.
+constexpr std::chrono::milliseconds kSettle{200};
 
 // Every process below this one (the bridge is their subreaper, so a team's
 // orphaned child is among them too).
@@ -134,6 +136,10 @@ void TeamGroup::report_exits(const char* when) {
 void TeamGroup::stop() {
   if (exited_) return;
   report_exits("");
+  // The stop comes in wall time, perhaps while the group runs what its last
+  // advance woke: let it become quiescent first, so that it ends having done
+  // everything up to its sim time (the same output on every run).
+  controller_.wait_quiescent(kSettle);
   for (pid_t pid : descendants()) ::kill(pid, SIGTERM);
   // Their handlers run in sim time: let it run freely for a moment.
   const auto give_up = std::chrono::steady_clock::now() + kEndGrace;
