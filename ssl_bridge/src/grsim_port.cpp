@@ -70,6 +70,11 @@ void GrsimPort::on_feedback(Team team, const radio_feedback_t& feedback) {
     held_feedback_.emplace_back(team, feedback);
     return;
   }
+  apply_feedback(team, feedback);
+}
+
+// The robots' status takes the feedback in; the book says whether a robot's kick fired.
+void GrsimPort::apply_feedback(Team team, const radio_feedback_t& feedback) {
   status_.on_feedback(team, feedback, [this, team](int32_t id) { return book_.kick(team, id); });
 }
 
@@ -138,11 +143,7 @@ bool GrsimPort::drain_timed(std::int64_t now_ns) {
   const auto later = std::stable_partition(
       held_feedback_.begin(), held_feedback_.end(),
       [t](const std::pair<Team, radio_feedback_t>& held) { return held.second.t_sent <= t; });
-  for (auto it = held_feedback_.begin(); it != later; ++it) {
-    const Team team = it->first;
-    status_.on_feedback(team, it->second,
-                        [this, team](int32_t id) { return book_.kick(team, id); });
-  }
+  for (auto it = held_feedback_.begin(); it != later; ++it) apply_feedback(it->first, it->second);
   held_feedback_.erase(held_feedback_.begin(), later);
   // The group is quiescent: what waits is finite (a bound against a flood from outside).
   statuses_sent_ = false;
@@ -167,11 +168,7 @@ bool GrsimPort::drain_timed(std::int64_t now_ns) {
 void GrsimPort::stop_gating() {
   if (!gated_) return;
   gated_ = false;
-  for (const auto& [team, feedback] : held_feedback_) {
-    const Team which = team;
-    status_.on_feedback(which, feedback,
-                        [this, which](int32_t id) { return book_.kick(which, id); });
-  }
+  for (const auto& [team, feedback] : held_feedback_) apply_feedback(team, feedback);
   held_feedback_.clear();
   spdlog::info("grSim protocol: the team programs ended; the port follows real time again");
 }

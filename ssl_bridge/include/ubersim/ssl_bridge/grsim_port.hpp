@@ -97,6 +97,7 @@ class GrsimPort {
   bool refused_while_gated(Team team, Arrival arrival);
   bool timed(Team team) const;
   void on_feedback(Team team, const radio_feedback_t& feedback);
+  void apply_feedback(Team team, const radio_feedback_t& feedback);
   void handle_replacement(const grSim_Replacement& replacement);
   // True when it sent a status packet.
   bool send_status(const sockaddr_in& sender);
