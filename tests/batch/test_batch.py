@@ -185,6 +185,8 @@ class BatchTest(unittest.TestCase):
             # Team programs under the time shim (team COMMAND).
             (SHORT.replace("YELLOW = demo", "YELLOW = team"),
              "experiment.cfg:8: YELLOW: expected team COMMAND (the program's command line"),
+            (SHORT.replace("YELLOW = demo", "YELLOW = team grsim:"),
+             "experiment.cfg:8: YELLOW: expected team COMMAND (the program's command line"),
             (SHORT.replace("YELLOW = demo", "YELLOW = team prog"),
              "experiment.cfg:8: YELLOW: a team program runs under the time shim, on the "
              "simulation's clock: MODE must be sync"),

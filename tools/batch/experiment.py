@@ -38,6 +38,17 @@ DEFAULTS = {"GAME_TIMEOUT": ["900"], "MODE": ["sync"], "JUDGING": ["adaptive"],
 # What a team program's command line (team COMMAND) may name: it gets its bus
 # and its clock from the SSL bridge, so not {lcm_url} nor {sync}.
 TEAM_PLACEHOLDERS = {"bin": "", "team": "", "config_dir": "", "seed": 0}
+# The protocol prefixes of a team program's command, as tools/launch.sh --team
+# has them: none for the SSL simulation protocol.
+TEAM_PROTOCOLS = ("lcm", "grsim")
+
+
+def team_protocol(command):
+    """(protocol or None, the command without its prefix) of `team COMMAND`."""
+    for protocol in TEAM_PROTOCOLS:
+        if command.startswith(protocol + ":"):
+            return protocol, command[len(protocol) + 1:]
+    return None, command
 
 # Short names of the files a sweep key may change: kind folder, experiment key
 # naming the file.
@@ -164,7 +175,7 @@ class Experiment:
         """self.teams: {colour: "demo" or a command line} of the teams started
         as they are; self.team_programs: {colour or "both": command} of those
         the SSL bridge starts under the time shim (team COMMAND; "lcm:COMMAND"
-        speaks LCM, as in tools/launch.sh --team)."""
+        speaks LCM, "grsim:COMMAND" grSim's protocol, as in tools/launch.sh --team)."""
         if "BOTH" in entries:
             for key in ("YELLOW", "BLUE"):
                 if key in entries:
@@ -173,7 +184,7 @@ class Experiment:
                         f"{entries['BOTH']['where'].rpartition(':')[2]}) names one program for "
                         f"both colours: leave out YELLOW and BLUE")
             command = self._team_program(entries["BOTH"], "BOTH", required=True)
-            if command.startswith("lcm:"):
+            if team_protocol(command)[0] == "lcm":
                 raise ExperimentError(f"{entries['BOTH']['where']}: BOTH: an LCM program plays "
                                       f"one colour (YELLOW = team lcm:COMMAND)")
             self.team_programs["both"] = command
@@ -203,7 +214,7 @@ class Experiment:
                                       f"'{' '.join(values)}'")
             return None
         command = " ".join(values[1:]).strip()
-        if not command or command == "lcm:":
+        if not team_protocol(command)[1].strip():
             raise ExperimentError(f"{where}: {key}: expected team COMMAND (the program's "
                                   f"command line after 'team'), got nothing")
         if self.mode != "sync":

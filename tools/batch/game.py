@@ -19,6 +19,8 @@ import sys
 import threading
 import time
 
+import experiment
+
 DEMO = "{bin}/ubersim_demo_team --lcm-url {lcm_url} --config-dir {config_dir} --team {team} {sync}"
 STOP_GRACE = 2.0  # s between SIGTERM and SIGKILL
 
@@ -191,9 +193,9 @@ def _bridge_command(spec, common, config_dir):
     for colour, template in sorted(spec["team_programs"].items()):
         command = template.format(bin=spec["bin_dir"], team=colour, config_dir=config_dir,
                                   seed=spec["seed"])
-        if command.startswith("lcm:"):
-            bridge += ["--team-protocol", colour, "lcm"]
-            command = command[len("lcm:"):]
+        protocol, command = experiment.team_protocol(command)
+        if protocol is not None:
+            bridge += ["--team-protocol", colour, protocol]
         bridge += ["--team-command", colour, command]
     if spec.get("team_deterministic"):
         bridge.append("--team-deterministic")
