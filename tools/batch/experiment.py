@@ -9,6 +9,9 @@ import json
 import os
 import subprocess
 
+# game.py is the one file a distributed worker gets: what both need lives there.
+from game import team_protocol
+
 # Keys of an experiment file: (required, what the value is).
 KEYS = {
     "SCENARIO": "scenario name (config/scenarios)",
@@ -38,17 +41,6 @@ DEFAULTS = {"GAME_TIMEOUT": ["900"], "MODE": ["sync"], "JUDGING": ["adaptive"],
 # What a team program's command line (team COMMAND) may name: it gets its bus
 # and its clock from the SSL bridge, so not {lcm_url} nor {sync}.
 TEAM_PLACEHOLDERS = {"bin": "", "team": "", "config_dir": "", "seed": 0}
-# The protocol prefixes of a team program's command, as tools/launch.sh --team
-# has them: none for the SSL simulation protocol.
-TEAM_PROTOCOLS = ("lcm", "grsim")
-
-
-def team_protocol(command):
-    """(protocol or None, the command without its prefix) of `team COMMAND`."""
-    for protocol in TEAM_PROTOCOLS:
-        if command.startswith(protocol + ":"):
-            return protocol, command[len(protocol) + 1:]
-    return None, command
 
 # Short names of the files a sweep key may change: kind folder, experiment key
 # naming the file.

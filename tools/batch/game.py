@@ -19,8 +19,6 @@ import sys
 import threading
 import time
 
-import experiment
-
 DEMO = "{bin}/ubersim_demo_team --lcm-url {lcm_url} --config-dir {config_dir} --team {team} {sync}"
 STOP_GRACE = 2.0  # s between SIGTERM and SIGKILL
 
@@ -182,6 +180,20 @@ def _team_command(spec, team, config_dir, lcm_url):
     return shlex.split(text)
 
 
+# The protocol prefixes of a team program's command, as tools/launch.sh --team
+# has them: none for the SSL simulation protocol. Here, not in experiment.py
+# (which checks them too): game.py is the one file a distributed worker gets.
+TEAM_PROTOCOLS = ("lcm", "grsim")
+
+
+def team_protocol(command):
+    """(protocol or None, the command without its prefix) of `team COMMAND`."""
+    for protocol in TEAM_PROTOCOLS:
+        if command.startswith(protocol + ":"):
+            return protocol, command[len(protocol) + 1:]
+    return None, command
+
+
 def _bridge_command(spec, common, config_dir):
     """The SSL bridge that starts the team programs (team COMMAND) under the
     time shim, as tools/launch.sh --sync --team COLOUR 'COMMAND' has it do
@@ -193,7 +205,7 @@ def _bridge_command(spec, common, config_dir):
     for colour, template in sorted(spec["team_programs"].items()):
         command = template.format(bin=spec["bin_dir"], team=colour, config_dir=config_dir,
                                   seed=spec["seed"])
-        protocol, command = experiment.team_protocol(command)
+        protocol, command = team_protocol(command)
         if protocol is not None:
             bridge += ["--team-protocol", colour, protocol]
         bridge += ["--team-command", colour, command]
