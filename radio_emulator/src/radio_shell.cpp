@@ -105,7 +105,11 @@ void RadioShell::subscribe_inputs() {
   MessageBus& bus = host_.bus();
   const ChannelNames& channels = host_.channels();
   subscribe(bus, channels, topics::kSimState, [this](const sim_state_t& state) {
-    publish_(emulator_.on_sim_state(state, host_.now()));
+    if (sync_) {
+      sync_->on_sim_state(state, host_.now());
+    } else {
+      publish_(emulator_.on_sim_state(state, host_.now()));
+    }
   });
   if (sync_) {
     subscribe(bus, channels, topics::kSyncClient,

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 
@@ -63,8 +64,37 @@ void SyncDriver::on_packet(Team team, const radio_packet_t& packet, Clock::time_
     case SyncCoordinator::Verdict::Accepted:
       break;
   }
-  publish_(emulator_.on_answer(team, packet, answer.t_arrival));
+  if (emulator_.has_sim_time()) {
+    publish_(emulator_.on_answer(team, packet, answer.t_arrival));
+  } else if (held_.size() < kMaxHeldAnswers) {
+    held_.push_back({team, packet, answer.t_arrival});
+  } else {
+    ++held_dropped_;
+    log_.warn("held", fmt::format("dropped a {} radio packet sent at {:.6f} s: more than {} "
+                                  "came before physics' first state",
+                                  team_name(team), packet.t_sent, kMaxHeldAnswers));
+  }
   update(false, now);
+}
+
+// Answers held for the first state go to the emulator right after it, in the
+// order they came: which robots they may command is known only now.
+void SyncDriver::on_sim_state(const sim_state_t& state, Clock::time_point now) {
+  publish_(emulator_.on_sim_state(state, now));
+  if (held_.empty() || !emulator_.has_sim_time()) return;
+  for (const HeldAnswer& held : held_) {
+    publish_(emulator_.on_answer(held.team, held.packet, held.t_arrival));
+  }
+  held_.clear();
+  update(false, now);
+}
+
+double SyncDriver::earliest_arrival(Team team) const {
+  double arrival = coordinator_.earliest_arrival(team);
+  for (const HeldAnswer& held : held_) {
+    if (held.team == team) arrival = std::min(arrival, held.t_arrival);
+  }
+  return arrival;
 }
 
 bool SyncDriver::tick(Clock::time_point now) {
@@ -136,7 +166,7 @@ void SyncDriver::update(bool always_publish, Clock::time_point now) {
     if (held_by == sync_horizon_t::HELD_BY_NEXT_FRAME) bound = kNextFrame;
   } else {
     for (Team team : kTeams) {
-      const double arrival = coordinator_.earliest_arrival(team);
+      const double arrival = earliest_arrival(team);
       answered_until = std::min(answered_until, coordinator_.answered_until(team));
       RadioEmulator::SyncRelease release = emulator_.sync_release(team, arrival);
       publish_(release.out);
@@ -171,9 +201,10 @@ void SyncDriver::log_summary() const {
   spdlog::info(
       "sync: {} frames scheduled, {} answers; ignored: {} from unregistered teams, {} duplicated "
       "or out of order; {} client timeouts, {} registrations refused; the radio emulator stalled "
-      "{} times ({:.3f} s of wall time not counted against the clients)",
+      "{} times ({:.3f} s of wall time not counted against the clients); {} answers dropped "
+      "before physics' first state",
       s.frames, s.answers, s.unregistered, s.unmatched, s.timeouts, s.refused, stalls_,
-      stalled_seconds_);
+      stalled_seconds_, held_dropped_);
   for (const SyncClientStats& c : coordinator_.client_stats()) {
     spdlog::info(
         "sync client '{}': {} answers, {} frames skipped, answer time mean {:.3f} ms, slowest "

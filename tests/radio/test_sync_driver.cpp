@@ -73,7 +73,10 @@ struct Rig {
     options.strict = strict;
     options.expected_clients = 1;
     driver = std::make_unique<SyncDriver>(bus, channels, emulator, options,
-                                          [](const ubersim::radio::RadioEmulator::Output&) {});
+                                          [this](const ubersim::radio::RadioEmulator::Output& out) {
+                                            for (const auto& message : out.commands)
+                                              forwarded.push_back(message);
+                                          });
     driver->before_release(
         [this] { publish(bus, channels, ubersim::topics::kTruthDemand, emulator.truth_demand()); });
   }
@@ -91,6 +94,7 @@ struct Rig {
   ubersim::radio::RadioEmulator emulator;
   std::unique_ptr<SyncDriver> driver;
   std::vector<std::string> said;
+  std::vector<ubersim::sim_commands_t> forwarded;  // SIM_COMMANDS, in order
 };
 
 }  // namespace
@@ -139,4 +143,30 @@ TEST(SyncDriver, StrictFailsTheRunAtTheFirstDrop) {
   rig.heard();
   EXPECT_FALSE(rig.driver->tick(t0 + milliseconds(600)));
   EXPECT_TRUE(rig.heard().empty()) << "nothing more is said: the run stops";
+}
+
+// A timed client's start-up packet (sent at sim time 0) may come before
+// physics' first state, on another socket: held, then checked against the
+// robots that state names, never dropped as "robot not on the field" (which
+// made reruns differ by which socket won).
+TEST(SyncDriver, AnAnswerBeforeTheFirstStateIsCheckedWhenItComes) {
+  Rig rig(false);
+  const Clock::time_point t0 = Clock::now();
+  ubersim::sync_client_t timed = client(0, "a");
+  timed.timed = true;
+  rig.driver->on_client(timed, t0);
+  rig.driver->on_schedule(first_frame(), t0);
+  rig.driver->on_packet(ubersim::Team::Yellow, radio_test::packet(0, 1, {0, 1}), t0);
+  EXPECT_EQ(rig.emulator.report(ubersim::Team::Yellow).problem(ubersim::radio::Problem::OffField),
+            0U);
+  rig.driver->on_sim_state(radio_test::state(0, 0, 2), t0);
+  const auto report = rig.emulator.report(ubersim::Team::Yellow);
+  EXPECT_EQ(report.problem(ubersim::radio::Problem::OffField), 0U);
+  EXPECT_EQ(report.problem(ubersim::radio::Problem::NoSimTime), 0U);
+  // Promised to 0.2 s: the held packet, arrived at 0 s, goes out on a free link.
+  ubersim::radio_packet_t promise = radio_test::packet(0, 2, {});
+  promise.t_sent = 0.2;
+  rig.driver->on_packet(ubersim::Team::Yellow, promise, t0);
+  ASSERT_EQ(rig.forwarded.size(), 1U);
+  EXPECT_EQ(rig.forwarded[0].num_commands, 2);
 }

@@ -66,6 +66,9 @@ class RadioEmulator {
   // link frees; SIM_STATE then only drives the feedback.
   void set_sync(bool sync) { sync_ = sync; }
   Output on_answer(Team channel_team, const radio_packet_t& packet, double t_arrival);
+  // Whether a SIM_STATE came: until then which robots are on the field is
+  // unknown, and an answer cannot be checked against them.
+  bool has_sim_time() const { return clock_.started(); }
   // What a sync driver does between answers (the radio emulator's SyncDriver,
   // the Python module's InProcessSim; docs/sync.md): no packet of `team` can
   // arrive before `earliest_arrival` (s of sim time), so what its link

@@ -9,14 +9,17 @@
 // SIM_SYNC_STATUS (docs/sync.md, "A dropped client"). It reads no clock: the
 // wall time of each call is an argument (the process host's clock).
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <ubersim/radio_packet_t.hpp>
+#include <ubersim/sim_state_t.hpp>
 #include <ubersim/sync_client_t.hpp>
 #include <ubersim/sync_horizon_t.hpp>
 #include <ubersim/sync_status_t.hpp>
 #include <ubersim/vision_schedule_t.hpp>
+#include <vector>
 
 #include "ubersim/channels.hpp"
 #include "ubersim/logging.hpp"
@@ -48,6 +51,8 @@ class SyncDriver {
   void on_schedule(const vision_schedule_t& schedule, Clock::time_point now);
   // A packet on RADIO_<team>: an answer, if the team has a client.
   void on_packet(Team team, const radio_packet_t& packet, Clock::time_point now);
+  // A SIM_STATE: the emulator's input, then the answers held for the first one.
+  void on_sim_state(const sim_state_t& state, Clock::time_point now);
   // Every wakeup (at least every 50 ms): drops clients past the timeout.
   // False when that fails the run (strict).
   bool tick(Clock::time_point now);
@@ -66,6 +71,10 @@ class SyncDriver {
   // word from the radio emulator before it starts.
   static constexpr auto kHorizonRepeat = std::chrono::milliseconds(100);
   static constexpr auto kStatusRepeat = std::chrono::seconds(1);
+  // Answers held before physics' first state: a client's start-up packets
+  // (sent at sim time 0) may come before it on another socket. Beyond this
+  // many the newest are dropped, counted and logged.
+  static constexpr std::size_t kMaxHeldAnswers = 256;
 
  private:
   void update(bool always_publish, Clock::time_point now);
@@ -73,6 +82,18 @@ class SyncDriver {
   std::int8_t hold(Clock::time_point now);
   void forgive_own_stall(Clock::time_point now);
   void publish_status(Clock::time_point now);
+  // The earliest sim time a packet of `team` can still arrive at, held ones included.
+  double earliest_arrival(Team team) const;
+
+  // An accepted answer that came before the first SIM_STATE: checked and
+  // offered when it comes, at the arrival time its acceptance gave it.
+  struct HeldAnswer {
+    Team team;
+    radio_packet_t packet;
+    double t_arrival;
+  };
+  std::vector<HeldAnswer> held_;
+  std::uint64_t held_dropped_ = 0;
 
   std::function<void()> before_release_;
   bool released_ = false;
