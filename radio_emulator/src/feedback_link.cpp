@@ -1,5 +1,6 @@
 #include "ubersim/radio/feedback_link.hpp"
 
+#include <algorithm>
 #include <limits>
 
 namespace ubersim::radio {
@@ -40,6 +41,16 @@ std::vector<radio_feedback_t> FeedbackLink::on_sim_state(const sim_state_t& stat
     ++stats_.delivered;
     due.push_back(std::move(feedback));
   }
+  return due;
+}
+
+double FeedbackLink::next_due() const {
+  if (profile_.feedback_rate <= 0 && in_flight_.empty()) {
+    return std::numeric_limits<double>::infinity();
+  }
+  if (next_sample_ == kNoSampleYet) return 0.0;
+  double due = profile_.feedback_rate > 0 ? next_sample_ : std::numeric_limits<double>::infinity();
+  if (!in_flight_.empty()) due = std::min(due, in_flight_.front_release());
   return due;
 }
 

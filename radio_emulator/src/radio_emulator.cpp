@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <ubersim/team_t.hpp>
 
 namespace ubersim::radio {
@@ -111,6 +112,12 @@ RadioEmulator::SyncRelease RadioEmulator::sync_release(Team team, double earlies
   return release;
 }
 
+double RadioEmulator::feedback_due() const {
+  double due = std::numeric_limits<double>::infinity();
+  for (const auto& team_link : links_) due = std::min(due, team_link.feedback.next_due());
+  return due;
+}
+
 RadioEmulator::Output RadioEmulator::sync_poll(Team team, double earliest_arrival) {
   // A packet arriving exactly when the link frees replaces the waiting one,
   // so transmit only what frees strictly before the next possible arrival.
@@ -142,6 +149,9 @@ truth_demand_t RadioEmulator::truth_demand() const {
     }
     if (!sync_ && team_link.commands.has_waiting_packet()) {
       demand.instants.push_back(team_link.commands.busy_until());
+    }
+    if (feedback_in_step_) {
+      for (double release : team_link.feedback.release_times()) demand.instants.push_back(release);
     }
   }
   demand.num_periodic = static_cast<std::int32_t>(demand.period.size());

@@ -90,6 +90,8 @@ int RadioShell::run() {
   host_.ask_for_truth([this] { return emulator_.truth_demand(); });
   if (sync_) {
     sync_->before_release([this] { host_.send_truth_demand(host_.now()); });
+    sync_->before_horizon(
+        [this](ProcessHost::Clock::time_point now) { host_.renew_truth_demand(now); });
     host_.after_wake([this](ProcessHost::Clock::time_point now) {
       if (!sync_->tick(now)) host_.stop(1);  // a client dropped with --sync-strict
     });

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <iterator>
 #include <ubersim/team_t.hpp>
 
 namespace ubersim::radio {
@@ -273,6 +274,11 @@ std::optional<std::string> SyncCoordinator::bound_by(Team team) const {
   const Client& c = client(team);
   if (c.present && (c.timed ? c.behind : !c.owed.empty())) return c.stats.name;
   return std::nullopt;
+}
+
+bool SyncCoordinator::has_timed_client() const {
+  return std::any_of(std::begin(clients_), std::end(clients_),
+                     [](const Client& c) { return c.present && c.timed; });
 }
 
 int SyncCoordinator::clients() const {

@@ -13,6 +13,8 @@ namespace {
 
 // Who holds physics back when no client owes an answer: the next frame (the log's name).
 constexpr const char* kNextFrame = "vision";
+// Who holds it at a state the feedback links must see first (timed clients).
+constexpr const char* kFeedback = "radio feedback";
 
 }  // namespace
 
@@ -31,6 +33,7 @@ SyncDriver::SyncDriver(MessageBus& bus, const ChannelNames& channels, RadioEmula
 void SyncDriver::on_client(const sync_client_t& message, Clock::time_point now) {
   const std::string change = coordinator_.on_client(message);
   if (change.empty()) return;
+  emulator_.set_feedback_in_step(coordinator_.has_timed_client());
   // A rejoin ends a degraded stretch: as loud as the drop.
   if (change.rfind("sync client rejoined", 0) == 0) {
     spdlog::warn("{}", change);
@@ -81,11 +84,13 @@ void SyncDriver::on_packet(Team team, const radio_packet_t& packet, Clock::time_
 // order they came: which robots they may command is known only now.
 void SyncDriver::on_sim_state(const sim_state_t& state, Clock::time_point now) {
   publish_(emulator_.on_sim_state(state, now));
-  if (held_.empty() || !emulator_.has_sim_time()) return;
-  for (const HeldAnswer& held : held_) {
-    publish_(emulator_.on_answer(held.team, held.packet, held.t_arrival));
+  if (emulator_.has_sim_time()) {
+    for (const HeldAnswer& held : held_) {
+      publish_(emulator_.on_answer(held.team, held.packet, held.t_arrival));
+    }
+    held_.clear();
   }
-  held_.clear();
+  // The feedback links saw this state: physics may go on past it.
   update(false, now);
 }
 
@@ -107,6 +112,7 @@ bool SyncDriver::tick(Clock::time_point now) {
     }
     spdlog::warn("{}; the run goes on without it", drop.describe());
   }
+  if (!dropped.empty()) emulator_.set_feedback_in_step(coordinator_.has_timed_client());
   if (!dropped.empty() || now - last_status_ >= kStatusRepeat) publish_status(now);
   update(!dropped.empty() || now - last_published_ >= kHorizonRepeat, now);
   return true;
@@ -177,6 +183,11 @@ void SyncDriver::update(bool always_publish, Clock::time_point now) {
         bound = client.value_or(kNextFrame);
       }
     }
+    if (emulator_.feedback_in_step() && emulator_.feedback_due() < horizon) {
+      horizon = emulator_.feedback_due();
+      held_by = sync_horizon_t::HELD_BY_FEEDBACK;
+      bound = kFeedback;
+    }
   }
   if (!always_publish && horizon == horizon_.horizon && held_by == horizon_.held_by &&
       bound == horizon_.waiting_for && answered_until == horizon_.answered_until) {
@@ -186,6 +197,8 @@ void SyncDriver::update(bool always_publish, Clock::time_point now) {
     released_ = true;
     if (before_release_) before_release_();
   }
+  // Physics must know which state to publish before it may step to it.
+  if (before_horizon_) before_horizon_(now);
   ++horizon_.sequence;
   horizon_.horizon = horizon;
   horizon_.answered_until = answered_until;

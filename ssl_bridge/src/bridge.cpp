@@ -205,6 +205,7 @@ void SslBridge::on_state(const sim_state_t& state) {
                     "dropped a SIM_STATE whose sim time is not finite, negative or beyond 1e9 s");
     return;
   }
+  if (timed_mode()) remember_state_time(state.sim_time);
   if (!tracked_) return;
   const std::uint64_t refused = tracked_->refused();
   const auto packets = tracked_->on_state(state);

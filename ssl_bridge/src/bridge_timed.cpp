@@ -59,13 +59,14 @@ void SslBridge::on_schedule(const vision_schedule_t& schedule) {
 void SslBridge::deliver_timed() {
   if (teams_->exited()) return;
   run_teams_to(timed_publication_);
-  if (lcm_door_) lcm_door_->deliver(timed_publication_);
+  timed_settled_ = std::max(timed_settled_, inputs_settled(timed_publication_));
+  if (lcm_door_) lcm_door_->deliver(timed_publication_, timed_settled_);
   send_timed_geometry();
   for (const std::string& bytes : timed_vision_) {
     if (vision_out_.send(bytes)) ++counters_["vision packets sent"];
   }
   timed_vision_.clear();
-  send_until(timed_referee_, timed_publication_, [this](const std::string& bytes) {
+  send_until(timed_referee_, timed_settled_, [this](const std::string& bytes) {
     if (referee_out_.send(bytes)) ++counters_["referee packets sent"];
   });
   if (tracked_out_) {
@@ -77,6 +78,28 @@ void SslBridge::deliver_timed() {
     });
   }
   run_teams_to(timed_next_input_);
+}
+
+// The referee (with --sync-referee) and the radio (for a timed client) hold
+// physics at each state they must answer until they did, so what they said of
+// the states before `publication` was sent before physics went on to it, and
+// came here first (one socket, in order). Of the state at `publication` itself
+// they may not have spoken yet: that waits for the next delivery, on every run.
+double SslBridge::inputs_settled(double publication) const {
+  double settled = -1;
+  for (double t : timed_state_times_) {
+    if (t < publication) settled = std::max(settled, t);
+  }
+  return settled;
+}
+
+void SslBridge::remember_state_time(double sim_time) {
+  constexpr std::size_t kKept = 256;  // states between two deliveries, with room
+  if (!timed_state_times_.empty() && sim_time < timed_state_times_.back()) {
+    timed_state_times_.clear();  // physics was reset
+  }
+  timed_state_times_.push_back(sim_time);
+  if (timed_state_times_.size() > kKept) timed_state_times_.pop_front();
 }
 
 // The geometry goes out when it changed, and again every second of sim time
@@ -130,8 +153,7 @@ void SslBridge::register_timed_teams() {
   }
 }
 
-void SslBridge::add_timed_door(std::function<bool(std::int64_t now_ns)> drain,
-                               std::function<void()> ended) {
+void SslBridge::add_timed_door(TimedDrain drain, std::function<void()> ended) {
   timed_doors_.push_back({std::move(drain), std::move(ended)});
 }
 
@@ -155,7 +177,8 @@ bool SslBridge::at_quiescence(std::int64_t now_ns) {
   teams_up_ = true;
   register_timed_teams();
   if (lcm_door_) lcm_door_->drain(now_ns);  // RADIO_<TEAM> to the main bus, t_sent = now
-  for (const TimedDoor& door : timed_doors_) answered = door.drain(now_ns) || answered;
+  for (const TimedDoor& door : timed_doors_)
+    answered = door.drain(now_ns, timed_settled_) || answered;
   for (Team team : kTeams) {
     UdpSocket& socket = team == Team::Blue ? blue_socket_ : yellow_socket_;
     while (auto bytes = socket.receive(from)) {

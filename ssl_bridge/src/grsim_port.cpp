@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <ubersim/team_t.hpp>
 
+#include "ubersim/delay_line.hpp"
 #include "ubersim/ssl_bridge/datagram_decoding.hpp"
 #include "ubersim/topics.hpp"
 
@@ -134,15 +135,17 @@ bool GrsimPort::receive_one(Clock::time_point now, Arrival arrival) {
   return true;
 }
 
-bool GrsimPort::drain_timed(std::int64_t now_ns) {
+bool GrsimPort::drain_timed(std::int64_t now_ns, double settled) {
   if (!gated_) return false;
   // The book's clock is the group's sim time from here on.
   const Clock::time_point now{
       std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(now_ns))};
   const double t = static_cast<double>(now_ns) / 1e9;
-  const auto later = std::stable_partition(
-      held_feedback_.begin(), held_feedback_.end(),
-      [t](const std::pair<Team, radio_feedback_t>& held) { return held.second.t_sent <= t; });
+  const double known = std::min(t, settled + kReleaseEpsilon);
+  const auto later = std::stable_partition(held_feedback_.begin(), held_feedback_.end(),
+                                           [known](const std::pair<Team, radio_feedback_t>& held) {
+                                             return held.second.t_sent <= known;
+                                           });
   for (auto it = held_feedback_.begin(); it != later; ++it) apply_feedback(it->first, it->second);
   held_feedback_.erase(held_feedback_.begin(), later);
   // The group is quiescent: what waits is finite (a bound against a flood from outside).

@@ -7,6 +7,7 @@
 #include <regex>
 #include <ubersim/team_t.hpp>
 
+#include "ubersim/delay_line.hpp"
 #include "ubersim/topics.hpp"
 
 namespace ubersim::ssl {
@@ -142,16 +143,17 @@ void LcmTeamDoor::deliver_geometry(double t) {
   geometry_next_ = t + kRepeat;
 }
 
-void LcmTeamDoor::deliver(double t) {
+void LcmTeamDoor::deliver(double t, double settled) {
   if (!holding_) return;
   deliver_geometry(t);
   for (const referee_t& referee :
-       take_until(referee_, t, [](const referee_t& r) { return r.sim_time; })) {
+       take_until(referee_, settled, [](const referee_t& r) { return r.sim_time; })) {
     publish(private_, channels_, topics::kReferee, referee);
     ++counters_["referee relayed"];
   }
   for (const radio_feedback_t& feedback :
-       take_until(feedback_, t, [](const radio_feedback_t& f) { return f.t_sent; })) {
+       take_until(feedback_, settled + kReleaseEpsilon,
+                  [](const radio_feedback_t& f) { return f.t_sent; })) {
     const Team team = feedback.team == team_t::YELLOW ? Team::Yellow : Team::Blue;
     publish(private_, channels_, topics::kRadioFeedback.of(team), feedback);
     ++counters_["feedback relayed"];

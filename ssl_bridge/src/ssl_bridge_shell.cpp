@@ -51,8 +51,11 @@ class SslBridgeShell {
       grsim_->gate(timed, [this](Team team, radio_packet_t packet) {
         bridge_.publish_timed_radio(team, std::move(packet));
       });
-      bridge_.add_timed_door([this](std::int64_t now_ns) { return grsim_->drain_timed(now_ns); },
-                             [this] { grsim_->stop_gating(); });
+      bridge_.add_timed_door(
+          [this](std::int64_t now_ns, double settled) {
+            return grsim_->drain_timed(now_ns, settled);
+          },
+          [this] { grsim_->stop_gating(); });
     }
     grsim_->start();
     // Wakes the loop when the grSim port has something due (a packet held

@@ -51,6 +51,8 @@ std::string hold_of(const ubersim::sync_horizon_t& h) {
       return "next frame " + h.waiting_for;
     case sync_horizon_t::HELD_BY_CLIENT:
       return "client " + h.waiting_for;
+    case sync_horizon_t::HELD_BY_FEEDBACK:
+      return "feedback " + h.waiting_for;
     default:
       return "nothing" + h.waiting_for;
   }
@@ -61,8 +63,10 @@ std::string hold_of(const ubersim::sync_horizon_t& h) {
 struct Rig {
   explicit Rig(bool strict) : emulator(profiles(), 1) {
     using namespace ubersim;
-    subscribe(bus, channels, topics::kSyncHorizon,
-              [this](const sync_horizon_t& h) { said.push_back("horizon:" + hold_of(h)); });
+    subscribe(bus, channels, topics::kSyncHorizon, [this](const sync_horizon_t& h) {
+      said.push_back("horizon:" + hold_of(h));
+      horizon = h.horizon;
+    });
     subscribe(bus, channels, topics::kSyncStatus, [this](const sync_status_t& s) {
       said.push_back("status:" + std::to_string(s.drops[0]));
     });
@@ -95,6 +99,7 @@ struct Rig {
   std::unique_ptr<SyncDriver> driver;
   std::vector<std::string> said;
   std::vector<ubersim::sim_commands_t> forwarded;  // SIM_COMMANDS, in order
+  double horizon = -1;                             // the latest published
 };
 
 }  // namespace
@@ -169,4 +174,40 @@ TEST(SyncDriver, AnAnswerBeforeTheFirstStateIsCheckedWhenItComes) {
   rig.driver->on_packet(ubersim::Team::Yellow, promise, t0);
   ASSERT_EQ(rig.forwarded.size(), 1U);
   EXPECT_EQ(rig.forwarded[0].num_commands, 2);
+}
+
+// A timed client's program gets the feedback at the sim time it was sent (the
+// bridge hands it over in sim time), so physics waits at each state the
+// feedback links must see (a sample, a delivery) until this radio saw it; the
+// truth demand names the delivery, so physics publishes the state it waits at.
+TEST(SyncDriver, WithATimedClientPhysicsWaitsForTheFeedbackLinks) {
+  Rig rig(false);  // feedback at 30 Hz, delivered 0.02 s after its sample
+  const Clock::time_point t0 = Clock::now();
+  ubersim::sync_client_t timed = client(0, "a");
+  timed.timed = true;
+  rig.driver->on_client(timed, t0);
+  rig.driver->on_schedule(first_frame(), t0);
+  ubersim::radio_packet_t promise = radio_test::packet(0, 1, {});
+  promise.t_sent = 0.5;
+  rig.driver->on_packet(ubersim::Team::Yellow, promise, t0);
+  rig.heard();
+  EXPECT_EQ(rig.horizon, 0.0) << "no state seen yet: the first one is sampled";
+  rig.driver->on_sim_state(radio_test::state(0, 0, 2), t0);
+  EXPECT_EQ(rig.heard().back(), "horizon:feedback radio feedback");
+  EXPECT_NEAR(rig.horizon, 0.02, 1e-9) << "the sample at 0 is delivered at 0.02";
+  const ubersim::truth_demand_t demand = rig.emulator.truth_demand();
+  ASSERT_EQ(demand.num_instants, 2);
+  EXPECT_NEAR(demand.instants[0], 0.02, 1e-9);
+  rig.driver->on_sim_state(radio_test::state(5.0 / 240, 5, 2), t0);
+  rig.heard();
+  EXPECT_NEAR(rig.horizon, 1.0 / 30, 1e-9) << "delivered; the next sample";
+  rig.driver->on_client(
+      [] {
+        ubersim::sync_client_t leaving = client(0, "a");
+        leaving.leaving = true;
+        return leaving;
+      }(),
+      t0);
+  rig.heard();
+  EXPECT_GT(rig.horizon, 0.4) << "no timed client: the feedback holds nothing";
 }

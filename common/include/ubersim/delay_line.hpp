@@ -8,6 +8,11 @@
 
 namespace ubersim {
 
+// A timed item is due at a state up to this much before its release time:
+// sim times are sums of steps, so a release at a step's time may be a hair
+// after that step's state (the radio's feedback; what waits for it).
+inline constexpr double kReleaseEpsilon = 1e-6;  // s
+
 template <class T>
 class DelayLine {
  public:

@@ -28,7 +28,7 @@ struct FeedbackLinkStats {
 
 class FeedbackLink {
  public:
-  static constexpr double kTimeEpsilon = 1e-6;  // s
+  static constexpr double kTimeEpsilon = kReleaseEpsilon;  // s
 
   FeedbackLink(const RadioProfile& profile, Team team, std::uint64_t seed);
 
@@ -47,6 +47,12 @@ class FeedbackLink {
   // sample: it stays the same from sample to sample, and so does the demand.
   double sample_phase() const;
   double rate() const { return profile_.feedback_rate; }
+  // The earliest sim time whose state this link still has to see: its next
+  // sample or its oldest packet's delivery; 0 before the first state, +inf
+  // with no feedback (FEEDBACK_RATE 0).
+  double next_due() const;
+  // Delivery times of the packets on their way, oldest first.
+  std::vector<double> release_times() const { return in_flight_.release_times(); }
 
  private:
   void sample(const sim_state_t& state);

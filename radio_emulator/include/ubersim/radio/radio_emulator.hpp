@@ -80,6 +80,15 @@ class RadioEmulator {
     double horizon = 0;
   };
   SyncRelease sync_release(Team team, double earliest_arrival);
+  // Sync mode with a timed client (docs/sync.md, "Timed clients"): its team
+  // program gets the feedback at the sim time it was sent, so physics must
+  // not pass a state the feedback links still have to see (a sample, a
+  // delivery) before this emulator saw it: feedback_due() bounds the horizon,
+  // and the truth demand names the deliveries too, so that physics publishes
+  // the state it waits at.
+  void set_feedback_in_step(bool in_step) { feedback_in_step_ = in_step; }
+  bool feedback_in_step() const { return feedback_in_step_; }
+  double feedback_due() const;
 
   // A run-time realism change (EMULATOR_REALISM) for both teams: the radio
   // values >= 0 replace the profiles'. Returns what was wrong (nothing
@@ -125,6 +134,7 @@ class RadioEmulator {
   std::uint64_t rejected_sim_states_ = 0;
   std::uint64_t resets_ = 0;
   bool sync_ = false;
+  bool feedback_in_step_ = false;
   // Physics may publish only some states (on demand): between two, a packet's
   // arrival is the last state's time plus the wall time since, times the speed
   // (paced modes only; as fast as possible there is no better guess).

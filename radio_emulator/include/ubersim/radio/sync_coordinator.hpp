@@ -117,6 +117,8 @@ class SyncCoordinator {
   std::optional<std::string> bound_by(Team team) const;
 
   bool schedule_heard() const { return schedule_heard_; }
+  // Whether a timed client (a team program under the time shim) is registered.
+  bool has_timed_client() const;
   int clients() const;
   std::optional<std::string> client_name(Team team) const;
   std::vector<SyncClientStats> client_stats() const;

@@ -62,6 +62,12 @@ class SyncDriver {
   // before its first step, or the feedback instants it names come late and a
   // rerun publishes other states.
   void before_release(std::function<void()> hook) { before_release_ = std::move(hook); }
+  // Runs before every horizon it publishes: the radio's truth demand, if it
+  // changed, goes first, so that physics knows the states it must publish
+  // (a feedback delivery) before it may step to them.
+  void before_horizon(std::function<void(Clock::time_point)> hook) {
+    before_horizon_ = std::move(hook);
+  }
 
   // A wakeup later than this after the previous one means this process did
   // not run (the machine was loaded or paused): the gap does not count
@@ -96,6 +102,7 @@ class SyncDriver {
   std::uint64_t held_dropped_ = 0;
 
   std::function<void()> before_release_;
+  std::function<void(Clock::time_point)> before_horizon_;
   bool released_ = false;
   Publisher<sync_horizon_t> publish_horizon_;
   Publisher<sync_status_t> publish_status_;

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <chrono>
+#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
@@ -115,7 +116,10 @@ class SslBridge {
   // Timed teams: another door of the team group (the grSim port): `drain` at
   // each quiescence (true when it sent something to the group, which then
   // runs again at the same instant), `ended` once the team programs ended.
-  void add_timed_door(std::function<bool(std::int64_t now_ns)> drain, std::function<void()> ended);
+  // `settled` (s of sim time): every feedback and referee message stamped up
+  // to it is here, on every run (inputs_settled()).
+  using TimedDrain = std::function<bool(std::int64_t now_ns, double settled)>;
+  void add_timed_door(TimedDrain drain, std::function<void()> ended);
   // A timed team's radio packet (t_sent set): numbered in the team's sequence,
   // with its promises; held until the team registered.
   void publish_timed_radio(Team team, radio_packet_t packet);
@@ -159,6 +163,11 @@ class SslBridge {
   void deliver_timed();
   void register_timed_teams();
   void send_timed_geometry();
+  // Up to which sim time the referee's and the radio's messages are all here
+  // when the frames published at `publication` are: the latest state physics
+  // published before it (docs/timeshim.md, "What the teams get, and when").
+  double inputs_settled(double publication) const;
+  void remember_state_time(double sim_time);
   void run_teams_to(double t);
   bool at_quiescence(std::int64_t now_ns);
   void promise(std::int64_t promise_ns);
@@ -204,7 +213,7 @@ class SslBridge {
   std::array<std::vector<radio_packet_t>, 2> timed_early_;
   std::unique_ptr<LcmTeamDoor> lcm_door_;  // the timed teams that speak LCM
   struct TimedDoor {
-    std::function<bool(std::int64_t)> drain;
+    TimedDrain drain;
     std::function<void()> ended;
   };
   std::vector<TimedDoor> timed_doors_;     // add_timed_door
@@ -220,6 +229,9 @@ class SslBridge {
   double timed_next_input_ = 0;   // s, the next frame's earliest publication
   double timed_captured_ = 0;     // s, the latest capture time of the frames heard
   int timed_frames_due_ = 0;      // frames of the latest schedule not heard yet
+  // Sim times of the latest states physics published, oldest first (for inputs_settled).
+  std::deque<double> timed_state_times_;
+  double timed_settled_ = -1;  // s, inputs_settled() at the latest delivery
 };
 
 }  // namespace ubersim::ssl

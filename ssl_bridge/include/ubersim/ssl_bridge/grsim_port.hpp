@@ -73,8 +73,10 @@ class GrsimPort {
   void start();
   // At a quiescence of the team group at now_ns (sim time): every datagram the
   // group sent is waiting; each timed team's commands go out stamped now_ns.
+  // The robot status takes the feedback sent up to now_ns and up to `settled`
+  // (s: all of it is here up to then; SslBridge::add_timed_door).
   // True when a robot status went back to the group (it must run again).
-  bool drain_timed(std::int64_t now_ns);
+  bool drain_timed(std::int64_t now_ns, double settled);
   // The team programs ended: back to the real-time rules.
   void stop_gating();
   // After every wakeup: sends what waited for its interval, repeats, stops.

@@ -67,9 +67,10 @@ class LcmTeamDoor {
   const std::string& url() const { return options_.url; }
   // A vision frame of the step being delivered (the bridge's on_vision).
   void hold(const vision_frame_t& frame);
-  // The frames held, and the geometry, referee messages and feedback up to
-  // t (s of sim time), onto the private bus.
-  void deliver(double t);
+  // The frames held and the geometry of t (s of sim time), and the referee
+  // messages and feedback up to `settled` (all of them are here up to then:
+  // SslBridge::inputs_settled), onto the private bus.
+  void deliver(double t, double settled);
   // At a quiescence at now_ns: every RADIO_<TEAM> the teams sent is here;
   // each goes to the main bus with t_sent = now. Returns how many.
   int drain(std::int64_t now_ns);
