@@ -15,6 +15,7 @@
 #include <new>
 #include <thread>
 
+#include "proc_files.hpp"
 #include "proc_scan.hpp"
 
 extern char** environ;
@@ -101,6 +102,7 @@ std::string default_shim_library() {
 Controller::Controller(ControllerOptions options)
     : options_(std::move(options)),
       segment_(std::make_unique<Segment>(choose_segment_dir(options_.segment_dir))),
+      proc_(std::make_unique<ProcFiles>()),
       shim_library_(options_.shim_library.empty() ? default_shim_library()
                                                   : options_.shim_library) {
   if (::access(shim_library_.c_str(), R_OK) != 0) {
@@ -128,7 +130,7 @@ Controller::~Controller() {
   while (!pending.empty()) {
     const pid_t pid = pending.back();
     pending.pop_back();
-    for (pid_t child : children_of(pid)) pending.push_back(child);
+    for (pid_t child : proc_->children_of(pid)) pending.push_back(child);
     ::kill(pid, SIGKILL);
   }
   reap(true);

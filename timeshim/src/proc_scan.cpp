@@ -1,7 +1,6 @@
 // Reading /proc for the controller (proc_scan.hpp).
 #include "proc_scan.hpp"
 
-#include <dirent.h>
 #include <elf.h>
 #include <fcntl.h>
 #include <sys/syscall.h>
@@ -38,22 +37,6 @@ std::optional<std::string> read_small_file(const std::string& path) {
   }
 }
 
-struct DirCloser {
-  void operator()(DIR* dir) const { ::closedir(dir); }
-};
-
-std::vector<pid_t> numeric_entries(const std::string& path) {
-  std::vector<pid_t> result;
-  std::unique_ptr<DIR, DirCloser> dir(::opendir(path.c_str()));
-  if (!dir) return result;
-  while (const dirent* entry = ::readdir(dir.get())) {
-    char* end = nullptr;
-    const long value = std::strtol(entry->d_name, &end, 10);
-    if (end != entry->d_name && *end == '\0') result.push_back(static_cast<pid_t>(value));
-  }
-  return result;
-}
-
 bool timeout_absent(std::uint64_t pointer) {
   return pointer == 0;
 }
@@ -63,47 +46,37 @@ bool infinite_ms(std::uint64_t timeout) {
 
 }  // namespace
 
-std::vector<pid_t> threads_of(pid_t pid) {
-  return numeric_entries("/proc/" + std::to_string(pid) + "/task");
+std::vector<pid_t> parse_pids(const std::string& text) {
+  std::vector<pid_t> pids;
+  std::istringstream in(text);
+  pid_t pid = 0;
+  while (in >> pid) pids.push_back(pid);
+  return pids;
 }
 
-std::vector<pid_t> children_of(pid_t pid) {
-  std::vector<pid_t> result;
-  for (pid_t tid : threads_of(pid)) {
-    std::istringstream in(read_small_file(task_path(pid, tid, "children")).value_or(""));
-    pid_t child = 0;
-    while (in >> child) result.push_back(child);
-  }
-  return result;
-}
-
-std::optional<ThreadSample> sample_thread(pid_t pid, pid_t tid) {
-  const auto stat = read_small_file(task_path(pid, tid, "stat"));
-  const auto schedstat = read_small_file(task_path(pid, tid, "schedstat"));
-  if (!stat || !schedstat) return std::nullopt;
+std::optional<ThreadSample> parse_thread_sample(pid_t pid, pid_t tid, const std::string& stat,
+                                                const std::string& schedstat) {
   // "tid (comm) S ...": comm may hold spaces and parentheses; the state
   // follows the last ')'.
-  const auto close = stat->rfind(')');
-  if (close == std::string::npos || close + 2 >= stat->size()) return std::nullopt;
+  const auto close = stat.rfind(')');
+  if (close == std::string::npos || close + 2 >= stat.size()) return std::nullopt;
   ThreadSample sample;
   sample.pid = pid;
   sample.tid = tid;
-  sample.state = (*stat)[close + 2];
-  std::istringstream fields(*schedstat);
+  sample.state = stat[close + 2];
+  std::istringstream fields(schedstat);
   std::uint64_t on_cpu_ns = 0, waited_ns = 0;
   fields >> on_cpu_ns >> waited_ns >> sample.run_count;
   return sample;
 }
 
-std::optional<SyscallSample> sample_syscall(pid_t pid, pid_t tid) {
-  const auto text = read_small_file(task_path(pid, tid, "syscall"));
-  if (!text) return std::nullopt;
+SyscallSample parse_syscall(const std::string& text) {
   SyscallSample sample;
-  if (text->rfind("running", 0) == 0) {
+  if (text.rfind("running", 0) == 0) {
     sample.number = -2;
     return sample;
   }
-  std::istringstream in(*text);
+  std::istringstream in(text);
   in >> sample.number;
   for (auto& arg : sample.args) in >> std::hex >> arg;
   return sample;

@@ -31,10 +31,12 @@ enum class KernelWait {
   Unknown,
 };
 
-std::vector<pid_t> threads_of(pid_t pid);
-std::vector<pid_t> children_of(pid_t pid);  // of every thread of pid
-std::optional<ThreadSample> sample_thread(pid_t pid, pid_t tid);
-std::optional<SyscallSample> sample_syscall(pid_t pid, pid_t tid);
+// What the files of /proc/<pid>/task/<tid> say (ProcFiles reads them):
+// `children` (pids, space-separated), `stat` and `schedstat`, `syscall`.
+std::vector<pid_t> parse_pids(const std::string& text);
+std::optional<ThreadSample> parse_thread_sample(pid_t pid, pid_t tid, const std::string& stat,
+                                                const std::string& schedstat);
+SyscallSample parse_syscall(const std::string& text);
 KernelWait classify_wait(const SyscallSample& call);
 std::string syscall_name(long number);
 std::string comm_of(pid_t pid, pid_t tid);

@@ -9,6 +9,7 @@
 #include <set>
 #include <thread>
 
+#include "proc_files.hpp"
 #include "proc_scan.hpp"
 #include "ubersim/timeshim/controller.hpp"
 
@@ -16,6 +17,7 @@ namespace ubersim::timeshim {
 
 struct Controller::Scan {
   bool any_process = false;
+  std::optional<std::pair<pid_t, pid_t>> running;  // pid, tid of a thread seen running
   bool all_waiting = true;
   bool owed_wake = false;  // a shim wait whose deadline passed still sleeps
   std::int64_t next_deadline = kNoDeadline;
@@ -130,7 +132,7 @@ std::vector<pid_t> Controller::group_processes() {
     if (pid <= 0 || !seen.insert(pid).second) continue;
     if (::kill(pid, 0) != 0 && errno == ESRCH) continue;
     result.push_back(pid);
-    for (pid_t child : children_of(pid)) pending.push_back(child);
+    for (pid_t child : proc_->children_of(pid)) pending.push_back(child);
   }
   return result;
 }
@@ -169,7 +171,7 @@ void Controller::check_shim_loaded(pid_t pid) {
     shim_checked_[pid] = exe;
     return;
   }
-  const auto main_thread = sample_thread(pid, pid);
+  const auto main_thread = proc_->sample_thread(pid, pid);
   if (!main_thread || main_thread->state == 'R') return;  // may still be in exec: look again
   shim_checked_[pid] = exe;
   const bool is_static = elf_is_dynamic(exe) == false;
@@ -192,8 +194,8 @@ Controller::Scan Controller::scan() {
   const std::vector<pid_t> processes = group_processes();
   for (pid_t pid : processes) {
     check_shim_loaded(pid);
-    for (pid_t tid : threads_of(pid)) {
-      const auto sample = sample_thread(pid, tid);
+    for (pid_t tid : proc_->threads_of(pid)) {
+      const auto sample = proc_->sample_thread(pid, tid);
       if (!sample || sample->state == 'Z' || sample->state == 'X') continue;
       result.any_process = true;
       alive.insert(tid);
@@ -223,12 +225,13 @@ Controller::Scan Controller::scan() {
       }
       if (!sleeps) {
         result.all_waiting = false;
+        if (sample->state == 'R') result.running = {pid, tid};
         note_suspect(pid, tid, describe_state(sample->state));
         continue;
       }
       // A wait outside the shim with no time limit (input, a lock, a child)
       // waits for the group or for input: it does not hold time back.
-      const auto call = sample_syscall(pid, tid);
+      const auto call = proc_->sample_syscall(pid, tid);
       if (call && classify_wait(*call) == KernelWait::ForOthers) {
         // The token holder's suspicion is give_turn's (turns.cpp).
         if (tid != segment.token_tid.load()) suspects_.erase(tid);
@@ -242,19 +245,47 @@ Controller::Scan Controller::scan() {
               &result.next_deadline);
   if (result.owed_wake) result.all_waiting = false;
   free_dead_slots(segment, alive);
+  proc_->keep_only(std::set<pid_t>(processes.begin(), processes.end()), alive);
   for (auto it = suspects_.begin(); it != suspects_.end();) {
     it = alive.count(it->first) != 0 ? std::next(it) : suspects_.erase(it);
   }
   return result;
 }
 
+// The thread a look saw running runs still: no need to look at all of them.
+// (Looks are the controller's cost: a team program that computes would
+// otherwise be looked at every few tens of microseconds.)
+bool Controller::still_running(std::optional<std::pair<pid_t, pid_t>>& running) {
+  if (!running) return false;
+  const auto [pid, tid] = *running;
+  if (proc_->state_of(pid, tid) == 'R') {
+    note_suspect(pid, tid, describe_state('R'));
+    return true;
+  }
+  running.reset();
+  return false;
+}
+
 Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
   Header& segment = header();
   const auto give_up = std::chrono::steady_clock::now() + wall_limit;
-  long backoff_ns = 20000;
+  constexpr long kFirstBackoffNs = 20000;
+  constexpr long kLongestBackoffNs = 5000000;
+  long backoff_ns = kFirstBackoffNs;
+  std::optional<std::pair<pid_t, pid_t>> running;
   for (;;) {
     const std::uint32_t seq = segment.change_seq.load();
+    // A full look at least every kLongestBackoffNs (owed wakes, new threads).
+    if (backoff_ns < kLongestBackoffNs && still_running(running)) {
+      if (std::chrono::steady_clock::now() >= give_up)
+        return Quiescence{GroupState::Busy, kNoDeadline};
+      backoff_ns = futex_wait(segment.change_seq, seq, backoff_ns) == 0
+                       ? kFirstBackoffNs
+                       : std::min(backoff_ns * 2, kLongestBackoffNs);
+      continue;
+    }
     const Scan first = scan();
+    running = first.running;
     if (!first.any_process) {
       reap(true);  // what is left of the group are zombies
       return Quiescence{GroupState::Exited, kNoDeadline};
@@ -268,7 +299,7 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
           segment.change_seq.load() == seq) {
         // Deterministic mode: quiescent only when nobody wants to run.
         if (options_.deterministic && give_turn()) {
-          backoff_ns = 20000;
+          backoff_ns = kFirstBackoffNs;
           continue;
         }
         return Quiescence{GroupState::Quiescent, second.next_deadline};
@@ -277,9 +308,9 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
     if (std::chrono::steady_clock::now() >= give_up)
       return Quiescence{GroupState::Busy, kNoDeadline};
     if (futex_wait(segment.change_seq, seq, backoff_ns) == 0 || segment.change_seq.load() != seq) {
-      backoff_ns = 20000;
+      backoff_ns = kFirstBackoffNs;
     } else {
-      backoff_ns = std::min(backoff_ns * 2, 5000000L);
+      backoff_ns = std::min(backoff_ns * 2, kLongestBackoffNs);
     }
   }
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "proc_files.hpp"
 #include "proc_scan.hpp"
 #include "ubersim/timeshim/controller.hpp"
 
@@ -20,12 +21,12 @@ bool wants_token(const ThreadSlot& slot) {
 }
 
 // The slot of the thread holding the token, or nullptr when it is gone.
-ThreadSlot* holder_slot(Header& header, pid_t holder) {
+ThreadSlot* holder_slot(Header& header, ProcFiles& proc, pid_t holder) {
   for (auto& slot : header.threads) {
     if (slot.claim.load() == 0 || slot.tid.load() != holder) continue;
     if (slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer)) continue;
     // A process that ended holding it is a zombie until its parent reaps it.
-    const auto sample = sample_thread(slot.pid.load(), holder);
+    const auto sample = proc.sample_thread(slot.pid.load(), holder);
     return sample && sample->state != 'Z' && sample->state != 'X' ? &slot : nullptr;
   }
   return nullptr;
@@ -44,7 +45,7 @@ bool Controller::give_turn() {
     if (wants_token(slot)) wanting.push_back(&slot);
   }
   if (pid_t holder = segment.token_tid.load(); holder != 0) {
-    ThreadSlot* slot = holder_slot(segment, holder);
+    ThreadSlot* slot = holder_slot(segment, *proc_, holder);
     if (slot == nullptr) {
       // It ended holding the token (exit, exec that failed to load the shim).
       segment.token_tid.compare_exchange_strong(holder, 0);
@@ -54,7 +55,7 @@ bool Controller::give_turn() {
       // for another thread of the group, it never returns.
       if (wanting.empty()) return false;
       const pid_t pid = slot->pid.load();
-      const auto call = sample_syscall(pid, holder);
+      const auto call = proc_->sample_syscall(pid, holder);
       note_suspect(pid, holder,
                    "holds the deterministic mode's run token while blocked in " +
                        (call ? syscall_name(call->number) : std::string("an unknown call")) +

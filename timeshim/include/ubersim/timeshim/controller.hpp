@@ -23,11 +23,14 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ubersim/timeshim/shared_state.hpp"
 
 namespace ubersim::timeshim {
+
+class ProcFiles;
 
 struct ControllerOptions {
   // The shim library; "" finds it next to the running program (../lib).
@@ -116,6 +119,7 @@ class Controller {
  private:
   struct Scan;
   Scan scan();
+  bool still_running(std::optional<std::pair<pid_t, pid_t>>& running);
   void reap(bool wait_for_end);
   void wake_due();
   void note_suspect(pid_t pid, pid_t tid, const std::string& why);
@@ -127,6 +131,7 @@ class Controller {
   class Segment;
   ControllerOptions options_;
   std::unique_ptr<Segment> segment_;
+  std::unique_ptr<ProcFiles> proc_;  // the /proc files every look reads, kept open
   std::string shim_library_;
   std::vector<pid_t> roots_;
   std::map<pid_t, int> exit_status_;

@@ -1,0 +1,121 @@
+// The controller's open /proc files (proc_files.hpp).
+#include "proc_files.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdlib>
+
+namespace ubersim::timeshim {
+namespace {
+
+constexpr const char* kFileNames[] = {"stat", "schedstat", "syscall", "children"};
+
+// The whole file, from its start: /proc regenerates it for a read at offset 0.
+std::optional<std::string> read_from_start(int fd) {
+  std::string text;
+  char buffer[4096];
+  for (off_t offset = 0;;) {
+    const ssize_t got = ::pread(fd, buffer, sizeof(buffer), offset);
+    if (got < 0) return std::nullopt;  // ESRCH: the thread is gone
+    if (got == 0) return text;
+    text.append(buffer, static_cast<std::size_t>(got));
+    offset += got;
+  }
+}
+
+}  // namespace
+
+UniqueFd& UniqueFd::operator=(UniqueFd&& other) noexcept {
+  if (this != &other) {
+    reset();
+    fd_ = std::exchange(other.fd_, -1);
+  }
+  return *this;
+}
+
+UniqueFd::~UniqueFd() {
+  reset();
+}
+
+void UniqueFd::reset() {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+}
+
+std::optional<std::string> ProcFiles::read(pid_t pid, pid_t tid, File file) {
+  UniqueFd& fd = threads_[{pid, tid}][file];
+  // A file kept open may belong to a thread that ended (its tid since given
+  // to another): opened afresh once when it cannot be read.
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (!fd.valid()) {
+      const std::string path =
+          "/proc/" + std::to_string(pid) + "/task/" + std::to_string(tid) + "/" + kFileNames[file];
+      fd = UniqueFd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+      if (!fd.valid()) return std::nullopt;
+    }
+    if (auto text = read_from_start(fd.get())) return text;
+    fd.reset();
+  }
+  return std::nullopt;
+}
+
+std::vector<pid_t> ProcFiles::threads_of(pid_t pid) {
+  std::vector<pid_t> tids;
+  auto& dir = task_dirs_[pid];
+  if (dir) {
+    ::rewinddir(dir.get());  // the next read lists the threads of now
+  } else {
+    dir.reset(::opendir(("/proc/" + std::to_string(pid) + "/task").c_str()));
+    if (!dir) return tids;
+  }
+  while (const dirent* entry = ::readdir(dir.get())) {
+    char* end = nullptr;
+    const long value = std::strtol(entry->d_name, &end, 10);
+    if (end != entry->d_name && *end == '\0') tids.push_back(static_cast<pid_t>(value));
+  }
+  if (tids.empty()) task_dirs_.erase(pid);  // gone (or a pid given to another since)
+  return tids;
+}
+
+std::vector<pid_t> ProcFiles::children_of(pid_t pid) {
+  std::vector<pid_t> children;
+  for (pid_t tid : threads_of(pid)) {
+    const std::vector<pid_t> more = parse_pids(read(pid, tid, kChildren).value_or(""));
+    children.insert(children.end(), more.begin(), more.end());
+  }
+  return children;
+}
+
+std::optional<ThreadSample> ProcFiles::sample_thread(pid_t pid, pid_t tid) {
+  const auto stat = read(pid, tid, kStat);
+  const auto schedstat = read(pid, tid, kSchedstat);
+  if (!stat || !schedstat) return std::nullopt;
+  return parse_thread_sample(pid, tid, *stat, *schedstat);
+}
+
+std::optional<char> ProcFiles::state_of(pid_t pid, pid_t tid) {
+  const auto stat = read(pid, tid, kStat);
+  if (!stat) return std::nullopt;
+  const auto sample = parse_thread_sample(pid, tid, *stat, "");
+  if (!sample) return std::nullopt;
+  return sample->state;
+}
+
+std::optional<SyscallSample> ProcFiles::sample_syscall(pid_t pid, pid_t tid) {
+  const auto text = read(pid, tid, kSyscall);
+  if (!text) return std::nullopt;
+  return parse_syscall(*text);
+}
+
+void ProcFiles::keep_only(const std::set<pid_t>& pids, const std::set<pid_t>& tids) {
+  for (auto it = threads_.begin(); it != threads_.end();) {
+    const bool kept = pids.count(it->first.first) != 0 && tids.count(it->first.second) != 0;
+    it = kept ? std::next(it) : threads_.erase(it);
+  }
+  for (auto it = task_dirs_.begin(); it != task_dirs_.end();) {
+    it = pids.count(it->first) != 0 ? std::next(it) : task_dirs_.erase(it);
+  }
+}
+
+}  // namespace ubersim::timeshim

@@ -1,0 +1,66 @@
+#pragma once
+// The /proc files the controller reads at every look, kept open and read
+// again from their start (pread): a look then opens and closes nothing it
+// read before. Opening and closing were half of a look's cost, and looks are
+// what the controller spends its time on (two per quiescence, one per turn in
+// deterministic mode).
+#include <dirent.h>
+#include <sys/types.h>
+
+#include <array>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "proc_scan.hpp"
+
+namespace ubersim::timeshim {
+
+// An open file descriptor, closed with its owner.
+class UniqueFd {
+ public:
+  UniqueFd() = default;
+  explicit UniqueFd(int fd) : fd_(fd) {}
+  UniqueFd(UniqueFd&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+  UniqueFd& operator=(UniqueFd&& other) noexcept;
+  UniqueFd(const UniqueFd&) = delete;
+  UniqueFd& operator=(const UniqueFd&) = delete;
+  ~UniqueFd();
+  int get() const { return fd_; }
+  bool valid() const { return fd_ >= 0; }
+  void reset();
+
+ private:
+  int fd_ = -1;
+};
+
+class ProcFiles {
+ public:
+  // The same as the free functions of proc_scan.hpp, from open files.
+  std::vector<pid_t> threads_of(pid_t pid);
+  std::vector<pid_t> children_of(pid_t pid);
+  std::optional<ThreadSample> sample_thread(pid_t pid, pid_t tid);
+  std::optional<SyscallSample> sample_syscall(pid_t pid, pid_t tid);
+  // Only the kernel state (R, S, ...) of the thread; nullopt when it is gone.
+  std::optional<char> state_of(pid_t pid, pid_t tid);
+  // Closes the files of every process and thread not in these sets.
+  void keep_only(const std::set<pid_t>& pids, const std::set<pid_t>& tids);
+
+ private:
+  enum File { kStat, kSchedstat, kSyscall, kChildren, kFiles };
+  // The text of `file` of thread tid of pid, read now; nullopt when it is gone.
+  std::optional<std::string> read(pid_t pid, pid_t tid, File file);
+
+  using ThreadKey = std::pair<pid_t, pid_t>;  // pid, tid: a tid may come back in another process
+  struct DirCloser {
+    void operator()(DIR* dir) const { ::closedir(dir); }
+  };
+  std::map<ThreadKey, std::array<UniqueFd, kFiles>> threads_;
+  std::map<pid_t, std::unique_ptr<DIR, DirCloser>> task_dirs_;  // /proc/<pid>/task
+};
+
+}  // namespace ubersim::timeshim
