@@ -123,6 +123,7 @@ Controller::Controller(ControllerOptions options)
 // What is left of the processes it started goes with their time: nothing
 // could wake them any more.
 Controller::~Controller() {
+  proc_->new_look();
   std::vector<pid_t> pending;
   for (pid_t root : roots_) {
     if (exit_status_.count(root) == 0) pending.push_back(root);

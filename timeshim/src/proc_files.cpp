@@ -61,7 +61,8 @@ std::optional<std::string> ProcFiles::read(pid_t pid, pid_t tid, File file) {
 }
 
 std::vector<pid_t> ProcFiles::threads_of(pid_t pid) {
-  std::vector<pid_t> tids;
+  if (const auto listed = listed_.find(pid); listed != listed_.end()) return listed->second;
+  std::vector<pid_t>& tids = listed_[pid];
   auto& dir = task_dirs_[pid];
   if (dir) {
     ::rewinddir(dir.get());  // the next read lists the threads of now

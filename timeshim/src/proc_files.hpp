@@ -47,6 +47,9 @@ class ProcFiles {
   std::optional<SyscallSample> sample_syscall(pid_t pid, pid_t tid);
   // Only the kernel state (R, S, ...) of the thread; nullopt when it is gone.
   std::optional<char> state_of(pid_t pid, pid_t tid);
+  // A new look: threads_of lists each process's threads again (within a look,
+  // once: the group's discovery and the look itself both ask).
+  void new_look() { listed_.clear(); }
   // Closes the files of every process and thread not in these sets.
   void keep_only(const std::set<pid_t>& pids, const std::set<pid_t>& tids);
 
@@ -61,6 +64,7 @@ class ProcFiles {
   };
   std::map<ThreadKey, std::array<UniqueFd, kFiles>> threads_;
   std::map<pid_t, std::unique_ptr<DIR, DirCloser>> task_dirs_;  // /proc/<pid>/task
+  std::map<pid_t, std::vector<pid_t>> listed_;                  // this look's threads_of
 };
 
 }  // namespace ubersim::timeshim

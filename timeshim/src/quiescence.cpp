@@ -154,6 +154,12 @@ void Controller::note_suspect(pid_t pid, pid_t tid, const std::string& why) {
 
 void Controller::check_shim_loaded(pid_t pid) {
   const auto now = std::chrono::steady_clock::now();
+  // A process found good is looked at again now and then, for an exec (its
+  // new image may lack the shim); not at every look: reading its exe costs.
+  constexpr auto kExeRecheck = std::chrono::milliseconds(100);
+  auto& next_look = next_exe_look_[pid];
+  if (shim_checked_.count(pid) != 0 && now < next_look) return;
+  next_look = now + kExeRecheck;
   const auto first = first_seen_.emplace(pid, now).first->second;
   const std::string exe = exe_of(pid);
   if (exe.empty() || shim_checked_[pid] == exe) return;
@@ -186,6 +192,7 @@ void Controller::check_shim_loaded(pid_t pid) {
 
 Controller::Scan Controller::scan() {
   reap(false);
+  proc_->new_look();
   Header& segment = header();
   const auto slots = slots_by_tid(segment);
   const std::int64_t now = segment.sim_now_ns.load();
