@@ -9,6 +9,7 @@
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/ssl_bridge/bridge.hpp"
+#include "ubersim/ssl_bridge/timed_inputs.hpp"
 #include "ubersim/topics.hpp"
 
 namespace ubersim::ssl {
@@ -21,10 +22,8 @@ std::int64_t to_ns(double seconds) {
 // Sends the stamped packets up to t (s) in the order they came, keeps the rest.
 template <class Send>
 void send_until(std::vector<StampedPacket>& queue, double t, const Send& send) {
-  const auto later = std::stable_partition(queue.begin(), queue.end(),
-                                           [t](const StampedPacket& p) { return p.t <= t; });
-  for (auto it = queue.begin(); it != later; ++it) send(it->bytes);
-  queue.erase(queue.begin(), later);
+  const auto stamp = [](const StampedPacket& packet) { return packet.t; };
+  for (const StampedPacket& due : take_until(queue, t, stamp)) send(due.bytes);
 }
 
 }  // namespace
@@ -59,7 +58,7 @@ void SslBridge::on_schedule(const vision_schedule_t& schedule) {
 void SslBridge::deliver_timed() {
   if (teams_->exited()) return;
   run_teams_to(timed_publication_);
-  timed_settled_ = std::max(timed_settled_, inputs_settled(timed_publication_));
+  timed_settled_ = std::max(timed_settled_, latest_before(timed_state_times_, timed_publication_));
   if (lcm_door_) lcm_door_->deliver(timed_publication_, timed_settled_);
   send_timed_geometry();
   for (const std::string& bytes : timed_vision_) {
@@ -78,19 +77,6 @@ void SslBridge::deliver_timed() {
     });
   }
   run_teams_to(timed_next_input_);
-}
-
-// The referee (with --sync-referee) and the radio (for a timed client) hold
-// physics at each state they must answer until they did, so what they said of
-// the states before `publication` was sent before physics went on to it, and
-// came here first (one socket, in order). Of the state at `publication` itself
-// they may not have spoken yet: that waits for the next delivery, on every run.
-double SslBridge::inputs_settled(double publication) const {
-  double settled = -1;
-  for (double t : timed_state_times_) {
-    if (t < publication) settled = std::max(settled, t);
-  }
-  return settled;
 }
 
 void SslBridge::remember_state_time(double sim_time) {

@@ -11,6 +11,7 @@
 
 #include "ubersim/delay_line.hpp"
 #include "ubersim/ssl_bridge/datagram_decoding.hpp"
+#include "ubersim/ssl_bridge/timed_inputs.hpp"
 #include "ubersim/topics.hpp"
 
 namespace ubersim::ssl {
@@ -142,12 +143,11 @@ bool GrsimPort::drain_timed(std::int64_t now_ns, double settled) {
       std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(now_ns))};
   const double t = static_cast<double>(now_ns) / 1e9;
   const double known = std::min(t, settled + kReleaseEpsilon);
-  const auto later = std::stable_partition(held_feedback_.begin(), held_feedback_.end(),
-                                           [known](const std::pair<Team, radio_feedback_t>& held) {
-                                             return held.second.t_sent <= known;
-                                           });
-  for (auto it = held_feedback_.begin(); it != later; ++it) apply_feedback(it->first, it->second);
-  held_feedback_.erase(held_feedback_.begin(), later);
+  using Held = std::pair<Team, radio_feedback_t>;
+  for (const Held& held :
+       take_until(held_feedback_, known, [](const Held& h) { return h.second.t_sent; })) {
+    apply_feedback(held.first, held.second);
+  }
   // The group is quiescent: what waits is finite (a bound against a flood from outside).
   statuses_sent_ = false;
   constexpr int kMostPerDrain = 1 << 16;

@@ -8,6 +8,7 @@
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/delay_line.hpp"
+#include "ubersim/ssl_bridge/timed_inputs.hpp"
 #include "ubersim/topics.hpp"
 
 namespace ubersim::ssl {
@@ -18,16 +19,6 @@ std::string encoded(const Msg& message) {
   std::string bytes(static_cast<std::size_t>(message.getEncodedSize()), '\0');
   message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
   return bytes;
-}
-
-// Moves the messages stamped up to t (s) out of `held`, in the order they came.
-template <class Msg, class Stamp>
-std::vector<Msg> take_until(std::vector<Msg>& held, double t, const Stamp& stamp) {
-  const auto later =
-      std::stable_partition(held.begin(), held.end(), [&](const Msg& m) { return stamp(m) <= t; });
-  std::vector<Msg> due(std::make_move_iterator(held.begin()), std::make_move_iterator(later));
-  held.erase(held.begin(), later);
-  return due;
 }
 
 }  // namespace

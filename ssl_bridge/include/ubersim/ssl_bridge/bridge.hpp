@@ -117,7 +117,7 @@ class SslBridge {
   // each quiescence (true when it sent something to the group, which then
   // runs again at the same instant), `ended` once the team programs ended.
   // `settled` (s of sim time): every feedback and referee message stamped up
-  // to it is here, on every run (inputs_settled()).
+  // to it is here, on every run (latest_before, timed_inputs.hpp).
   using TimedDrain = std::function<bool(std::int64_t now_ns, double settled)>;
   void add_timed_door(TimedDrain drain, std::function<void()> ended);
   // A timed team's radio packet (t_sent set): numbered in the team's sequence,
@@ -163,10 +163,6 @@ class SslBridge {
   void deliver_timed();
   void register_timed_teams();
   void send_timed_geometry();
-  // Up to which sim time the referee's and the radio's messages are all here
-  // when the frames published at `publication` are: the latest state physics
-  // published before it (docs/timeshim.md, "What the teams get, and when").
-  double inputs_settled(double publication) const;
   void remember_state_time(double sim_time);
   void run_teams_to(double t);
   bool at_quiescence(std::int64_t now_ns);
@@ -229,9 +225,11 @@ class SslBridge {
   double timed_next_input_ = 0;   // s, the next frame's earliest publication
   double timed_captured_ = 0;     // s, the latest capture time of the frames heard
   int timed_frames_due_ = 0;      // frames of the latest schedule not heard yet
-  // Sim times of the latest states physics published, oldest first (for inputs_settled).
+  // Sim times of the latest states physics published, oldest first.
   std::deque<double> timed_state_times_;
-  double timed_settled_ = -1;  // s, inputs_settled() at the latest delivery
+  // s: every referee and feedback message stamped up to it is here
+  // (latest_before, timed_inputs.hpp), as of the latest delivery.
+  double timed_settled_ = -1;
 };
 
 }  // namespace ubersim::ssl

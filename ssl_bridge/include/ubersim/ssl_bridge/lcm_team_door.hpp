@@ -69,7 +69,7 @@ class LcmTeamDoor {
   void hold(const vision_frame_t& frame);
   // The frames held and the geometry of t (s of sim time), and the referee
   // messages and feedback up to `settled` (all of them are here up to then:
-  // SslBridge::inputs_settled), onto the private bus.
+  // latest_before, timed_inputs.hpp), onto the private bus.
   void deliver(double t, double settled);
   // At a quiescence at now_ns: every RADIO_<TEAM> the teams sent is here;
   // each goes to the main bus with t_sent = now. Returns how many.
