@@ -170,6 +170,76 @@ class Ubersim(Run):
             raise AssertionError("ubersim did not start:\n" + processes.log("launch"))
 
 
+# What a synced game records that must be the same bytes on a rerun with the same seeds
+# (docs/timeshim.md, "Deterministic mode"); the rest (schedules, horizons, repeats) follows wall
+# time.
+GAME_CHANNELS = ("VISION", "RADIO_YELLOW", "RADIO_BLUE", "RADIO_FEEDBACK_YELLOW",
+                 "RADIO_FEEDBACK_BLUE", "SIM_STATE", "SIM_COMMANDS", "REFEREE")
+
+
+def rerun_wanted():
+    """UBERSIM_INTEROP_RERUN=1: play the synced game twice in deterministic mode and compare."""
+    return os.environ.get("UBERSIM_INTEROP_RERUN") == "1"
+
+
+def play_synced(processes, source_dir, build_dir, name, launch_args, seconds, wall_per_second,
+                log=None):
+    """tools/launch.sh --sync LAUNCH_ARGS --duration SECONDS (process logs in FOLDER/NAME, the LCM
+    log in LOG if given), ground truth sampled every wall second. Returns (Run, states, wall s,
+    exit status); an AssertionError when it does not end within 60 + WALL_PER_SECOND x SECONDS s
+    of wall time."""
+    log_dir = os.path.join(processes.folder, name)
+    args = [os.path.join(source_dir, "tools", "launch.sh"), "--sync", "--duration",
+            f"{seconds:g}", "--log-dir", log_dir, *(["--log", log] if log else []), *launch_args]
+    started = time.monotonic()
+    launch = processes.start(name, args, env=dict(os.environ, UBERSIM_BUILD_DIR=build_dir))
+    ubersim = Run(build_dir, log_dir)
+    states = []
+    deadline = started + 60 + wall_per_second * seconds
+    while launch.poll() is None and time.monotonic() < deadline:
+        state = ubersim.state()
+        if state:
+            states.append(state)
+        time.sleep(1)
+    wall = time.monotonic() - started
+    if launch.poll() is None:
+        processes.stop(name, 10)
+        raise AssertionError(f"the game did not end within {wall:.0f} s of wall time:\n"
+                             + processes.log(name)[-3000:])
+    return ubersim, states, wall, launch.returncode
+
+
+def check_no_team_dropped(ubersim, failures):
+    radio = ubersim.log("radio.log")
+    if "sync: no client was dropped" not in radio:
+        failures.append("a team was dropped: "
+                        + "; ".join(re.findall(r"sync client dropped: [^\n]*", radio)[:2]))
+
+
+def compare_reruns(build_dir, first_log, second_log, failures):
+    """ubersim_log_compare over GAME_CHANNELS: each channel's verdict printed, a failure for each
+    that differs."""
+    result = subprocess.run([os.path.join(build_dir, "bin", "ubersim_log_compare"),
+                             "--channels", "^(" + "|".join(GAME_CHANNELS) + ")$", first_log,
+                             second_log], capture_output=True, text=True, check=False)
+    print("rerun, the game channels:\n" + result.stdout.strip())
+    differing = [line for line in result.stdout.splitlines() if "DIFFERENT" in line]
+    if result.returncode not in (0, 1) or not result.stdout.strip():
+        failures.append(f"ubersim_log_compare failed ({result.returncode}): {result.stderr[-500:]}")
+    failures.extend(f"the rerun differs: {line}" for line in differing)
+
+
+def moved_per_robot(states, team):
+    """m each robot of TEAM travelled between the samples, by id."""
+    moved = {}
+    for before, after in zip(states, states[1:]):
+        for robot, (x, y) in after[team].items():
+            if robot in before[team]:
+                x0, y0 = before[team][robot]
+                moved[robot] = moved.get(robot, 0.0) + ((x - x0) ** 2 + (y - y0) ** 2) ** 0.5
+    return moved
+
+
 def parse_state(text):
     time_match = re.search(r"sim time ([-\d.e+]+) s", text)
     if not time_match:

@@ -15,6 +15,9 @@ every wall second while it plays, and asserts:
   * both teams played: at least 3 robots of each moved 0.5 m or more (in the whole game: in
     its first seconds NeonFC places its robots for the kick-off).
 It prints game seconds per wall second. S is UBERSIM_INTEROP_SECONDS (default 10; 300 by hand).
+With UBERSIM_INTEROP_RERUN=1 it plays the game twice in deterministic mode (--team-deterministic,
+--seed 3) and also asserts that both recorded the same bytes on every game channel
+(real_program_run.GAME_CHANNELS).
 
 Needs UBERSIM_NEONFC and the two configs (UBERSIM_NEONFC_CONFIGS), as test_neonfc.py; without
 them exits 77 (skipped) and says why. Run in a network namespace of its own
@@ -26,7 +29,6 @@ import os
 import re
 import shlex
 import sys
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import real_program_run as run  # noqa: E402
@@ -40,48 +42,18 @@ def team_command(neonfc, config, folder):
     return f"grsim:cd {shlex.quote(folder)} && exec {shlex.quote(neonfc)} -p {shlex.quote(config)}"
 
 
-def play(processes, source_dir, build_dir, neonfc, config_of, seconds):
-    log_dir = os.path.join(processes.folder, "ubersim")
-    args = [os.path.join(source_dir, "tools", "launch.sh"), "--sync", "--referee", "--seed", "3",
-            "--duration", f"{seconds:g}", "--log-dir", log_dir,
-            "--team-charge-us", "50", "--team-yield-after-ms", "10", "--sync-timeout", "60"]
+def play(processes, source_dir, build_dir, neonfc, config_of, seconds, name, log=None):
+    args = ["--referee", "--seed", "3", "--team-charge-us", "50", "--team-yield-after-ms", "10",
+            "--sync-timeout", "60", *(["--team-deterministic"] if log else [])]
     for colour in COLOURS:
-        folder = os.path.join(processes.folder, f"neonfc_{colour}")
+        folder = os.path.join(processes.folder, name, f"neonfc_{colour}")
         args += ["--team", colour, team_command(neonfc, config_of[colour], folder)]
-    started = time.monotonic()
-    launch = processes.start("launch", args, env=dict(os.environ, UBERSIM_BUILD_DIR=build_dir))
-    ubersim = run.Run(build_dir, log_dir)
-    states = []
-    deadline = started + 60 + WALL_LIMIT_PER_GAME_SECOND * seconds
-    while launch.poll() is None and time.monotonic() < deadline:
-        state = ubersim.state()
-        if state:
-            states.append(state)
-        time.sleep(1)
-    wall = time.monotonic() - started
-    if launch.poll() is None:
-        processes.stop("launch", 10)
-        raise AssertionError(f"the game did not end within {wall:.0f} s of wall time:\n"
-                             + processes.log("launch")[-3000:])
-    return ubersim, states, wall, launch.returncode
-
-
-def distances(states, team):
-    """m each robot of TEAM travelled between the samples, by id."""
-    moved = {}
-    for before, after in zip(states, states[1:]):
-        for robot, (x, y) in after[team].items():
-            if robot in before[team]:
-                x0, y0 = before[team][robot]
-                moved[robot] = moved.get(robot, 0.0) + ((x - x0) ** 2 + (y - y0) ** 2) ** 0.5
-    return moved
+    return run.play_synced(processes, source_dir, build_dir, name, args, seconds,
+                           WALL_LIMIT_PER_GAME_SECOND, log)
 
 
 def check_logs(ubersim, failures):
-    radio = ubersim.log("radio.log")
-    if "sync: no client was dropped" not in radio:
-        failures.append("a team was dropped: "
-                        + "; ".join(re.findall(r"sync client dropped: [^\n]*", radio)[:2]))
+    run.check_no_team_dropped(ubersim, failures)
     bridge = ubersim.log("ssl_bridge.log")
     for colour in COLOURS:
         stamped = re.search(rf"grSim radio packets {colour} \(timed\)=(\d+)", bridge)
@@ -96,6 +68,36 @@ def check_logs(ubersim, failures):
             print(f"bridge: {line}")
 
 
+def play_and_check(processes, source_dir, build_dir, neonfc, config_of, seconds, name, log,
+                   failures):
+    """One game, its checks; returns its ground-truth samples and referee events."""
+    try:
+        ubersim, states, wall, status = play(processes, source_dir, build_dir, neonfc, config_of,
+                                             seconds, name, log)
+    except AssertionError as error:
+        failures.append(str(error))
+        return [], []
+    print(f"{name}: {seconds:g} s of game in {wall:.1f} s of wall time (NeonFC's start "
+          f"included): {seconds / wall:.2f} game s per wall s")
+    if status != 0:
+        failures.append(f"{name}: tools/launch.sh exited {status}:\n"
+                        + processes.log(name)[-3000:])
+    check_logs(ubersim, failures)
+    return states, ubersim.events()
+
+
+def check_motion(states, events, failures):
+    print(run.game_summary(events))
+    for team in COLOURS:
+        run.print_team_motion(states, events, team)
+        moved = run.moved_per_robot(states, team)
+        print(f"{team}: m moved in the game per robot "
+              + (", ".join(f"{i}: {d:.1f}" for i, d in sorted(moved.items())) or "none"))
+        if sum(1 for d in moved.values() if d >= MIN_DISTANCE) < MIN_ROBOTS_MOVED:
+            failures.append(f"{team}: fewer than {MIN_ROBOTS_MOVED} robots moved {MIN_DISTANCE} m "
+                            "(did NeonFC's grSim commands reach the radio?)")
+
+
 def main():
     source_dir, build_dir = sys.argv[1], sys.argv[2]
     neonfc = run.program_from_env("UBERSIM_NEONFC", "NeonFC-SSL's main (OUT/bin/neonfc)")
@@ -104,30 +106,18 @@ def main():
     seconds = run.seconds_to_play(10)
     folder = run.new_folder("ubersim-neonfc-sync-")
     processes = run.Processes(folder)
-    failures, states, events = [], [], []
+    failures = []
+    games = ["game", "rerun"] if run.rerun_wanted() else ["game"]
+    logs = [os.path.join(folder, f"{name}.lcm") if run.rerun_wanted() else None for name in games]
     try:
-        ubersim, states, wall, status = play(processes, source_dir, build_dir, neonfc, config_of,
-                                             seconds)
-        print(f"{seconds:g} s of game in {wall:.1f} s of wall time (NeonFC's start included): "
-              f"{seconds / wall:.2f} game s per wall s")
-        if status != 0:
-            failures.append(f"tools/launch.sh exited {status}:\n"
-                            + processes.log("launch")[-3000:])
-        check_logs(ubersim, failures)
-        events = ubersim.events()
-    except AssertionError as error:
-        failures.append(str(error))
+        for name, log in zip(games, logs):
+            states, events = play_and_check(processes, source_dir, build_dir, neonfc, config_of,
+                                            seconds, name, log, failures)
+            check_motion(states, events, failures)
     finally:
         processes.stop_all()
-    print(run.game_summary(events))
-    for team in COLOURS:
-        run.print_team_motion(states, events, team)
-        moved = distances(states, team)
-        print(f"{team}: m moved in the game per robot "
-              + (", ".join(f"{i}: {d:.1f}" for i, d in sorted(moved.items())) or "none"))
-        if sum(1 for d in moved.values() if d >= MIN_DISTANCE) < MIN_ROBOTS_MOVED:
-            failures.append(f"{team}: fewer than {MIN_ROBOTS_MOVED} robots moved {MIN_DISTANCE} m "
-                            "(did NeonFC's grSim commands reach the radio?)")
+    if run.rerun_wanted():
+        run.compare_reruns(build_dir, logs[0], logs[1], failures)
     return run.verdict(failures, folder)
 
 
