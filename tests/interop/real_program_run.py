@@ -240,6 +240,32 @@ def moved_per_robot(states, team):
     return moved
 
 
+def check_robots_moved(states, team, min_distance, min_robots, why, failures):
+    """Prints how far each robot of TEAM moved; a failure (saying WHY it may be) unless at least
+    MIN_ROBOTS moved MIN_DISTANCE m."""
+    moved = moved_per_robot(states, team)
+    print(f"{team}: m moved in the game per robot "
+          + (", ".join(f"{i}: {d:.1f}" for i, d in sorted(moved.items())) or "none"))
+    if sum(1 for d in moved.values() if d >= min_distance) < min_robots:
+        failures.append(f"{team}: fewer than {min_robots} robots moved {min_distance} m ({why})")
+
+
+def play_synced_games(processes, build_dir, play_one, failures):
+    """PLAY_ONE(name, log) once ("game", no LCM log); with UBERSIM_INTEROP_RERUN=1 twice ("game",
+    "rerun", each with an LCM log, which tells PLAY_ONE to play in deterministic mode), then the
+    game channels of both compared. The processes are stopped at the end."""
+    rerun = rerun_wanted()
+    games = ["game", "rerun"] if rerun else ["game"]
+    logs = [os.path.join(processes.folder, f"{name}.lcm") if rerun else None for name in games]
+    try:
+        for name, log in zip(games, logs):
+            play_one(name, log)
+    finally:
+        processes.stop_all()
+    if rerun:
+        compare_reruns(build_dir, logs[0], logs[1], failures)
+
+
 def parse_state(text):
     time_match = re.search(r"sim time ([-\d.e+]+) s", text)
     if not time_match:

@@ -86,39 +86,26 @@ def play_and_check(processes, source_dir, build_dir, neonfc, config_of, seconds,
     return states, ubersim.events()
 
 
-def check_motion(states, events, failures):
-    print(run.game_summary(events))
-    for team in COLOURS:
-        run.print_team_motion(states, events, team)
-        moved = run.moved_per_robot(states, team)
-        print(f"{team}: m moved in the game per robot "
-              + (", ".join(f"{i}: {d:.1f}" for i, d in sorted(moved.items())) or "none"))
-        if sum(1 for d in moved.values() if d >= MIN_DISTANCE) < MIN_ROBOTS_MOVED:
-            failures.append(f"{team}: fewer than {MIN_ROBOTS_MOVED} robots moved {MIN_DISTANCE} m "
-                            "(did NeonFC's grSim commands reach the radio?)")
-
-
 def main():
     source_dir, build_dir = sys.argv[1], sys.argv[2]
     neonfc = run.program_from_env("UBERSIM_NEONFC", "NeonFC-SSL's main (OUT/bin/neonfc)")
     config_of = configs(neonfc)
     run.skip_unless_loopback_multicast()
     seconds = run.seconds_to_play(10)
-    folder = run.new_folder("ubersim-neonfc-sync-")
-    processes = run.Processes(folder)
+    processes = run.Processes(run.new_folder("ubersim-neonfc-sync-"))
     failures = []
-    games = ["game", "rerun"] if run.rerun_wanted() else ["game"]
-    logs = [os.path.join(folder, f"{name}.lcm") if run.rerun_wanted() else None for name in games]
-    try:
-        for name, log in zip(games, logs):
-            states, events = play_and_check(processes, source_dir, build_dir, neonfc, config_of,
-                                            seconds, name, log, failures)
-            check_motion(states, events, failures)
-    finally:
-        processes.stop_all()
-    if run.rerun_wanted():
-        run.compare_reruns(build_dir, logs[0], logs[1], failures)
-    return run.verdict(failures, folder)
+
+    def play_one(name, log):
+        states, events = play_and_check(processes, source_dir, build_dir, neonfc, config_of,
+                                        seconds, name, log, failures)
+        print(run.game_summary(events))
+        for team in COLOURS:
+            run.print_team_motion(states, events, team)
+            run.check_robots_moved(states, team, MIN_DISTANCE, MIN_ROBOTS_MOVED,
+                                   "did NeonFC's grSim commands reach the radio?", failures)
+
+    run.play_synced_games(processes, build_dir, play_one, failures)
+    return run.verdict(failures, processes.folder)
 
 
 if __name__ == "__main__":

@@ -53,35 +53,23 @@ def play_and_check(processes, source_dir, build_dir, utama, seconds, name, log, 
     return states
 
 
-def check_motion(states, failures):
-    for team in ("yellow", "blue"):
-        moved = run.moved_per_robot(states, team)
-        print(f"{team}: m moved in the game per robot "
-              + (", ".join(f"{i}: {d:.1f}" for i, d in sorted(moved.items())) or "none"))
-        if sum(1 for d in moved.values() if d >= MIN_DISTANCE) < MIN_ROBOTS_MOVED:
-            failures.append(f"{team}: fewer than {MIN_ROBOTS_MOVED} robots moved {MIN_DISTANCE} m "
-                            "(did Utama-Core's commands reach the radio?)")
-
-
 def main():
     source_dir, build_dir = sys.argv[1], sys.argv[2]
     utama = run.program_from_env("UBERSIM_UTAMA", "a python that imports Utama-Core's utama_core")
     run.skip_unless_loopback_multicast()
     seconds = run.seconds_to_play(20)
-    folder = run.new_folder("ubersim-utama-sync-")
-    processes = run.Processes(folder)
+    processes = run.Processes(run.new_folder("ubersim-utama-sync-"))
     failures = []
-    games = ["game", "rerun"] if run.rerun_wanted() else ["game"]
-    logs = [os.path.join(folder, f"{name}.lcm") if run.rerun_wanted() else None for name in games]
-    try:
-        for name, log in zip(games, logs):
-            check_motion(play_and_check(processes, source_dir, build_dir, utama, seconds, name,
-                                        log, failures), failures)
-    finally:
-        processes.stop_all()
-    if run.rerun_wanted():
-        run.compare_reruns(build_dir, logs[0], logs[1], failures)
-    return run.verdict(failures, folder)
+
+    def play_one(name, log):
+        states = play_and_check(processes, source_dir, build_dir, utama, seconds, name, log,
+                                failures)
+        for team in ("yellow", "blue"):
+            run.check_robots_moved(states, team, MIN_DISTANCE, MIN_ROBOTS_MOVED,
+                                   "did Utama-Core's commands reach the radio?", failures)
+
+    run.play_synced_games(processes, build_dir, play_one, failures)
+    return run.verdict(failures, processes.folder)
 
 
 if __name__ == "__main__":
