@@ -281,6 +281,11 @@ bool SyncCoordinator::has_timed_client() const {
                      [](const Client& c) { return c.present && c.timed; });
 }
 
+bool SyncCoordinator::timed(Team team) const {
+  const Client& c = client(team);
+  return c.present && c.timed;
+}
+
 int SyncCoordinator::clients() const {
   return static_cast<int>(clients_[0].present) + static_cast<int>(clients_[1].present);
 }

@@ -176,6 +176,10 @@ void SyncDriver::update(bool always_publish, Clock::time_point now) {
       answered_until = std::min(answered_until, coordinator_.answered_until(team));
       RadioEmulator::SyncRelease release = emulator_.sync_release(team, arrival);
       publish_(release.out);
+      // A timed client's bridge hands physics the team's simulation control
+      // commands with the next frame, which physics must wait at: it may not
+      // run past the promise by the link's latency (docs/sync.md).
+      if (coordinator_.timed(team)) release.horizon = std::min(release.horizon, arrival);
       if (release.horizon < horizon) {
         horizon = release.horizon;
         const std::optional<std::string> client = coordinator_.bound_by(team);

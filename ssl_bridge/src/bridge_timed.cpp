@@ -58,6 +58,7 @@ void SslBridge::on_schedule(const vision_schedule_t& schedule) {
 void SslBridge::deliver_timed() {
   if (teams_->exited()) return;
   run_teams_to(timed_publication_);
+  apply_timed_controls();
   timed_settled_ = std::max(timed_settled_, latest_before(timed_state_times_, timed_publication_));
   if (lcm_door_) lcm_door_->deliver(timed_publication_, timed_settled_);
   send_timed_geometry();
@@ -139,8 +140,9 @@ void SslBridge::register_timed_teams() {
   }
 }
 
-void SslBridge::add_timed_door(TimedDrain drain, std::function<void()> ended) {
-  timed_doors_.push_back({std::move(drain), std::move(ended)});
+void SslBridge::add_timed_door(TimedDrain drain, std::function<void()> at_frame,
+                               std::function<void()> ended) {
+  timed_doors_.push_back({std::move(drain), std::move(at_frame), std::move(ended)});
 }
 
 void SslBridge::publish_timed_radio(Team team, radio_packet_t packet) {
@@ -152,11 +154,33 @@ void SslBridge::publish_timed_radio(Team team, radio_packet_t packet) {
   ubersim::publish(bus_, channels_, topics::kRadio.of(team), packet);
 }
 
+bool SslBridge::timed_teams_joined() const {
+  return std::all_of(timed_teams_.begin(), timed_teams_.end(),
+                     [this](Team team) { return sync_clients_[static_cast<int>(team)].joined(); });
+}
+
+// A simulation control command a team sent during the game goes to physics
+// with the next frame: physics waits at that frame's state (the radio holds
+// it at a timed team's promise, docs/sync.md "Timed clients"), so it applies
+// the command there, on every run; sent at once, it would apply at whatever
+// step physics had reached in wall time.
+void SslBridge::apply_timed_controls() {
+  for (const HeldControl& held : timed_controls_) handle_control_datagram(held.bytes, held.from);
+  timed_controls_.clear();
+  for (const TimedDoor& door : timed_doors_) door.at_frame();
+}
+
 bool SslBridge::at_quiescence(std::int64_t now_ns) {
   bool answered = false;
   sockaddr_in from{};
-  // Control commands before the registration (see register_timed_teams).
+  // Control commands before the registration are applied at sim time 0 (see
+  // register_timed_teams); later ones at the state of the next frame (deliver_timed).
+  constexpr std::size_t kMostHeldControls = 256;
   while (auto bytes = control_socket_.receive(from)) {
+    if (timed_teams_joined() && timed_controls_.size() < kMostHeldControls) {
+      timed_controls_.push_back({std::move(*bytes), from});
+      continue;
+    }
     handle_control_datagram(*bytes, from);
     answered = true;
   }
@@ -190,6 +214,7 @@ void SslBridge::promise(std::int64_t promise_ns) {
 // The team programs ended: their clients leave (the run goes on without
 // them), and what was held back for them goes out now.
 void SslBridge::teams_ended() {
+  apply_timed_controls();
   if (lcm_door_) lcm_door_->stop_holding();
   for (const TimedDoor& door : timed_doors_) door.ended();
   for (Team team : timed_teams_) sync_clients_[static_cast<int>(team)].leave();

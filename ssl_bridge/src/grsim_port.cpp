@@ -168,8 +168,14 @@ bool GrsimPort::drain_timed(std::int64_t now_ns, double settled) {
   return statuses_sent_;
 }
 
+void GrsimPort::release_replacements() {
+  for (const grSim_Replacement& replacement : held_replacements_) handle_replacement(replacement);
+  held_replacements_.clear();
+}
+
 void GrsimPort::stop_gating() {
   if (!gated_) return;
+  release_replacements();
   gated_ = false;
   for (const auto& [team, feedback] : held_feedback_) apply_feedback(team, feedback);
   held_feedback_.clear();
@@ -191,7 +197,15 @@ void GrsimPort::handle_datagram(const std::uint8_t* data, std::size_t size, cons
   }
   if (!errors.empty()) count_errors(errors, "unknown fields");
   if (packet.has_commands()) handle_commands(packet.commands(), now, arrival);
-  if (packet.has_replacement()) handle_replacement(packet.replacement());
+  if (packet.has_replacement()) {
+    // A timed team's replacement goes to physics with the next frame (release_replacements).
+    constexpr std::size_t kMostHeld = 256;
+    if (gated_ && arrival == Arrival::AtQuiescence && held_replacements_.size() < kMostHeld) {
+      held_replacements_.push_back(packet.replacement());
+    } else {
+      handle_replacement(packet.replacement());
+    }
+  }
   // grSim answers each datagram with the robots whose status changed, to its sender.
   if (status_.pending() && send_status(from)) statuses_sent_ = true;
 }

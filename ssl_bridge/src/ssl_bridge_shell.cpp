@@ -55,7 +55,7 @@ class SslBridgeShell {
           [this](std::int64_t now_ns, double settled) {
             return grsim_->drain_timed(now_ns, settled);
           },
-          [this] { grsim_->stop_gating(); });
+          [this] { grsim_->release_replacements(); }, [this] { grsim_->stop_gating(); });
     }
     grsim_->start();
     // Wakes the loop when the grSim port has something due (a packet held

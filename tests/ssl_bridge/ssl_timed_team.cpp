@@ -10,7 +10,10 @@
 // with it; its behaviour depends only on what it received and when. With
 // --protocol grsim it speaks grSim's protocol instead, as grSim clients do:
 // one grSim_Packet per loop to grSim's command port (robot-local velocities),
-// and no answer to read.
+// and no answer to read. The yellow team of the SSL protocol also teleports
+// the ball once, at its loop 40 (0.8 s), on the simulation control port, as
+// team software does (Utama-Core places the ball): physics must apply it at
+// the same sim time on every run.
 //   ssl_timed_team --team yellow|blue [--vision-port 10020] [--port 10301|10302|20011]
 //                  [--protocol ssl|grsim]
 #include <grSim_Packet.pb.h>
@@ -89,6 +92,17 @@ std::map<uint32_t, std::pair<double, double>> velocities_at_ball(const Seen& see
   return velocities;
 }
 
+// The ball to the centre circle's edge, still.
+std::string teleport_ball() {
+  SimulatorCommand command;
+  TeleportBall* ball = command.mutable_control()->mutable_teleport_ball();
+  ball->set_x(0.5f);
+  ball->set_y(0.0f);
+  ball->set_vx(0.0f);
+  ball->set_vy(0.0f);
+  return command.SerializeAsString();
+}
+
 std::string drive_at_ball(const Seen& seen) {
   RobotControl control;
   for (const auto& [id, v] : velocities_at_ball(seen)) {
@@ -146,6 +160,10 @@ int main(int argc, char** argv) {
 
   ssl_test::VisionReceiver vision("224.5.23.2", vision_port);
   ssl_test::UdpClient robots(port);
+  constexpr int kControlPort = 10300;  // the SSL simulation protocol's control port
+  constexpr long kTeleportLoop = 40;
+  ssl_test::UdpClient control(kControlPort);
+  const bool teleports = yellow && !arguments->grsim;
   World world;
   std::thread receiver([&] {
     while (!stop_requested) {
@@ -163,6 +181,9 @@ int main(int argc, char** argv) {
     const Seen seen = world.get();
     robots.send(arguments->grsim ? drive_at_ball_grsim(seen, yellow) : drive_at_ball(seen));
     while (robots.receive(0)) ++responses;  // errors and feedback: not used here
+    if (teleports && loops == kTeleportLoop) control.send(teleport_ball());
+    while (control.receive(0)) {
+    }
     const auto now = Steady::now();
     const double wall = seconds_of(std::chrono::system_clock::now().time_since_epoch());
     std::printf("loop %ld steady %.9f wall %.6f packets %ld\n", loops++,

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <regex>
 #include <ubersim/radio_packet_t.hpp>
+#include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
 
 #include "timed_game.hpp"
@@ -80,6 +81,20 @@ void check_team(const TimedGame& game, const std::string& channel, const std::st
   EXPECT_GT(with_commands, min_loops);
 }
 
+// The C++ yellow team teleported the ball once during the game (its loop 40):
+// the bridge passed it on to physics.
+void expect_teleport(const TimedGame& game) {
+  ASSERT_TRUE(game.log.count("SIM_CONTROL"));
+  int teleports = 0;
+  for (const auto& request : decode_all<ubersim::sim_control_t>(game.log.at("SIM_CONTROL"))) {
+    if (request.sender == "ubersim_ssl_bridge" && request.has_ball &&
+        std::fabs(request.ball.position[0] - 0.5) < 1e-6) {
+      ++teleports;
+    }
+  }
+  EXPECT_EQ(teleports, 1) << game.bridge_log;
+}
+
 void expect_no_drop(const TimedGame& game) {
   EXPECT_NE(game.radio_log.find("sync: no client was dropped"), std::string::npos)
       << game.radio_log;
@@ -109,7 +124,9 @@ TEST(TimedTeams, UnchangedTeamsPlayAReproducibleSyncGameUnderTheTimeShim) {
   expect_no_drop(first);
   check_team(first, "RADIO_YELLOW", first.yellow_log);
   check_team(first, "RADIO_BLUE", first.blue_log);
+  expect_teleport(first);
 
+  // The teleport too is applied at the same sim time: SIM_STATE is the same.
   const TimedGame second = play(dir, "second", "7", true);
   ASSERT_EQ(second.status, 0) << second.output << second.bridge_log << second.radio_log;
   expect_same_bytes(first, second);

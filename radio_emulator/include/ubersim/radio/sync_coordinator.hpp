@@ -119,6 +119,7 @@ class SyncCoordinator {
   bool schedule_heard() const { return schedule_heard_; }
   // Whether a timed client (a team program under the time shim) is registered.
   bool has_timed_client() const;
+  bool timed(Team team) const;  // its client is a timed one
   int clients() const;
   std::optional<std::string> client_name(Team team) const;
   std::vector<SyncClientStats> client_stats() const;

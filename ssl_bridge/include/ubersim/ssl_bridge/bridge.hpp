@@ -117,9 +117,12 @@ class SslBridge {
   // each quiescence (true when it sent something to the group, which then
   // runs again at the same instant), `ended` once the team programs ended.
   // `settled` (s of sim time): every feedback and referee message stamped up
-  // to it is here, on every run (latest_before, timed_inputs.hpp).
+  // to it is here, on every run (latest_before, timed_inputs.hpp). `at_frame`
+  // when a frame goes to the group, before the group runs on (physics waits
+  // at the frame's state then).
   using TimedDrain = std::function<bool(std::int64_t now_ns, double settled)>;
-  void add_timed_door(TimedDrain drain, std::function<void()> ended);
+  void add_timed_door(TimedDrain drain, std::function<void()> at_frame,
+                      std::function<void()> ended);
   // A timed team's radio packet (t_sent set): numbered in the team's sequence,
   // with its promises; held until the team registered.
   void publish_timed_radio(Team team, radio_packet_t packet);
@@ -164,6 +167,8 @@ class SslBridge {
   void register_timed_teams();
   void send_timed_geometry();
   void remember_state_time(double sim_time);
+  bool timed_teams_joined() const;
+  void apply_timed_controls();
   void run_teams_to(double t);
   bool at_quiescence(std::int64_t now_ns);
   void promise(std::int64_t promise_ns);
@@ -210,6 +215,7 @@ class SslBridge {
   std::unique_ptr<LcmTeamDoor> lcm_door_;  // the timed teams that speak LCM
   struct TimedDoor {
     TimedDrain drain;
+    std::function<void()> at_frame;
     std::function<void()> ended;
   };
   std::vector<TimedDoor> timed_doors_;     // add_timed_door
@@ -225,6 +231,12 @@ class SslBridge {
   double timed_next_input_ = 0;   // s, the next frame's earliest publication
   double timed_captured_ = 0;     // s, the latest capture time of the frames heard
   int timed_frames_due_ = 0;      // frames of the latest schedule not heard yet
+  // The team programs' simulation control commands since the last frame (apply_timed_controls).
+  struct HeldControl {
+    std::vector<uint8_t> bytes;
+    sockaddr_in from;
+  };
+  std::vector<HeldControl> timed_controls_;
   // Sim times of the latest states physics published, oldest first.
   std::deque<double> timed_state_times_;
   // s: every referee and feedback message stamped up to it is here

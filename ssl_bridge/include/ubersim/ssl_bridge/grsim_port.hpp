@@ -77,6 +77,11 @@ class GrsimPort {
   // (s: all of it is here up to then; SslBridge::add_timed_door).
   // True when a robot status went back to the group (it must run again).
   bool drain_timed(std::int64_t now_ns, double settled);
+  // A frame goes to the group: the replacements its grSim teams sent since
+  // the last go to physics, which waits at that frame's state, so they apply
+  // there on every run (SslBridge::apply_timed_controls, for the simulation
+  // protocol).
+  void release_replacements();
   // The team programs ended: back to the real-time rules.
   void stop_gating();
   // After every wakeup: sends what waited for its interval, repeats, stops.
@@ -126,7 +131,8 @@ class GrsimPort {
   PublishTimed publish_timed_;
   std::vector<std::pair<Team, radio_feedback_t>> held_feedback_;
   bool gated_ = false;
-  bool statuses_sent_ = false;  // during a drain
+  bool statuses_sent_ = false;                        // during a drain
+  std::vector<grSim_Replacement> held_replacements_;  // release_replacements
   ThrottledLog bad_input_;
   std::map<std::string, std::uint64_t> counters_;
 };
