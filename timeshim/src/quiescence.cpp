@@ -157,12 +157,17 @@ void Controller::check_shim_loaded(pid_t pid) {
   // A process found good is looked at again now and then, for an exec (its
   // new image may lack the shim); not at every look: reading its exe costs.
   constexpr auto kExeRecheck = std::chrono::milliseconds(100);
+  // A new image maps the shim only once its loader has run: until then, and
+  // on a loaded machine that can take a while, it shows no shim.
+  constexpr auto kLoaderGrace = std::chrono::milliseconds(500);
+  const auto checked = shim_checked_.find(pid);
   auto& next_look = next_exe_look_[pid];
-  if (shim_checked_.count(pid) != 0 && now < next_look) return;
+  if (checked != shim_checked_.end() && now < next_look) return;
   next_look = now + kExeRecheck;
-  const auto first = first_seen_.emplace(pid, now).first->second;
   const std::string exe = exe_of(pid);
-  if (exe.empty() || shim_checked_[pid] == exe) return;
+  if (exe.empty() || (checked != shim_checked_.end() && checked->second == exe)) return;
+  ImageSeen& image = image_seen_[pid];
+  if (image.exe != exe) image = ImageSeen{exe, now};
   // A program that reads the clock without libc, shim or not (its file says so).
   if (const std::string why = clock_without_libc(exe); !why.empty()) {
     shim_checked_[pid] = exe;
@@ -171,7 +176,7 @@ void Controller::check_shim_loaded(pid_t pid) {
                                     exe + ") sees wall time: " + why});
     return;
   }
-  if (now - first < std::chrono::milliseconds(200)) return;
+  if (now - image.since < kLoaderGrace) return;
   const std::string library = shim_library_.substr(shim_library_.rfind('/') + 1);
   if (maps_contain(pid, library)) {
     shim_checked_[pid] = exe;

@@ -142,7 +142,11 @@ class Controller {
   };
   std::map<pid_t, Suspect> suspects_;          // by tid
   std::map<pid_t, std::string> shim_checked_;  // pid -> exe it was checked for
-  std::map<pid_t, std::chrono::steady_clock::time_point> first_seen_;
+  struct ImageSeen {
+    std::string exe;                              // the program a process runs
+    std::chrono::steady_clock::time_point since;  // since when (its exec, as first seen)
+  };
+  std::map<pid_t, ImageSeen> image_seen_;
   std::map<pid_t, std::chrono::steady_clock::time_point> next_exe_look_;
   std::vector<Problem> problems_;
   std::uint64_t advances_ = 0;
