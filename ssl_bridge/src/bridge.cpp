@@ -538,7 +538,7 @@ void SslBridge::start() {
                options_.blue_port, options_.listen_address, options_.yellow_port);
   bus_.watch(control_socket_.fd(), [this] {
     drain(control_socket_, [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
-      handle_control_datagram(bytes, from);
+      if (!held_for_next_frame(bytes, from)) handle_control_datagram(bytes, from);
     });
   });
   bus_.watch(blue_socket_.fd(), [this] {

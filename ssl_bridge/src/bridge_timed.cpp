@@ -170,17 +170,25 @@ void SslBridge::apply_timed_controls() {
   for (const TimedDoor& door : timed_doors_) door.at_frame();
 }
 
+// Also for one read outside a quiescence: a thread of the group may wake
+// without input from the bridge (a file read the controller took for a wait).
+bool SslBridge::held_for_next_frame(const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
+  constexpr std::size_t kMostHeldControls = 256;
+  if (!timed_mode() || teams_->exited() || !timed_teams_joined() ||
+      timed_controls_.size() >= kMostHeldControls) {
+    return false;
+  }
+  timed_controls_.push_back({bytes, from});
+  return true;
+}
+
 bool SslBridge::at_quiescence(std::int64_t now_ns) {
   bool answered = false;
   sockaddr_in from{};
   // Control commands before the registration are applied at sim time 0 (see
   // register_timed_teams); later ones at the state of the next frame (deliver_timed).
-  constexpr std::size_t kMostHeldControls = 256;
   while (auto bytes = control_socket_.receive(from)) {
-    if (timed_teams_joined() && timed_controls_.size() < kMostHeldControls) {
-      timed_controls_.push_back({std::move(*bytes), from});
-      continue;
-    }
+    if (held_for_next_frame(*bytes, from)) continue;
     handle_control_datagram(*bytes, from);
     answered = true;
   }

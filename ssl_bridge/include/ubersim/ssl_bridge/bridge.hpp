@@ -168,6 +168,9 @@ class SslBridge {
   void send_timed_geometry();
   void remember_state_time(double sim_time);
   bool timed_teams_joined() const;
+  // A team program's simulation control command, kept for the next frame
+  // (apply_timed_controls) when the teams are timed and registered.
+  bool held_for_next_frame(const std::vector<uint8_t>& bytes, const sockaddr_in& from);
   void apply_timed_controls();
   void run_teams_to(double t);
   bool at_quiescence(std::int64_t now_ns);
