@@ -226,13 +226,13 @@ void Controller::wake_due() {
   Header& header = segment_->header();
   const std::int64_t now = header.sim_now_ns.load();
   std::map<pid_t, ThreadSlot*> helpers;  // by process: wakes its condition variable waiters
-  for (auto& slot : header.threads) {
+  for (auto& slot : used_slots(header)) {
     if (slot.claim.load() != 0 &&
         slot.state.load() == static_cast<std::uint32_t>(ThreadState::Helper)) {
       helpers[slot.pid.load()] = &slot;
     }
   }
-  for (auto& slot : header.threads) {
+  for (auto& slot : used_slots(header)) {
     if (slot.claim.load() == 0 || slot.deadline_ns.load() > now) continue;
     const auto state = static_cast<ThreadState>(slot.state.load());
     if (state == ThreadState::DetBlocked) {

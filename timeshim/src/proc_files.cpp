@@ -95,10 +95,14 @@ std::optional<ThreadSample> ProcFiles::sample_thread(pid_t pid, pid_t tid) {
   return parse_thread_sample(pid, tid, *stat, *schedstat);
 }
 
-std::optional<char> ProcFiles::state_of(pid_t pid, pid_t tid) {
+std::optional<ThreadSample> ProcFiles::sample_state(pid_t pid, pid_t tid) {
   const auto stat = read(pid, tid, kStat);
   if (!stat) return std::nullopt;
-  const auto sample = parse_thread_sample(pid, tid, *stat, "");
+  return parse_thread_sample(pid, tid, *stat, "");
+}
+
+std::optional<char> ProcFiles::state_of(pid_t pid, pid_t tid) {
+  const auto sample = sample_state(pid, tid);
   if (!sample) return std::nullopt;
   return sample->state;
 }

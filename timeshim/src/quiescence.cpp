@@ -2,6 +2,7 @@
 // sleeps in the kernel, in a shim wait or in a wait only another party can
 // end, and none ran between two looks at all of them.
 #include <signal.h>
+#include <sys/prctl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,8 +21,12 @@ struct Controller::Scan {
   std::optional<std::pair<pid_t, pid_t>> running;  // pid, tid of a thread seen running
   bool all_waiting = true;
   bool owed_wake = false;  // a shim wait whose deadline passed still sleeps
+  // Every thread has a slot and waits in the shim (no kernel wait the shim
+  // does not know): none can run the program's code without the run token.
+  bool only_shim_waits = true;
   std::int64_t next_deadline = kNoDeadline;
-  std::map<pid_t, std::uint64_t> run_counts;  // by tid
+  bool with_run_counts = false;
+  std::map<pid_t, std::uint64_t> run_counts;  // by tid (with_run_counts)
 };
 
 namespace {
@@ -34,7 +39,7 @@ struct SlotView {
 
 std::map<pid_t, SlotView> slots_by_tid(Header& header) {
   std::map<pid_t, SlotView> result;
-  for (auto& slot : header.threads) {
+  for (auto& slot : used_slots(header)) {
     if (slot.claim.load() == 0 ||
         slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer)) {
       continue;
@@ -76,8 +81,16 @@ std::string describe_state(char state) {
   }
 }
 
+// Deterministic mode's waits that only the controller (a turn) or the token
+// holder (a peer's unlock, signal or post, which says so in the segment) can
+// end: the thread runs nothing of the program until it gets the token, so
+// what the kernel says of it does not matter, and a look need not read it.
+bool ends_only_in_turn(ThreadState state) {
+  return state == ThreadState::WantToken || state == ThreadState::DetBlocked;
+}
+
 void free_dead_slots(Header& header, const std::set<pid_t>& alive) {
-  for (auto& slot : header.threads) {
+  for (auto& slot : used_slots(header)) {
     if (slot.claim.load() == 0) continue;
     pid_t tid = slot.tid.load();
     const bool timer = slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer);
@@ -99,7 +112,7 @@ void free_dead_slots(Header& header, const std::set<pid_t>& alive) {
 // due and not yet fired, a wake the process's helper still owes.
 void scan_timers(Header& header, const std::set<pid_t>& processes, std::int64_t now,
                  bool* owed_wake, std::int64_t* next_deadline) {
-  for (auto& slot : header.threads) {
+  for (auto& slot : used_slots(header)) {
     if (slot.claim.load() == 0 ||
         slot.state.load() != static_cast<std::uint32_t>(ThreadState::Timer)) {
       continue;
@@ -122,7 +135,7 @@ std::vector<pid_t> Controller::group_processes() {
   for (pid_t root : roots_) {
     if (exit_status_.count(root) == 0) pending.push_back(root);
   }
-  for (auto& slot : header().threads) {
+  for (auto& slot : used_slots(header())) {
     if (slot.claim.load() != 0) pending.push_back(slot.pid.load());
   }
   std::vector<pid_t> result;
@@ -195,25 +208,49 @@ void Controller::check_shim_loaded(pid_t pid) {
           "; it sees wall time"});
 }
 
-Controller::Scan Controller::scan() {
+Controller::Scan Controller::scan(bool with_run_counts) {
   reap(false);
   proc_->new_look();
   Header& segment = header();
   const auto slots = slots_by_tid(segment);
   const std::int64_t now = segment.sim_now_ns.load();
   Scan result;
+  result.with_run_counts = with_run_counts;
   std::set<pid_t> alive;
   const std::vector<pid_t> processes = group_processes();
+  const auto sample_of = [&](pid_t pid, pid_t tid) {
+    return with_run_counts ? proc_->sample_thread(pid, tid) : proc_->sample_state(pid, tid);
+  };
   for (pid_t pid : processes) {
     check_shim_loaded(pid);
+    // A process whose first thread does not sleep may be ending: an exit or
+    // a fatal signal wakes each of its threads to die, whatever its slot says.
+    const auto leader = sample_of(pid, pid);
+    const bool leader_sleeps = leader && leader->state == 'S';
     for (pid_t tid : proc_->threads_of(pid)) {
-      const auto sample = proc_->sample_thread(pid, tid);
+      const auto slot = slots.find(tid);
+      if (leader_sleeps && tid != pid && slot != slots.end() &&
+          ends_only_in_turn(slot->second.state)) {
+        // Its turn comes from give_turn (turns.cpp), which looks at it then,
+        // or from its deadline (a timed lock, condition or semaphore wait).
+        result.any_process = true;
+        alive.insert(tid);
+        suspects_.erase(tid);
+        if (slot->second.state == ThreadState::WantToken) continue;
+        if (slot->second.deadline_ns <= now) {
+          result.owed_wake = true;  // wake_due makes it want the token
+        } else {
+          result.next_deadline = std::min(result.next_deadline, slot->second.deadline_ns);
+        }
+        continue;
+      }
+      const auto sample = tid == pid ? leader : sample_of(pid, tid);
       if (!sample || sample->state == 'Z' || sample->state == 'X') continue;
       result.any_process = true;
       alive.insert(tid);
-      result.run_counts[tid] = sample->run_count;
-      const auto slot = slots.find(tid);
+      if (with_run_counts) result.run_counts[tid] = sample->run_count;
       const bool sleeps = sample->state == 'S';
+      if (slot == slots.end()) result.only_shim_waits = false;
       if (slot != slots.end() && slot->second.state == ThreadState::Helper) {
         if (!sleeps) result.all_waiting = false;  // waking a waiter now
         continue;
@@ -237,12 +274,14 @@ Controller::Scan Controller::scan() {
       }
       if (!sleeps) {
         result.all_waiting = false;
+        result.only_shim_waits = false;
         if (sample->state == 'R') result.running = {pid, tid};
         note_suspect(pid, tid, describe_state(sample->state));
         continue;
       }
       // A wait outside the shim with no time limit (input, a lock, a child)
       // waits for the group or for input: it does not hold time back.
+      result.only_shim_waits = false;
       const auto call = proc_->sample_syscall(pid, tid);
       if (call && classify_wait(*call) == KernelWait::ForOthers) {
         // The token holder's suspicion is give_turn's (turns.cpp).
@@ -278,7 +317,40 @@ bool Controller::still_running(std::optional<std::pair<pid_t, pid_t>>& running) 
   return false;
 }
 
+bool Controller::quiet_at_one_instant(const Scan& look, std::uint32_t seq, bool between_turns) {
+  Header& segment = header();
+  if (between_turns && look.only_shim_waits) {
+    // Deterministic mode, no turn running, every thread in a shim wait: one
+    // look is enough. Without the token nobody runs the program's code, so
+    // nobody wakes anybody; a thread that input (or its process's timer
+    // helper) woke says so in the segment (change_seq) before it runs any,
+    // or the look saw it running.
+    return segment.change_seq.load() == seq && segment.token_tid.load() == 0;
+  }
+  // Nobody ran between two looks (same run counts, no shim call): at an
+  // instant between them every thread slept.
+  const Scan counted = look.with_run_counts ? look : scan(true);
+  if (!counted.all_waiting) return false;
+  const Scan second = scan(true);
+  return second.all_waiting && second.run_counts == counted.run_counts &&
+         segment.change_seq.load() == seq;
+}
+
+namespace {
+
+// The looks' short waits (tens of microseconds) as asked: the kernel's
+// default slack (50 us) would more than double them, and a turn in
+// deterministic mode waits for one or two of them.
+void tighten_timer_slack() {
+  static thread_local bool tightened = false;
+  if (!tightened) ::prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
+  tightened = true;
+}
+
+}  // namespace
+
 Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
+  tighten_timer_slack();
   Header& segment = header();
   const auto give_up = std::chrono::steady_clock::now() + wall_limit;
   constexpr long kFirstBackoffNs = 20000;
@@ -296,26 +368,24 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
                        : std::min(backoff_ns * 2, kLongestBackoffNs);
       continue;
     }
-    const Scan first = scan();
-    running = first.running;
-    if (!first.any_process) {
+    const bool between_turns = options_.deterministic && segment.token_tid.load() == 0;
+    const Scan look = scan(!between_turns);
+    running = look.running;
+    if (!look.any_process) {
       reap(true);  // what is left of the group are zombies
       return Quiescence{GroupState::Exited, kNoDeadline};
     }
-    if (first.owed_wake) wake_due();
-    if (first.all_waiting) {
-      // Nobody ran between the two looks (same run counts, no shim call):
-      // at an instant between them every thread slept.
-      const Scan second = scan();
-      if (second.all_waiting && second.run_counts == first.run_counts &&
-          segment.change_seq.load() == seq) {
-        // Deterministic mode: quiescent only when nobody wants to run.
-        if (options_.deterministic && give_turn()) {
+    if (look.owed_wake) wake_due();
+    if (look.all_waiting && quiet_at_one_instant(look, seq, between_turns)) {
+      // Deterministic mode: quiescent only when nobody wants to run.
+      if (options_.deterministic) {
+        if (auto holder = give_turn()) {
+          running = holder;  // it runs now: looked at alone until it stops
           backoff_ns = kFirstBackoffNs;
           continue;
         }
-        return Quiescence{GroupState::Quiescent, second.next_deadline};
       }
+      return Quiescence{GroupState::Quiescent, look.next_deadline};
     }
     if (std::chrono::steady_clock::now() >= give_up)
       return Quiescence{GroupState::Busy, kNoDeadline};

@@ -22,7 +22,7 @@ bool wants_token(const ThreadSlot& slot) {
 
 // The slot of the thread holding the token, or nullptr when it is gone.
 ThreadSlot* holder_slot(Header& header, ProcFiles& proc, pid_t holder) {
-  for (auto& slot : header.threads) {
+  for (auto& slot : used_slots(header)) {
     if (slot.claim.load() == 0 || slot.tid.load() != holder) continue;
     if (slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer)) continue;
     // A process that ended holding it is a zombie until its parent reaps it.
@@ -32,16 +32,21 @@ ThreadSlot* holder_slot(Header& header, ProcFiles& proc, pid_t holder) {
   return nullptr;
 }
 
+bool ending(pid_t pid, pid_t tid, ProcFiles& proc) {
+  const auto state = proc.state_of(pid, tid);
+  return !state || *state == 'Z' || *state == 'X';
+}
+
 }  // namespace
 
 std::uint64_t Controller::turns() const {
   return const_cast<Controller*>(this)->header().turns.load();
 }
 
-bool Controller::give_turn() {
+std::optional<std::pair<pid_t, pid_t>> Controller::give_turn() {
   Header& segment = header();
   std::vector<ThreadSlot*> wanting;
-  for (auto& slot : segment.threads) {
+  for (auto& slot : used_slots(segment)) {
     if (wants_token(slot)) wanting.push_back(&slot);
   }
   if (pid_t holder = segment.token_tid.load(); holder != 0) {
@@ -53,7 +58,7 @@ bool Controller::give_turn() {
       // Asleep in a call that did not hand the token over: nobody else may
       // run until it returns. Waiting for input, that is right; waiting
       // for another thread of the group, it never returns.
-      if (wanting.empty()) return false;
+      if (wanting.empty()) return std::nullopt;
       const pid_t pid = slot->pid.load();
       const auto call = proc_->sample_syscall(pid, holder);
       note_suspect(pid, holder,
@@ -64,12 +69,12 @@ bool Controller::give_turn() {
                        "no longer fixed from here on)");
       // Named: now the others run; it waits for a turn at its next call the
       // shim sees.
-      if (!suspects_[holder].reported) return false;
+      if (!suspects_[holder].reported) return std::nullopt;
       suspects_.erase(holder);
       segment.token_tid.compare_exchange_strong(holder, 0);
     }
   }
-  if (wanting.empty()) return false;
+  if (wanting.empty()) return std::nullopt;
   // Those first seen wanting now get their place in the queue, by their
   // place in the group.
   std::vector<ThreadSlot*> arrived;
@@ -80,10 +85,21 @@ bool Controller::give_turn() {
     return a->order_id.load() < b->order_id.load();
   });
   for (ThreadSlot* slot : arrived) slot->ready_seq.store(segment.ready_counter.fetch_add(1) + 1);
-  ThreadSlot* next = *std::min_element(wanting.begin(), wanting.end(),
-                                       [](const ThreadSlot* a, const ThreadSlot* b) {
-                                         return a->ready_seq.load() < b->ready_seq.load();
-                                       });
+  ThreadSlot* next = nullptr;
+  while (next == nullptr) {
+    const auto first = std::min_element(wanting.begin(), wanting.end(),
+                                        [](const ThreadSlot* a, const ThreadSlot* b) {
+                                          return a->ready_seq.load() < b->ready_seq.load();
+                                        });
+    // A thread whose process ended keeps its slot until it is gone: no turn
+    // for it (whether it is still there depends on the kernel's timing).
+    if (ending((*first)->pid.load(), (*first)->tid.load(), *proc_)) {
+      wanting.erase(first);
+      if (wanting.empty()) return std::nullopt;
+    } else {
+      next = *first;
+    }
+  }
   next->ready_seq.store(0);
   // No longer wanting: a look before it runs must not give a second turn.
   next->state.store(static_cast<std::uint32_t>(ThreadState::Running));
@@ -91,7 +107,7 @@ bool Controller::give_turn() {
   segment.turns.fetch_add(1);
   next->wake_seq.fetch_add(1);
   futex_wake_all(next->wake_seq);
-  return true;
+  return std::make_pair(static_cast<pid_t>(next->pid.load()), static_cast<pid_t>(next->tid.load()));
 }
 
 }  // namespace ubersim::timeshim

@@ -45,7 +45,7 @@ void fire_timer(ThreadSlot& slot, std::int64_t now) {
 
 void wake_due_waiters(Header& segment, pid_t pid) {
   const std::int64_t now = segment.sim_now_ns.load();
-  for (auto& slot : segment.threads) {
+  for (auto& slot : used_slots(segment)) {
     if (slot.claim.load() == 0 || slot.pid.load() != pid) continue;
     if (slot.deadline_ns.load() > now) continue;
     if (slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer)) {

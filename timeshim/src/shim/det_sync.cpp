@@ -134,9 +134,9 @@ bool det_block(DetObject object, const void* address, bool shared, std::int64_t 
 void det_wake(DetObject object, const void* address, bool shared, bool only_first) {
   Header& segment = *shim::segment();
   if (segment.det_blocked.load() == 0) return;
-  const pid_t pid = ::getpid();
+  const pid_t pid = own_slot().pid.load();  // getpid() is a system call
   ThreadSlot* first = nullptr;
-  for (auto& slot : segment.threads) {
+  for (auto& slot : used_slots(segment)) {
     if (!waits_for(slot, object, address, shared, pid)) continue;
     if (!only_first) {
       make_ready(slot, segment);

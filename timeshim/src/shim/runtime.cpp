@@ -88,10 +88,19 @@ void block_wake_signal() {
 
 // A slot for this thread: after exec or fork a slot may still carry this
 // tid (the image before it); it is this thread's no longer.
+// Makes a slot just claimed part of used_slots (before its tid or timer is
+// set: the controller looks at a slot only then).
+void count_as_used(const ThreadSlot& slot) {
+  const auto used = static_cast<std::uint32_t>(&slot - the_segment->threads) + 1;
+  std::uint32_t seen = the_segment->slots_used.load();
+  while (seen < used && !the_segment->slots_used.compare_exchange_weak(seen, used)) {
+  }
+}
+
 ThreadSlot* claim_slot(pid_t tid) {
   std::uint32_t order = this_thread.order_id;
   bool has_order = this_thread.has_order;
-  for (auto& slot : the_segment->threads) {
+  for (auto& slot : used_slots(*the_segment)) {
     if (slot.claim.load() != 0 && slot.tid.load() == tid) {
       // The same thread in a new image (exec) keeps its place.
       if (!has_order) order = slot.order_id.load();
@@ -105,6 +114,7 @@ ThreadSlot* claim_slot(pid_t tid) {
   for (auto& slot : the_segment->threads) {
     std::uint32_t free_claim = 0;
     if (!slot.claim.compare_exchange_strong(free_claim, 1)) continue;
+    count_as_used(slot);
     // tid last: until it is set the controller leaves the slot alone.
     slot.pid.store(static_cast<std::int32_t>(::getpid()));
     slot.deadline_ns.store(kNoDeadline);
@@ -127,6 +137,7 @@ ThreadSlot* claim_other_slot() {
   for (auto& slot : the_segment->threads) {
     std::uint32_t free_claim = 0;
     if (!slot.claim.compare_exchange_strong(free_claim, 1)) continue;
+    count_as_used(slot);
     slot.pid.store(static_cast<std::int32_t>(::getpid()));
     slot.deadline_ns.store(kNoDeadline);
     return &slot;

@@ -118,13 +118,18 @@ class Controller {
 
  private:
   struct Scan;
-  Scan scan();
+  // One look at every thread of the group; with_run_counts also reads how
+  // often each ran (two looks with the same counts: nobody ran between).
+  Scan scan(bool with_run_counts);
+  bool quiet_at_one_instant(const Scan& look, std::uint32_t seq, bool between_turns);
   bool still_running(std::optional<std::pair<pid_t, pid_t>>& running);
   void reap(bool wait_for_end);
   void wake_due();
   void note_suspect(pid_t pid, pid_t tid, const std::string& why);
   void check_shim_loaded(pid_t pid);
-  bool give_turn();  // deterministic mode, at a quiescent look (turns.cpp)
+  // Deterministic mode, at a quiescent look (turns.cpp): the pid and tid of
+  // the thread given the run token, or nullopt when nobody wants it.
+  std::optional<std::pair<pid_t, pid_t>> give_turn();
   std::vector<pid_t> group_processes();
   Header& header();
 

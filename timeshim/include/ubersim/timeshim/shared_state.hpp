@@ -17,7 +17,7 @@ namespace ubersim::timeshim {
 // The environment variable that names the segment's file.
 inline constexpr const char* kSegmentEnv = "UBERSIM_TIMESHIM_SHM";
 inline constexpr std::uint32_t kMagic = 0x54534d55;  // "UMST"
-inline constexpr std::uint32_t kVersion = 2;
+inline constexpr std::uint32_t kVersion = 3;
 inline constexpr int kMaxThreads = 1024;
 // No deadline: a wait only input can end.
 inline constexpr std::int64_t kNoDeadline = std::numeric_limits<std::int64_t>::max();
@@ -151,8 +151,25 @@ struct Header {
   std::atomic<std::uint64_t> det_wait_counter{0};
   std::atomic<std::uint64_t> ready_counter{0};
   std::atomic<std::uint64_t> turns{0};
+  // One past the highest slot ever claimed: the slots after it were never
+  // used, so loops over the group's threads stop there (every unlock in
+  // deterministic mode loops over them).
+  std::atomic<std::uint32_t> slots_used{0};
   ThreadSlot threads[kMaxThreads];
 };
+
+// The slots of `header` that threads have claimed so far (some may be free
+// again), for range-for.
+struct UsedSlots {
+  ThreadSlot* first;
+  ThreadSlot* last;
+  ThreadSlot* begin() const { return first; }
+  ThreadSlot* end() const { return last; }
+};
+inline UsedSlots used_slots(Header& header) {
+  const std::uint32_t used = header.slots_used.load();
+  return UsedSlots{header.threads, header.threads + (used < kMaxThreads ? used : kMaxThreads)};
+}
 
 static_assert(std::atomic<std::int64_t>::is_always_lock_free);
 static_assert(std::atomic<std::uint32_t>::is_always_lock_free);
