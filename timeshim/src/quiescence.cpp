@@ -356,6 +356,7 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
   constexpr long kFirstBackoffNs = 20000;
   constexpr long kLongestBackoffNs = 5000000;
   long backoff_ns = kFirstBackoffNs;
+  bool turn_given = false;
   std::optional<std::pair<pid_t, pid_t>> running;
   for (;;) {
     const std::uint32_t seq = segment.change_seq.load();
@@ -368,7 +369,12 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
                        : std::min(backoff_ns * 2, kLongestBackoffNs);
       continue;
     }
-    const bool between_turns = options_.deterministic && segment.token_tid.load() == 0;
+    // Between two turns of this wait; not before the first: what came from
+    // outside before the wait (a frame, a wake at the new sim time) may still
+    // be on its way into a socket (the kernel can defer delivery on a loaded
+    // machine), and two looks give it the time the first check always had.
+    const bool between_turns =
+        options_.deterministic && turn_given && segment.token_tid.load() == 0;
     const Scan look = scan(!between_turns);
     running = look.running;
     if (!look.any_process) {
@@ -380,6 +386,7 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
       // Deterministic mode: quiescent only when nobody wants to run.
       if (options_.deterministic) {
         if (auto holder = give_turn()) {
+          turn_given = true;
           running = holder;  // it runs now: looked at alone until it stops
           backoff_ns = kFirstBackoffNs;
           continue;
