@@ -134,7 +134,9 @@ bool det_block(DetObject object, const void* address, bool shared, std::int64_t 
 void det_wake(DetObject object, const void* address, bool shared, bool only_first) {
   Header& segment = *shim::segment();
   if (segment.det_blocked.load() == 0) return;
-  const pid_t pid = own_slot().pid.load();  // getpid() is a system call
+  // getpid(), not the slot's pid: a vfork or posix_spawn child runs no fork
+  // handler and still has its parent's slot.
+  const pid_t pid = ::getpid();
   ThreadSlot* first = nullptr;
   for (auto& slot : used_slots(segment)) {
     if (!waits_for(slot, object, address, shared, pid)) continue;
