@@ -21,12 +21,8 @@ struct Controller::Scan {
   std::optional<std::pair<pid_t, pid_t>> running;  // pid, tid of a thread seen running
   bool all_waiting = true;
   bool owed_wake = false;  // a shim wait whose deadline passed still sleeps
-  // Every thread has a slot and waits in the shim (no kernel wait the shim
-  // does not know): none can run the program's code without the run token.
-  bool only_shim_waits = true;
   std::int64_t next_deadline = kNoDeadline;
-  bool with_run_counts = false;
-  std::map<pid_t, std::uint64_t> run_counts;  // by tid (with_run_counts)
+  std::map<pid_t, std::uint64_t> run_counts;  // by tid (threads read from /proc)
 };
 
 namespace {
@@ -208,28 +204,26 @@ void Controller::check_shim_loaded(pid_t pid) {
           "; it sees wall time"});
 }
 
-Controller::Scan Controller::scan(bool with_run_counts) {
+Controller::Scan Controller::scan() {
   reap(false);
   proc_->new_look();
   Header& segment = header();
   const auto slots = slots_by_tid(segment);
   const std::int64_t now = segment.sim_now_ns.load();
   Scan result;
-  result.with_run_counts = with_run_counts;
   std::set<pid_t> alive;
   const std::vector<pid_t> processes = group_processes();
-  const auto sample_of = [&](pid_t pid, pid_t tid) {
-    return with_run_counts ? proc_->sample_thread(pid, tid) : proc_->sample_state(pid, tid);
-  };
   for (pid_t pid : processes) {
     check_shim_loaded(pid);
     // A process whose first thread does not sleep may be ending: an exit or
     // a fatal signal wakes each of its threads to die, whatever its slot says.
-    const auto leader = sample_of(pid, pid);
+    const auto leader = proc_->sample_thread(pid, pid);
     const bool leader_sleeps = leader && leader->state == 'S';
     for (pid_t tid : proc_->threads_of(pid)) {
       const auto slot = slots.find(tid);
-      if (leader_sleeps && tid != pid && slot != slots.end() &&
+      // Not the token holder: a thread says DetBlocked before it gives the
+      // token back, and runs until it has.
+      if (leader_sleeps && tid != pid && tid != segment.token_tid.load() && slot != slots.end() &&
           ends_only_in_turn(slot->second.state)) {
         // Its turn comes from give_turn (turns.cpp), which looks at it then,
         // or from its deadline (a timed lock, condition or semaphore wait).
@@ -244,13 +238,12 @@ Controller::Scan Controller::scan(bool with_run_counts) {
         }
         continue;
       }
-      const auto sample = tid == pid ? leader : sample_of(pid, tid);
+      const auto sample = tid == pid ? leader : proc_->sample_thread(pid, tid);
       if (!sample || sample->state == 'Z' || sample->state == 'X') continue;
       result.any_process = true;
       alive.insert(tid);
-      if (with_run_counts) result.run_counts[tid] = sample->run_count;
+      result.run_counts[tid] = sample->run_count;
       const bool sleeps = sample->state == 'S';
-      if (slot == slots.end()) result.only_shim_waits = false;
       if (slot != slots.end() && slot->second.state == ThreadState::Helper) {
         if (!sleeps) result.all_waiting = false;  // waking a waiter now
         continue;
@@ -274,14 +267,12 @@ Controller::Scan Controller::scan(bool with_run_counts) {
       }
       if (!sleeps) {
         result.all_waiting = false;
-        result.only_shim_waits = false;
         if (sample->state == 'R') result.running = {pid, tid};
         note_suspect(pid, tid, describe_state(sample->state));
         continue;
       }
       // A wait outside the shim with no time limit (input, a lock, a child)
       // waits for the group or for input: it does not hold time back.
-      result.only_shim_waits = false;
       const auto call = proc_->sample_syscall(pid, tid);
       if (call && classify_wait(*call) == KernelWait::ForOthers) {
         // The token holder's suspicion is give_turn's (turns.cpp).
@@ -317,23 +308,12 @@ bool Controller::still_running(std::optional<std::pair<pid_t, pid_t>>& running) 
   return false;
 }
 
-bool Controller::quiet_at_one_instant(const Scan& look, std::uint32_t seq, bool between_turns) {
-  Header& segment = header();
-  if (between_turns && look.only_shim_waits) {
-    // Deterministic mode, no turn running, every thread in a shim wait: one
-    // look is enough. Without the token nobody runs the program's code, so
-    // nobody wakes anybody; a thread that input (or its process's timer
-    // helper) woke says so in the segment (change_seq) before it runs any,
-    // or the look saw it running.
-    return segment.change_seq.load() == seq && segment.token_tid.load() == 0;
-  }
-  // Nobody ran between two looks (same run counts, no shim call): at an
-  // instant between them every thread slept.
-  const Scan counted = look.with_run_counts ? look : scan(true);
-  if (!counted.all_waiting) return false;
-  const Scan second = scan(true);
-  return second.all_waiting && second.run_counts == counted.run_counts &&
-         segment.change_seq.load() == seq;
+// Nobody ran between two looks (same run counts, no shim call): at an instant
+// between them every thread slept.
+bool Controller::quiet_at_one_instant(const Scan& look, std::uint32_t seq) {
+  const Scan second = scan();
+  return second.all_waiting && second.run_counts == look.run_counts &&
+         header().change_seq.load() == seq;
 }
 
 namespace {
@@ -356,7 +336,6 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
   constexpr long kFirstBackoffNs = 20000;
   constexpr long kLongestBackoffNs = 5000000;
   long backoff_ns = kFirstBackoffNs;
-  bool turn_given = false;
   std::optional<std::pair<pid_t, pid_t>> running;
   for (;;) {
     const std::uint32_t seq = segment.change_seq.load();
@@ -369,24 +348,17 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
                        : std::min(backoff_ns * 2, kLongestBackoffNs);
       continue;
     }
-    // Between two turns of this wait; not before the first: what came from
-    // outside before the wait (a frame, a wake at the new sim time) may still
-    // be on its way into a socket (the kernel can defer delivery on a loaded
-    // machine), and two looks give it the time the first check always had.
-    const bool between_turns =
-        options_.deterministic && turn_given && segment.token_tid.load() == 0;
-    const Scan look = scan(!between_turns);
+    const Scan look = scan();
     running = look.running;
     if (!look.any_process) {
       reap(true);  // what is left of the group are zombies
       return Quiescence{GroupState::Exited, kNoDeadline};
     }
     if (look.owed_wake) wake_due();
-    if (look.all_waiting && quiet_at_one_instant(look, seq, between_turns)) {
+    if (look.all_waiting && quiet_at_one_instant(look, seq)) {
       // Deterministic mode: quiescent only when nobody wants to run.
       if (options_.deterministic) {
         if (auto holder = give_turn()) {
-          turn_given = true;
           running = holder;  // it runs now: looked at alone until it stops
           backoff_ns = kFirstBackoffNs;
           continue;

@@ -118,10 +118,8 @@ class Controller {
 
  private:
   struct Scan;
-  // One look at every thread of the group; with_run_counts also reads how
-  // often each ran (two looks with the same counts: nobody ran between).
-  Scan scan(bool with_run_counts);
-  bool quiet_at_one_instant(const Scan& look, std::uint32_t seq, bool between_turns);
+  Scan scan();  // one look at every thread of the group
+  bool quiet_at_one_instant(const Scan& look, std::uint32_t seq);
   bool still_running(std::optional<std::pair<pid_t, pid_t>>& running);
   void reap(bool wait_for_end);
   void wake_due();
