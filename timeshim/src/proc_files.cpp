@@ -95,14 +95,10 @@ std::optional<ThreadSample> ProcFiles::sample_thread(pid_t pid, pid_t tid) {
   return parse_thread_sample(pid, tid, *stat, *schedstat);
 }
 
-std::optional<ThreadSample> ProcFiles::sample_state(pid_t pid, pid_t tid) {
+std::optional<char> ProcFiles::state_of(pid_t pid, pid_t tid) {
   const auto stat = read(pid, tid, kStat);
   if (!stat) return std::nullopt;
-  return parse_thread_sample(pid, tid, *stat, "");
-}
-
-std::optional<char> ProcFiles::state_of(pid_t pid, pid_t tid) {
-  const auto sample = sample_state(pid, tid);
+  const auto sample = parse_thread_sample(pid, tid, *stat, "");
   if (!sample) return std::nullopt;
   return sample->state;
 }

@@ -44,8 +44,6 @@ class ProcFiles {
   std::vector<pid_t> threads_of(pid_t pid);
   std::vector<pid_t> children_of(pid_t pid);
   std::optional<ThreadSample> sample_thread(pid_t pid, pid_t tid);
-  // As sample_thread without the run count (which costs a second read).
-  std::optional<ThreadSample> sample_state(pid_t pid, pid_t tid);
   std::optional<SyscallSample> sample_syscall(pid_t pid, pid_t tid);
   // Only the kernel state (R, S, ...) of the thread; nullopt when it is gone.
   std::optional<char> state_of(pid_t pid, pid_t tid);

@@ -20,21 +20,21 @@ bool wants_token(const ThreadSlot& slot) {
          slot.state.load() == static_cast<std::uint32_t>(ThreadState::WantToken);
 }
 
+// Whether the thread is gone or ends (a zombie, or dead and not yet reaped).
+bool ending(pid_t pid, pid_t tid, ProcFiles& proc) {
+  const auto state = proc.state_of(pid, tid);
+  return !state || *state == 'Z' || *state == 'X';
+}
+
 // The slot of the thread holding the token, or nullptr when it is gone.
 ThreadSlot* holder_slot(Header& header, ProcFiles& proc, pid_t holder) {
   for (auto& slot : used_slots(header)) {
     if (slot.claim.load() == 0 || slot.tid.load() != holder) continue;
     if (slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer)) continue;
     // A process that ended holding it is a zombie until its parent reaps it.
-    const auto sample = proc.sample_thread(slot.pid.load(), holder);
-    return sample && sample->state != 'Z' && sample->state != 'X' ? &slot : nullptr;
+    return ending(slot.pid.load(), holder, proc) ? nullptr : &slot;
   }
   return nullptr;
-}
-
-bool ending(pid_t pid, pid_t tid, ProcFiles& proc) {
-  const auto state = proc.state_of(pid, tid);
-  return !state || *state == 'Z' || *state == 'X';
 }
 
 }  // namespace
