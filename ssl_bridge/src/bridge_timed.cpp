@@ -170,8 +170,9 @@ void SslBridge::apply_timed_controls() {
   for (const TimedDoor& door : timed_doors_) door.at_frame();
 }
 
-// Also for one read outside a quiescence: a thread of the group may wake
-// without input from the bridge (a file read the controller took for a wait).
+// Also for one read outside a quiescence: a thread of the group can run
+// while the bridge does not run the group (one Utama-Core run's start-up
+// placements were read so; the cause was not found).
 bool SslBridge::held_for_next_frame(const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
   constexpr std::size_t kMostHeldControls = 256;
   if (!timed_mode() || teams_->exited() || !timed_teams_joined() ||
