@@ -594,6 +594,7 @@ void SslBridge::log_summary() const {
   if (teams_) {
     text += " team group: quiescences=" + std::to_string(teams_->quiescences()) +
             " advances=" + std::to_string(teams_->advances()) +
+            " turns=" + std::to_string(teams_->turns()) +
             " sim time=" + std::to_string(group_time()) + " s";
   }
   const std::uint64_t skipped = vision_out_.loopback_copies_skipped() +

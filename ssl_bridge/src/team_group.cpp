@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <csignal>
 #include <fstream>
+#include <future>
 #include <map>
 #include <sstream>
 
@@ -58,10 +59,13 @@ std::vector<pid_t> descendants() {
 
 }  // namespace
 
-TeamGroup::TeamGroup(TeamGroupOptions options)
-    : options_(std::move(options)), controller_(options_.controller) {
+TeamGroup::TeamGroup(TeamGroupOptions options) : options_(std::move(options)) {
   // A team's process whose parent ends stays ours, so that stop() finds it.
   ::prctl(PR_SET_CHILD_SUBREAPER, 1);
+  for (std::size_t i = 0; i < std::max<std::size_t>(options_.commands.size(), 1); ++i) {
+    controllers_.push_back(std::make_unique<timeshim::Controller>(options_.controller));
+  }
+  group_ended_.assign(controllers_.size(), false);
 }
 
 TeamGroup::~TeamGroup() {
@@ -71,11 +75,12 @@ TeamGroup::~TeamGroup() {
 }
 
 void TeamGroup::start() {
-  for (const TeamCommand& command : options_.commands) {
+  for (std::size_t i = 0; i < options_.commands.size(); ++i) {
+    const TeamCommand& command = options_.commands[i];
     const std::string output = options_.output_dir.empty()
                                    ? std::string()
                                    : options_.output_dir + "/team_" + command.colour() + ".log";
-    const pid_t pid = controller_.spawn({"/bin/sh", "-c", command.command}, output);
+    const pid_t pid = controllers_[i]->spawn({"/bin/sh", "-c", command.command}, output);
     pids_.push_back(pid);
     exit_reported_.push_back(false);
     spdlog::info("team {}: started under the time shim (pid {}): {}{}", command.colour(), pid,
@@ -83,11 +88,58 @@ void TeamGroup::start() {
   }
 }
 
+std::int64_t TeamGroup::now_ns() const {
+  return controllers_.front()->now_ns();  // advanced together: all alike
+}
+
+std::uint64_t TeamGroup::advances() const {
+  return controllers_.front()->advances();
+}
+
+std::uint64_t TeamGroup::turns() const {
+  std::uint64_t sum = 0;
+  for (const auto& controller : controllers_) sum += controller->turns();
+  return sum;
+}
+
+// Side by side: each group's controller looks at its group (and in
+// deterministic mode gives its turns) in a thread of its own, so that one
+// team's program runs while the other one's is looked at.
+timeshim::Quiescence TeamGroup::wait_quiescent(std::chrono::milliseconds wall_limit) {
+  std::vector<std::future<timeshim::Quiescence>> others;
+  for (std::size_t i = 1; i < controllers_.size(); ++i) {
+    if (group_ended_[i]) continue;
+    others.push_back(std::async(std::launch::async, [this, i, wall_limit] {
+      return controllers_[i]->wait_quiescent(wall_limit);
+    }));
+  }
+  std::vector<std::pair<std::size_t, timeshim::Quiescence>> answers;
+  if (!group_ended_[0]) answers.emplace_back(0, controllers_[0]->wait_quiescent(wall_limit));
+  std::size_t next_other = 0;
+  for (std::size_t i = 1; i < controllers_.size(); ++i) {
+    if (!group_ended_[i]) answers.emplace_back(i, others[next_other++].get());
+  }
+  timeshim::Quiescence all{timeshim::GroupState::Exited, timeshim::kNoDeadline};
+  for (const auto& [i, q] : answers) {
+    if (q.state == timeshim::GroupState::Exited) {
+      group_ended_[i] = true;
+      continue;
+    }
+    if (all.state != timeshim::GroupState::Busy) all.state = q.state;
+    all.next_deadline_ns = std::min(all.next_deadline_ns, q.next_deadline_ns);
+  }
+  return all;
+}
+
+void TeamGroup::advance_to(std::int64_t sim_ns) {
+  for (const auto& controller : controllers_) controller->advance_to(sim_ns);
+}
+
 bool TeamGroup::run_to(std::int64_t until_ns, const AtQuiescence& at_quiescence,
                        const Promise& promise, const ShouldStop& should_stop) {
   for (;;) {
     if (exited_ || should_stop()) return false;
-    const timeshim::Quiescence q = controller_.wait_quiescent(kLook);
+    const timeshim::Quiescence q = wait_quiescent(kLook);
     report_problems();
     report_exits("");
     if (q.state == timeshim::GroupState::Exited) {
@@ -97,7 +149,7 @@ bool TeamGroup::run_to(std::int64_t until_ns, const AtQuiescence& at_quiescence,
     }
     if (q.state == timeshim::GroupState::Busy) continue;
     ++quiescences_;
-    const std::int64_t now = controller_.now_ns();
+    const std::int64_t now = now_ns();
     if (at_quiescence(now)) continue;  // it answered the group: let it read that first
     const std::int64_t next = std::max(now, q.next_deadline_ns == timeshim::kNoDeadline
                                                 ? until_ns
@@ -107,13 +159,15 @@ bool TeamGroup::run_to(std::int64_t until_ns, const AtQuiescence& at_quiescence,
       promise(next);
     }
     if (next <= now) return true;
-    controller_.advance_to(next);
+    advance_to(next);
   }
 }
 
 void TeamGroup::report_problems() {
-  for (const timeshim::Problem& problem : controller_.take_problems()) {
-    spdlog::warn("timeshim: {}", problem.text);
+  for (const auto& controller : controllers_) {
+    for (const timeshim::Problem& problem : controller->take_problems()) {
+      spdlog::warn("timeshim: {}", problem.text);
+    }
   }
 }
 
@@ -123,13 +177,12 @@ void TeamGroup::report_problems() {
 void TeamGroup::report_exits(const char* when) {
   for (std::size_t i = 0; i < pids_.size(); ++i) {
     if (exit_reported_[i]) continue;
-    const std::optional<int> status = controller_.exit_status(pids_[i]);
+    const std::optional<int> status = controllers_[i]->exit_status(pids_[i]);
     if (!status) continue;
     exit_reported_[i] = true;
     spdlog::log(*when == '\0' ? spdlog::level::warn : spdlog::level::info,
                 "team {}: the program exited with status {} at sim time {:.3f} s{}",
-                options_.commands[i].colour(), *status,
-                static_cast<double>(controller_.now_ns()) / 1e9, when);
+                options_.commands[i].colour(), *status, static_cast<double>(now_ns()) / 1e9, when);
   }
 }
 
@@ -139,15 +192,18 @@ void TeamGroup::stop() {
   // The stop comes in wall time, perhaps while the group runs what its last
   // advance woke: let it become quiescent first, so that it ends having done
   // everything up to its sim time (the same output on every run).
-  controller_.wait_quiescent(kSettle);
+  wait_quiescent(kSettle);
   for (pid_t pid : descendants()) ::kill(pid, SIGTERM);
   // Their handlers run in sim time: let it run freely for a moment.
   const auto give_up = std::chrono::steady_clock::now() + kEndGrace;
-  while (std::chrono::steady_clock::now() < give_up) {
-    const auto q = controller_.run_until(timeshim::kNoDeadline, kEndGrace);
-    if (q.state == timeshim::GroupState::Exited || q.next_deadline_ns == timeshim::kNoDeadline) {
-      break;
-    }
+  for (auto now = std::chrono::steady_clock::now(); now < give_up;
+       now = std::chrono::steady_clock::now()) {
+    const auto q =
+        wait_quiescent(std::chrono::duration_cast<std::chrono::milliseconds>(give_up - now));
+    if (q.state == timeshim::GroupState::Exited) break;
+    if (q.state == timeshim::GroupState::Busy) continue;
+    if (q.next_deadline_ns == timeshim::kNoDeadline) break;
+    advance_to(q.next_deadline_ns);
   }
   report_problems();
   report_exits(", when the bridge stopped it");

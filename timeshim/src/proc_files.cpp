@@ -88,6 +88,18 @@ std::vector<pid_t> ProcFiles::children_of(pid_t pid) {
   return children;
 }
 
+std::vector<pid_t> ProcFiles::children_of(pid_t pid, const std::optional<RunCounts>& asleep) {
+  if (!asleep) {
+    children_.erase(pid);
+    return children_of(pid);
+  }
+  const auto seen = children_.find(pid);
+  if (seen != children_.end() && seen->second.asleep == *asleep) return seen->second.children;
+  ChildrenSeen& fresh = children_[pid];
+  fresh = ChildrenSeen{*asleep, children_of(pid)};
+  return fresh.children;
+}
+
 std::optional<ThreadSample> ProcFiles::sample_thread(pid_t pid, pid_t tid) {
   const auto stat = read(pid, tid, kStat);
   const auto schedstat = read(pid, tid, kSchedstat);
@@ -116,6 +128,9 @@ void ProcFiles::keep_only(const std::set<pid_t>& pids, const std::set<pid_t>& ti
   }
   for (auto it = task_dirs_.begin(); it != task_dirs_.end();) {
     it = pids.count(it->first) != 0 ? std::next(it) : task_dirs_.erase(it);
+  }
+  for (auto it = children_.begin(); it != children_.end();) {
+    it = pids.count(it->first) != 0 ? std::next(it) : children_.erase(it);
   }
 }
 

@@ -8,6 +8,7 @@
 #include <sys/types.h>
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -19,6 +20,12 @@
 #include "proc_scan.hpp"
 
 namespace ubersim::timeshim {
+
+// The run count of each thread of a process, read while every one of them
+// slept (kNotRead for a thread a look did not read: deterministic mode's
+// waiters, which run only in a turn the controller gives).
+using RunCounts = std::map<pid_t, std::uint64_t>;
+constexpr std::uint64_t kNotRead = ~std::uint64_t{0};
 
 // An open file descriptor, closed with its owner.
 class UniqueFd {
@@ -43,6 +50,14 @@ class ProcFiles {
   // The same as the free functions of proc_scan.hpp, from open files.
   std::vector<pid_t> threads_of(pid_t pid);
   std::vector<pid_t> children_of(pid_t pid);
+  // The same, unless `asleep` (the run counts of pid's threads, read before
+  // this call) equals those read before an earlier call: then no thread of
+  // pid was put on a CPU since, none can have forked, and that call's answer
+  // stands (a child that ended since is still in it: callers check). About
+  // one read per thread saved at most looks; a look reads many threads.
+  std::vector<pid_t> children_of(pid_t pid, const std::optional<RunCounts>& asleep);
+  // A thread of pid is about to run unread (deterministic mode's turn).
+  void forget_children(pid_t pid) { children_.erase(pid); }
   std::optional<ThreadSample> sample_thread(pid_t pid, pid_t tid);
   std::optional<SyscallSample> sample_syscall(pid_t pid, pid_t tid);
   // Only the kernel state (R, S, ...) of the thread; nullopt when it is gone.
@@ -65,6 +80,11 @@ class ProcFiles {
   std::map<ThreadKey, std::array<UniqueFd, kFiles>> threads_;
   std::map<pid_t, std::unique_ptr<DIR, DirCloser>> task_dirs_;  // /proc/<pid>/task
   std::map<pid_t, std::vector<pid_t>> listed_;                  // this look's threads_of
+  struct ChildrenSeen {
+    RunCounts asleep;  // read before the children were
+    std::vector<pid_t> children;
+  };
+  std::map<pid_t, ChildrenSeen> children_;
 };
 
 }  // namespace ubersim::timeshim

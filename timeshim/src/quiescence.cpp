@@ -25,13 +25,13 @@ struct Controller::Scan {
   std::map<pid_t, std::uint64_t> run_counts;  // by tid (threads read from /proc)
 };
 
-namespace {
-
 struct SlotView {
   ThreadState state;
   std::int64_t deadline_ns;
   ShimCall call;
 };
+
+namespace {
 
 std::map<pid_t, SlotView> slots_by_tid(Header& header) {
   std::map<pid_t, SlotView> result;
@@ -125,8 +125,9 @@ void scan_timers(Header& header, const std::set<pid_t>& processes, std::int64_t 
 
 }  // namespace
 
-std::vector<pid_t> Controller::group_processes() {
-  std::set<pid_t> seen;
+// Where a walk over the group starts: the processes it started, and every
+// process that holds a slot (a shimmed process its parent left, for one).
+std::vector<pid_t> Controller::group_roots() {
   std::vector<pid_t> pending;
   for (pid_t root : roots_) {
     if (exit_status_.count(root) == 0) pending.push_back(root);
@@ -134,16 +135,7 @@ std::vector<pid_t> Controller::group_processes() {
   for (auto& slot : used_slots(header())) {
     if (slot.claim.load() != 0) pending.push_back(slot.pid.load());
   }
-  std::vector<pid_t> result;
-  while (!pending.empty()) {
-    const pid_t pid = pending.back();
-    pending.pop_back();
-    if (pid <= 0 || !seen.insert(pid).second) continue;
-    if (::kill(pid, 0) != 0 && errno == ESRCH) continue;
-    result.push_back(pid);
-    for (pid_t child : proc_->children_of(pid)) pending.push_back(child);
-  }
-  return result;
+  return pending;
 }
 
 void Controller::note_suspect(pid_t pid, pid_t tid, const std::string& why) {
@@ -208,90 +200,128 @@ Controller::Scan Controller::scan() {
   reap(false);
   proc_->new_look();
   Header& segment = header();
-  const auto slots = slots_by_tid(segment);
+  const Slots slots = slots_by_tid(segment);
   const std::int64_t now = segment.sim_now_ns.load();
   Scan result;
   std::set<pid_t> alive;
-  const std::vector<pid_t> processes = group_processes();
-  for (pid_t pid : processes) {
-    check_shim_loaded(pid);
-    // A process whose first thread does not sleep may be ending: an exit or
-    // a fatal signal wakes each of its threads to die, whatever its slot says.
-    const auto leader = proc_->sample_thread(pid, pid);
-    const bool leader_sleeps = leader && leader->state == 'S';
-    for (pid_t tid : proc_->threads_of(pid)) {
-      const auto slot = slots.find(tid);
-      // Not the token holder: a thread says DetBlocked before it gives the
-      // token back, and runs until it has.
-      if (leader_sleeps && tid != pid && tid != segment.token_tid.load() && slot != slots.end() &&
-          ends_only_in_turn(slot->second.state)) {
-        // Its turn comes from give_turn (turns.cpp), which looks at it then,
-        // or from its deadline (a timed lock, condition or semaphore wait).
-        result.any_process = true;
-        alive.insert(tid);
-        suspects_.erase(tid);
-        if (slot->second.state == ThreadState::WantToken) continue;
-        if (slot->second.deadline_ns <= now) {
-          result.owed_wake = true;  // wake_due makes it want the token
-        } else {
-          result.next_deadline = std::min(result.next_deadline, slot->second.deadline_ns);
-        }
-        continue;
-      }
-      const auto sample = tid == pid ? leader : proc_->sample_thread(pid, tid);
-      if (!sample || sample->state == 'Z' || sample->state == 'X') continue;
-      result.any_process = true;
-      alive.insert(tid);
-      result.run_counts[tid] = sample->run_count;
-      const bool sleeps = sample->state == 'S';
-      if (slot != slots.end() && slot->second.state == ThreadState::Helper) {
-        if (!sleeps) result.all_waiting = false;  // waking a waiter now
-        continue;
-      }
-      if (sleeps && slot != slots.end() && slot->second.state == ThreadState::WantToken) {
-        suspects_.erase(tid);  // deterministic mode: waits for its turn (turns.cpp)
-        continue;
-      }
-      if (sleeps && slot != slots.end() && is_shim_wait(slot->second.state)) {
-        if (slot->second.deadline_ns <= now) {
-          result.owed_wake = true;
-          result.all_waiting = false;
-          note_suspect(pid, tid,
-                       std::string("was woken at the end of its ") +
-                           shim_call_name(slot->second.call) + " but still sleeps");
-        } else {
-          result.next_deadline = std::min(result.next_deadline, slot->second.deadline_ns);
-          suspects_.erase(tid);
-        }
-        continue;
-      }
-      if (!sleeps) {
-        result.all_waiting = false;
-        if (sample->state == 'R') result.running = {pid, tid};
-        note_suspect(pid, tid, describe_state(sample->state));
-        continue;
-      }
-      // A wait outside the shim with no time limit (input, a lock, a child)
-      // waits for the group or for input: it does not hold time back.
-      const auto call = proc_->sample_syscall(pid, tid);
-      if (call && classify_wait(*call) == KernelWait::ForOthers) {
-        // The token holder's suspicion is give_turn's (turns.cpp).
-        if (tid != segment.token_tid.load()) suspects_.erase(tid);
-        continue;
-      }
-      result.all_waiting = false;
-      note_suspect(pid, tid, describe_kernel_wait(pid, tid, call));
-    }
+  std::set<pid_t> processes;
+  std::set<pid_t> seen;
+  std::vector<pid_t> pending = group_roots();
+  while (!pending.empty()) {
+    const pid_t pid = pending.back();
+    pending.pop_back();
+    if (pid <= 0 || !seen.insert(pid).second) continue;
+    if (::kill(pid, 0) != 0 && errno == ESRCH) continue;
+    processes.insert(pid);
+    // Its threads first, then its children: run counts read before the
+    // children tell whether they can have changed since (proc_files.hpp).
+    const auto asleep = look_at_process(pid, slots, now, result, alive);
+    for (pid_t child : proc_->children_of(pid, asleep)) pending.push_back(child);
   }
-  scan_timers(segment, std::set<pid_t>(processes.begin(), processes.end()), now, &result.owed_wake,
-              &result.next_deadline);
+  scan_timers(segment, processes, now, &result.owed_wake, &result.next_deadline);
   if (result.owed_wake) result.all_waiting = false;
   free_dead_slots(segment, alive);
-  proc_->keep_only(std::set<pid_t>(processes.begin(), processes.end()), alive);
+  proc_->keep_only(processes, alive);
   for (auto it = suspects_.begin(); it != suspects_.end();) {
     it = alive.count(it->first) != 0 ? std::next(it) : suspects_.erase(it);
   }
   return result;
+}
+
+// One process's threads, judged into `result`; the run count of each when
+// every one of them sleeps, else nullopt.
+std::optional<RunCounts> Controller::look_at_process(pid_t pid, const Slots& slots,
+                                                     std::int64_t now, Scan& result,
+                                                     std::set<pid_t>& alive) {
+  check_shim_loaded(pid);
+  const pid_t token_holder = header().token_tid.load();
+  RunCounts counts;
+  bool all_sleep = true;
+  // A process whose first thread does not sleep may be ending: an exit or
+  // a fatal signal wakes each of its threads to die, whatever its slot says.
+  const auto leader = proc_->sample_thread(pid, pid);
+  const bool leader_sleeps = leader && leader->state == 'S';
+  for (pid_t tid : proc_->threads_of(pid)) {
+    const auto slot = slots.find(tid);
+    // Not the token holder: a thread says DetBlocked before it gives the
+    // token back, and runs until it has.
+    if (leader_sleeps && tid != pid && tid != token_holder && slot != slots.end() &&
+        ends_only_in_turn(slot->second.state)) {
+      // Its turn comes from give_turn (turns.cpp), which looks at it then,
+      // or from its deadline (a timed lock, condition or semaphore wait).
+      result.any_process = true;
+      alive.insert(tid);
+      counts[tid] = kNotRead;
+      suspects_.erase(tid);
+      if (slot->second.state == ThreadState::WantToken) continue;
+      if (slot->second.deadline_ns <= now) {
+        result.owed_wake = true;  // wake_due makes it want the token
+      } else {
+        result.next_deadline = std::min(result.next_deadline, slot->second.deadline_ns);
+      }
+      continue;
+    }
+    const auto sample = tid == pid ? leader : proc_->sample_thread(pid, tid);
+    if (!sample || sample->state == 'Z' || sample->state == 'X') {
+      all_sleep = false;  // it ends: its children go to another thread
+      continue;
+    }
+    result.any_process = true;
+    alive.insert(tid);
+    result.run_counts[tid] = sample->run_count;
+    counts[tid] = sample->run_count;
+    if (sample->state != 'S') all_sleep = false;
+    judge_thread(*sample, slot != slots.end() ? &slot->second : nullptr, now, result);
+  }
+  if (!all_sleep) return std::nullopt;
+  return counts;
+}
+
+// What a thread the look read holds back: nothing (it waits for sim time, its
+// turn or the group), or the group's quiescence (it runs, or waits in a way
+// only wall time ends), noted as a suspect.
+void Controller::judge_thread(const ThreadSample& sample, const SlotView* slot, std::int64_t now,
+                              Scan& result) {
+  const pid_t pid = sample.pid;
+  const pid_t tid = sample.tid;
+  const bool sleeps = sample.state == 'S';
+  if (slot != nullptr && slot->state == ThreadState::Helper) {
+    if (!sleeps) result.all_waiting = false;  // waking a waiter now
+    return;
+  }
+  if (sleeps && slot != nullptr && slot->state == ThreadState::WantToken) {
+    suspects_.erase(tid);  // deterministic mode: waits for its turn (turns.cpp)
+    return;
+  }
+  if (sleeps && slot != nullptr && is_shim_wait(slot->state)) {
+    if (slot->deadline_ns <= now) {
+      result.owed_wake = true;
+      result.all_waiting = false;
+      note_suspect(pid, tid,
+                   std::string("was woken at the end of its ") + shim_call_name(slot->call) +
+                       " but still sleeps");
+    } else {
+      result.next_deadline = std::min(result.next_deadline, slot->deadline_ns);
+      suspects_.erase(tid);
+    }
+    return;
+  }
+  if (!sleeps) {
+    result.all_waiting = false;
+    if (sample.state == 'R') result.running = {pid, tid};
+    note_suspect(pid, tid, describe_state(sample.state));
+    return;
+  }
+  // A wait outside the shim with no time limit (input, a lock, a child)
+  // waits for the group or for input: it does not hold time back.
+  const auto call = proc_->sample_syscall(pid, tid);
+  if (call && classify_wait(*call) == KernelWait::ForOthers) {
+    // The token holder's suspicion is give_turn's (turns.cpp).
+    if (tid != header().token_tid.load()) suspects_.erase(tid);
+    return;
+  }
+  result.all_waiting = false;
+  note_suspect(pid, tid, describe_kernel_wait(pid, tid, call));
 }
 
 // The thread a look saw running runs still: no need to look at all of them.

@@ -101,6 +101,9 @@ std::optional<std::pair<pid_t, pid_t>> Controller::give_turn() {
     }
   }
   next->ready_seq.store(0);
+  // It runs unread by the looks until it holds the token (quiescence.cpp):
+  // what its process had as children may change.
+  proc_->forget_children(next->pid.load());
   // No longer wanting: a look before it runs must not give a second turn.
   next->state.store(static_cast<std::uint32_t>(ThreadState::Running));
   segment.token_tid.store(next->tid.load());

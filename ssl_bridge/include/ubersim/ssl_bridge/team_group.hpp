@@ -1,13 +1,17 @@
 #pragma once
 // Team programs under the time shim, hosted by the SSL bridge (docs/timeshim.md,
 // "Integration with sync mode"): the bridge starts each team's command under
-// one timeshim::Controller (both teams in one group, one sim clock) and runs
-// the group step by step, so that everything a team sends is stamped with the
-// sim time at which it was sent and everything the bridge sends reaches the
-// team at the sim time it stands for.
+// a timeshim::Controller of its own (each command its own group; all on one
+// sim clock, advanced together) and runs them step by step, so that
+// everything a team sends is stamped with the sim time at which it was sent
+// and everything the bridge sends reaches the team at the sim time it stands
+// for. A group per command, not one for all: the teams' programs share
+// nothing but the bridge, so their controllers look at them side by side, and
+// in deterministic mode each program has a run token of its own (one token
+// for both ran the two teams one thread at a time on any number of cores).
 //
-// run_to(T) is the one loop: wait until every thread of the group waits
-// (quiescence: whatever the team sent is in the bridge's sockets now), let the
+// run_to(T) is the one loop: wait until every thread of every group waits
+// (quiescence: whatever the teams sent is in the bridge's sockets now), let the
 // bridge drain and answer (at_quiescence; when it sent something to the group,
 // the group runs again at the same instant), promise "nothing is sent before
 // min(next deadline, T)", and advance sim time there.
@@ -64,19 +68,25 @@ class TeamGroup {
   // (every process of it exited) or should_stop said so.
   bool run_to(std::int64_t until_ns, const AtQuiescence& at_quiescence, const Promise& promise,
               const ShouldStop& should_stop);
-  std::int64_t now_ns() const { return controller_.now_ns(); }
+  std::int64_t now_ns() const;
   bool exited() const { return exited_; }
   // Asks every command to end (SIGTERM); the destructor kills what is left.
   void stop();
   std::uint64_t quiescences() const { return quiescences_; }
-  std::uint64_t advances() const { return controller_.advances(); }
+  std::uint64_t advances() const;
+  std::uint64_t turns() const;  // deterministic mode's turns, of every group
 
  private:
   void report_problems();
   void report_exits(const char* when);
+  // Waits (up to wall_limit) until every group is quiescent; Exited once
+  // every group has ended; the earliest next deadline of them all.
+  timeshim::Quiescence wait_quiescent(std::chrono::milliseconds wall_limit);
+  void advance_to(std::int64_t sim_ns);
 
   TeamGroupOptions options_;
-  timeshim::Controller controller_;
+  std::vector<std::unique_ptr<timeshim::Controller>> controllers_;  // one per command
+  std::vector<bool> group_ended_;                                   // per command
   std::vector<pid_t> pids_;
   std::vector<bool> exit_reported_;  // per command: its end was logged
   std::int64_t promised_ns_ = -1;

@@ -21,6 +21,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -31,6 +32,8 @@
 namespace ubersim::timeshim {
 
 class ProcFiles;
+struct ThreadSample;
+struct SlotView;  // what a thread's slot says, as a look reads it (quiescence.cpp)
 
 struct ControllerOptions {
   // The shim library; "" finds it next to the running program (../lib).
@@ -118,7 +121,14 @@ class Controller {
 
  private:
   struct Scan;
-  Scan scan();  // one look at every thread of the group
+  Scan scan();                              // one look at every thread of the group
+  using Slots = std::map<pid_t, SlotView>;  // by tid
+  std::vector<pid_t> group_roots();
+  std::optional<std::map<pid_t, std::uint64_t>> look_at_process(pid_t pid, const Slots& slots,
+                                                                std::int64_t now, Scan& result,
+                                                                std::set<pid_t>& alive);
+  void judge_thread(const ThreadSample& sample, const SlotView* slot, std::int64_t now,
+                    Scan& result);
   bool quiet_at_one_instant(const Scan& look, std::uint32_t seq);
   bool still_running(std::optional<std::pair<pid_t, pid_t>>& running);
   void reap(bool wait_for_end);
@@ -128,7 +138,6 @@ class Controller {
   // Deterministic mode, at a quiescent look (turns.cpp): the pid and tid of
   // the thread given the run token, or nullopt when nobody wants it.
   std::optional<std::pair<pid_t, pid_t>> give_turn();
-  std::vector<pid_t> group_processes();
   Header& header();
 
   class Segment;
