@@ -33,7 +33,7 @@ SyncDriver::SyncDriver(MessageBus& bus, const ChannelNames& channels, RadioEmula
 void SyncDriver::on_client(const sync_client_t& message, Clock::time_point now) {
   const std::string change = coordinator_.on_client(message);
   if (change.empty()) return;
-  emulator_.set_feedback_in_step(coordinator_.has_timed_client());
+  clients_changed();
   // A rejoin ends a degraded stretch: as loud as the drop.
   if (change.rfind("sync client rejoined", 0) == 0) {
     spdlog::warn("{}", change);
@@ -102,6 +102,12 @@ double SyncDriver::earliest_arrival(Team team) const {
   return arrival;
 }
 
+// A timed client answers every state, so while one is in, the emulator's
+// feedback goes with physics' steps (RadioEmulator::set_feedback_in_step).
+void SyncDriver::clients_changed() {
+  emulator_.set_feedback_in_step(coordinator_.has_timed_client());
+}
+
 bool SyncDriver::tick(Clock::time_point now) {
   forgive_own_stall(now);
   const auto dropped = coordinator_.expire(now);
@@ -112,7 +118,7 @@ bool SyncDriver::tick(Clock::time_point now) {
     }
     spdlog::warn("{}; the run goes on without it", drop.describe());
   }
-  if (!dropped.empty()) emulator_.set_feedback_in_step(coordinator_.has_timed_client());
+  if (!dropped.empty()) clients_changed();
   if (!dropped.empty() || now - last_status_ >= kStatusRepeat) publish_status(now);
   update(!dropped.empty() || now - last_published_ >= kHorizonRepeat, now);
   return true;

@@ -160,13 +160,11 @@ bool SslBridge::timed_teams_joined() const {
 }
 
 // A simulation control command a team sent during the game goes to physics
-// with the next frame: physics waits at that frame's state (the radio holds
-// it at a timed team's promise, docs/sync.md "Timed clients"), so it applies
-// the command there, on every run; sent at once, it would apply at whatever
-// step physics had reached in wall time.
+// with the next frame (held_for_next_frame.hpp; the radio holds physics at a
+// timed team's promise, docs/sync.md "Timed clients").
 void SslBridge::apply_timed_controls() {
-  for (const HeldControl& held : timed_controls_) handle_control_datagram(held.bytes, held.from);
-  timed_controls_.clear();
+  timed_controls_.release(
+      [this](const HeldControl& held) { handle_control_datagram(held.bytes, held.from); });
   for (const TimedDoor& door : timed_doors_) door.at_frame();
 }
 
@@ -174,13 +172,8 @@ void SslBridge::apply_timed_controls() {
 // while the bridge does not run the group (one Utama-Core run's start-up
 // placements were read so; the cause was not found).
 bool SslBridge::held_for_next_frame(const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
-  constexpr std::size_t kMostHeldControls = 256;
-  if (!timed_mode() || teams_->exited() || !timed_teams_joined() ||
-      timed_controls_.size() >= kMostHeldControls) {
-    return false;
-  }
-  timed_controls_.push_back({bytes, from});
-  return true;
+  if (!timed_mode() || teams_->exited() || !timed_teams_joined()) return false;
+  return timed_controls_.hold({bytes, from});
 }
 
 bool SslBridge::at_quiescence(std::int64_t now_ns) {

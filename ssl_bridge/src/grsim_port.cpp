@@ -169,8 +169,8 @@ bool GrsimPort::drain_timed(std::int64_t now_ns, double settled) {
 }
 
 void GrsimPort::release_replacements() {
-  for (const grSim_Replacement& replacement : held_replacements_) handle_replacement(replacement);
-  held_replacements_.clear();
+  held_replacements_.release(
+      [this](const grSim_Replacement& replacement) { handle_replacement(replacement); });
 }
 
 void GrsimPort::stop_gating() {
@@ -199,12 +199,9 @@ void GrsimPort::handle_datagram(const std::uint8_t* data, std::size_t size, cons
   if (packet.has_commands()) handle_commands(packet.commands(), now, arrival);
   if (packet.has_replacement()) {
     // A timed team's replacement goes to physics with the next frame (release_replacements).
-    constexpr std::size_t kMostHeld = 256;
-    if (gated_ && arrival == Arrival::AtQuiescence && held_replacements_.size() < kMostHeld) {
-      held_replacements_.push_back(packet.replacement());
-    } else {
-      handle_replacement(packet.replacement());
-    }
+    const bool held =
+        gated_ && arrival == Arrival::AtQuiescence && held_replacements_.hold(packet.replacement());
+    if (!held) handle_replacement(packet.replacement());
   }
   // grSim answers each datagram with the robots whose status changed, to its sender.
   if (status_.pending() && send_status(from)) statuses_sent_ = true;

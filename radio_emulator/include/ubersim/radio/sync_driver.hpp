@@ -83,6 +83,7 @@ class SyncDriver {
   static constexpr std::size_t kMaxHeldAnswers = 256;
 
  private:
+  void clients_changed();  // a client joined, left or was dropped
   void update(bool always_publish, Clock::time_point now);
   // Why physics holds at the start (the horizon 0): registration or the first frame.
   std::int8_t hold(Clock::time_point now);

@@ -20,6 +20,7 @@
 #include "ubersim/logging.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/process_host.hpp"
+#include "ubersim/ssl_bridge/held_for_next_frame.hpp"
 #include "ubersim/ssl_bridge/latest_state.hpp"
 #include "ubersim/ssl_bridge/lcm_team_door.hpp"
 #include "ubersim/ssl_bridge/multicast_out.hpp"
@@ -239,7 +240,7 @@ class SslBridge {
     std::vector<uint8_t> bytes;
     sockaddr_in from;
   };
-  std::vector<HeldControl> timed_controls_;
+  HeldForNextFrame<HeldControl> timed_controls_;
   // Sim times of the latest states physics published, oldest first.
   std::deque<double> timed_state_times_;
   // s: every referee and feedback message stamped up to it is here

@@ -35,6 +35,7 @@
 #include "ubersim/ssl_bridge/grsim_command_book.hpp"
 #include "ubersim/ssl_bridge/grsim_status.hpp"
 #include "ubersim/ssl_bridge/grsim_translation.hpp"
+#include "ubersim/ssl_bridge/held_for_next_frame.hpp"
 #include "ubersim/ssl_bridge/latest_state.hpp"
 #include "ubersim/ssl_bridge/sim_control_translation.hpp"
 #include "ubersim/ssl_bridge/udp_socket.hpp"
@@ -131,8 +132,8 @@ class GrsimPort {
   PublishTimed publish_timed_;
   std::vector<std::pair<Team, radio_feedback_t>> held_feedback_;
   bool gated_ = false;
-  bool statuses_sent_ = false;                        // during a drain
-  std::vector<grSim_Replacement> held_replacements_;  // release_replacements
+  bool statuses_sent_ = false;                             // during a drain
+  HeldForNextFrame<grSim_Replacement> held_replacements_;  // release_replacements
   ThrottledLog bad_input_;
   std::map<std::string, std::uint64_t> counters_;
 };
