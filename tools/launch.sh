@@ -63,7 +63,7 @@ usage: tools/launch.sh [options]
   --cpu N|all          the CPU physics, vision and radio share, or all to let the kernel spread
                        them; default: in real time (up to 4x) the last CPU this script may use,
                        with --sync, --lockstep or faster speeds all (docs/design.md, "One core")
-  --seed N             seed for physics and both emulators
+  --seed N             seed for physics, both emulators and the SSL bridge's source ids
   --duration S         stop everything after S seconds of sim time
   --lcm-url URL        LCM URL for every process (default \$LCM_DEFAULT_URL or LCM's)
   --channel-prefix P   prefix every channel (to run several simulations side by side)
@@ -703,7 +703,7 @@ for team in yellow blue; do
     start "demo_$team" "$bin_dir/ubersim_demo_team" "${common[@]}" --team "$team" --mode "$demo_mode" "${demo_args[@]}"
   fi
 done
-[ "$ssl_bridge" = 1 ] && start ssl_bridge "$bin_dir/ubersim_ssl_bridge" "${common[@]}" "${bridge_args[@]}"
+[ "$ssl_bridge" = 1 ] && start ssl_bridge "$bin_dir/ubersim_ssl_bridge" "${common[@]}" "${bridge_args[@]}" "${seed_args[@]}"
 # Without --sync a team program runs in real time next to the set.
 if [ "$sync" = 0 ]; then
   [ -z "$team_yellow" ] || start team_yellow sh -c "$(team_program "$team_yellow")"

@@ -13,6 +13,10 @@
 namespace ubersim::ssl {
 namespace {
 
+// make_uuid's purposes: the two ids of one seed differ.
+constexpr std::uint64_t kRefereeId = 1;
+constexpr std::uint64_t kTrackedId = 2;
+
 constexpr const char* kSender = "ubersim_ssl_bridge";
 // Datagrams taken from each socket per wakeup: a flood on one port cannot
 // starve LCM, the other ports or the shutdown signal.
@@ -78,7 +82,7 @@ SslBridge::SslBridge(ProcessHost& host, BridgeOptions options)
       blue_socket_(UdpSocket::bound(options_.listen_address, options_.blue_port)),
       yellow_socket_(UdpSocket::bound(options_.listen_address, options_.yellow_port)),
       referee_out_(referee_stream(options_)),
-      referee_source_("ubersim-" + random_uuid()),
+      referee_source_("ubersim-" + make_uuid(options_.id_seed, kRefereeId)),
       referee_translator_(referee_source_),
       sync_{{SyncAnswers(options_.sync_timeout), SyncAnswers(options_.sync_timeout)}},
       sync_clients_{{SyncClient(bus_, channels_, Team::Yellow, "ssl_bridge_yellow"),
@@ -98,7 +102,7 @@ SslBridge::SslBridge(ProcessHost& host, BridgeOptions options)
     TrackedSettings settings;
     settings.rate = options_.tracked_rate;
     settings.ball_model = options_.geometry.ball_model;
-    settings.uuid = random_uuid();
+    settings.uuid = make_uuid(options_.id_seed, kTrackedId);
     tracked_.emplace(settings);
     tracked_out_.emplace(tracked_stream(options_));
     host_.ask_for_truth(periodic_demand(options_.tracked_rate));

@@ -147,6 +147,10 @@ void add_team_options(CLI::App& app, SslBridgeOptions& options) {
                  "larger, fewer steps of the group (faster), coarser send times")
       ->capture_default_str()
       ->check(ubersim::in_range(0.0, 1e4));
+  app.add_option("--seed", options.bridge.id_seed,
+                 "derive the tracked frames' uuid and the referee's source_identifier from this "
+                 "seed (reruns send the teams the same bytes); without it they are random")
+      ->check(ubersim::whole_number());
   app.add_flag("--team-deterministic", options.bridge.teams.controller.deterministic,
                "run the team programs' threads one at a time in a fixed order (the time shim's "
                "deterministic mode, docs/timeshim.md): reruns identical also for programs whose "

@@ -29,11 +29,23 @@ void set(Vector3& out, const double v[3]) {
 
 }  // namespace
 
-std::string random_uuid() {
-  std::random_device device;
-  std::uniform_int_distribution<int> byte(0, 255);
+std::string make_uuid(std::optional<std::uint64_t> seed, std::uint64_t purpose) {
   unsigned char b[16];
-  for (unsigned char& v : b) v = static_cast<unsigned char>(byte(device));
+  if (seed) {
+    // mt19937_64's output is the same on every standard library (a
+    // distribution's is not): the bytes are taken from it directly.
+    std::seed_seq sequence{static_cast<std::uint32_t>(*seed),
+                           static_cast<std::uint32_t>(*seed >> 32),
+                           static_cast<std::uint32_t>(purpose)};
+    std::mt19937_64 engine(sequence);
+    for (int half = 0; half < 2; ++half) {
+      const std::uint64_t word = engine();
+      for (int i = 0; i < 8; ++i) b[half * 8 + i] = static_cast<unsigned char>(word >> (8 * i));
+    }
+  } else {
+    std::random_device device;
+    for (unsigned char& v : b) v = static_cast<unsigned char>(device());
+  }
   b[6] = static_cast<unsigned char>((b[6] & 0x0f) | 0x40);  // version 4
   b[8] = static_cast<unsigned char>((b[8] & 0x3f) | 0x80);  // variant 1
   char text[37];

@@ -34,7 +34,7 @@ sim_state_t state_at(double t, double ball_vx) {
 TEST(SslTrackedFrames, FramesAtTheRateReleasedAfterTheVisionLatency) {
   TrackedSettings settings;
   settings.rate = 60;
-  settings.uuid = random_uuid();
+  settings.uuid = make_uuid();
   TrackedFrames tracked(settings);
   tracked.set_latency(0.035);
   std::vector<TrackerWrapperPacket> out;
@@ -99,4 +99,17 @@ TEST(SslTrackedFrames, AStateWithANumberNotFiniteOrHugeIsRefused) {
   const auto next = tracked.on_state(state_at(1.0 / 240, 0));
   ASSERT_EQ(next.size(), 1u) << "the states around it are framed as before";
   EXPECT_EQ(next[0].tracked_frame().frame_number(), 1u);
+}
+
+TEST(SslSourceIds, ASeedGivesTheSameIdOnEveryRunAndEachPurposeItsOwn) {
+  EXPECT_EQ(make_uuid(3, 1), make_uuid(3, 1));
+  EXPECT_NE(make_uuid(3, 1), make_uuid(3, 2));
+  EXPECT_NE(make_uuid(3, 1), make_uuid(4, 1));
+  EXPECT_NE(make_uuid(std::uint64_t{1} << 40, 1), make_uuid(0, 1));  // the seed's high half counts
+  EXPECT_NE(make_uuid(), make_uuid());  // no seed: random, as a real source's
+  for (const std::string& id : {make_uuid(3, 1), make_uuid()}) {
+    ASSERT_EQ(id.size(), 36U) << id;
+    EXPECT_EQ(id[14], '4') << id;                                          // version 4
+    EXPECT_NE(std::string("89ab").find(id[19]), std::string::npos) << id;  // variant 1
+  }
 }

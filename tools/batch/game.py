@@ -201,7 +201,7 @@ def _bridge_command(spec, common, config_dir):
     each program's end and status are info lines (team_exits)."""
     bridge = [f"{spec['bin_dir']}/ubersim_ssl_bridge", *[c for c in common if c != "-q"],
               "--sync", "--tracked", "--listen-address", "127.0.0.1", "--local-only",
-              "--team-output-dir", spec["game_dir"]]
+              "--team-output-dir", spec["game_dir"], "--seed", str(spec["seed"])]
     for colour, template in sorted(spec["team_programs"].items()):
         command = template.format(bin=spec["bin_dir"], team=colour, config_dir=config_dir,
                                   seed=spec["seed"])

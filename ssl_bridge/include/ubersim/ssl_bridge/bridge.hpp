@@ -78,6 +78,9 @@ struct BridgeOptions {
   // control port becomes a sync client, and each of its RobotControl
   // datagrams answers the oldest detection frame it has not answered yet.
   bool sync = false;
+  // The tracked frames' uuid and the referee's source_identifier: random, as
+  // a real source's; with a seed, the same on every run (make_uuid).
+  std::optional<std::uint64_t> id_seed;
   double sync_timeout = 1.0;  // s of wall time a team may take to answer a frame
   // Team programs the bridge starts under the time shim (--team-command, sync
   // mode only): each such team is a *timed* sync client (docs/timeshim.md,

@@ -52,7 +52,9 @@ class TrackedFrames {
   std::uint64_t refused_ = 0;
 };
 
-// A random version-4 UUID (the source's id for this run).
-std::string random_uuid();
+// A version-4 UUID (a source's id for this run): random, as a real tracker's;
+// with a seed, the same on every run with that seed and `purpose` (the
+// bridge's --seed: reruns then send the teams the same bytes).
+std::string make_uuid(std::optional<std::uint64_t> seed = std::nullopt, std::uint64_t purpose = 0);
 
 }  // namespace ubersim::ssl
