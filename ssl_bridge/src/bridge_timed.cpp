@@ -163,8 +163,10 @@ bool SslBridge::timed_teams_joined() const {
 // with the next frame (held_for_next_frame.hpp; the radio holds physics at a
 // timed team's promise, docs/sync.md "Timed clients").
 void SslBridge::apply_timed_controls() {
-  timed_controls_.release(
-      [this](const HeldControl& held) { handle_control_datagram(held.bytes, held.from); });
+  timed_controls_.release([this](const sockaddr_in& from) { return program_of(from); },
+                          [this](const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
+                            handle_control_datagram(bytes, from);
+                          });
   for (const TimedDoor& door : timed_doors_) door.at_frame();
 }
 
@@ -173,7 +175,11 @@ void SslBridge::apply_timed_controls() {
 // placements were read so; the cause was not found).
 bool SslBridge::held_for_next_frame(const std::vector<uint8_t>& bytes, const sockaddr_in& from) {
   if (!timed_mode() || teams_->exited() || !timed_teams_joined()) return false;
-  return timed_controls_.hold({bytes, from});
+  return timed_controls_.hold(bytes, from);
+}
+
+std::size_t SslBridge::program_of(const sockaddr_in& from) {
+  return teams_ ? teams_->program_of_port(ntohs(from.sin_port)) : 0;
 }
 
 bool SslBridge::at_quiescence(std::int64_t now_ns) {

@@ -55,9 +55,10 @@ GrsimPort::GrsimPort(MessageBus& bus, const ChannelNames& channels, GrsimOptions
   }
 }
 
-void GrsimPort::gate(std::vector<Team> timed_teams, PublishTimed publish) {
+void GrsimPort::gate(std::vector<Team> timed_teams, PublishTimed publish, ProgramOf program_of) {
   timed_teams_ = std::move(timed_teams);
   publish_timed_ = std::move(publish);
+  program_of_ = std::move(program_of);
   gated_ = !timed_teams_.empty();
 }
 
@@ -169,8 +170,10 @@ bool GrsimPort::drain_timed(std::int64_t now_ns, double settled) {
 }
 
 void GrsimPort::release_replacements() {
-  held_replacements_.release(
-      [this](const grSim_Replacement& replacement) { handle_replacement(replacement); });
+  held_replacements_.release(program_of_,
+                             [this](const grSim_Replacement& replacement, const sockaddr_in&) {
+                               handle_replacement(replacement);
+                             });
 }
 
 void GrsimPort::stop_gating() {
@@ -199,8 +202,8 @@ void GrsimPort::handle_datagram(const std::uint8_t* data, std::size_t size, cons
   if (packet.has_commands()) handle_commands(packet.commands(), now, arrival);
   if (packet.has_replacement()) {
     // A timed team's replacement goes to physics with the next frame (release_replacements).
-    const bool held =
-        gated_ && arrival == Arrival::AtQuiescence && held_replacements_.hold(packet.replacement());
+    const bool held = gated_ && arrival == Arrival::AtQuiescence &&
+                      held_replacements_.hold(packet.replacement(), from);
     if (!held) handle_replacement(packet.replacement());
   }
   // grSim answers each datagram with the robots whose status changed, to its sender.

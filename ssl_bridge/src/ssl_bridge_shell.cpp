@@ -48,9 +48,12 @@ class SslBridgeShell {
     // door of the bridge's team group (docs/timeshim.md).
     const std::vector<Team> timed = grsim_teams(options_.bridge.teams);
     if (!timed.empty()) {
-      grsim_->gate(timed, [this](Team team, radio_packet_t packet) {
-        bridge_.publish_timed_radio(team, std::move(packet));
-      });
+      grsim_->gate(
+          timed,
+          [this](Team team, radio_packet_t packet) {
+            bridge_.publish_timed_radio(team, std::move(packet));
+          },
+          [this](const sockaddr_in& from) { return bridge_.program_of(from); });
       bridge_.add_timed_door(
           [this](std::int64_t now_ns, double settled) {
             return grsim_->drain_timed(now_ns, settled);

@@ -13,6 +13,8 @@
 #include <map>
 #include <sstream>
 
+#include "ubersim/ssl_bridge/socket_owner.hpp"
+
 namespace ubersim::ssl {
 namespace {
 
@@ -24,12 +26,11 @@ constexpr std::chrono::milliseconds kEndGrace{500};
 // Wall time the group gets, before that, to finish what it does at its sim time.
 constexpr std::chrono::milliseconds kSettle{200};
 
-// Every process below this one (the bridge is their subreaper, so a team's
-// orphaned child is among them too).
-std::vector<pid_t> descendants() {
+// The parent of every process of this host (of this pid namespace).
+std::map<pid_t, pid_t> parents_of_all() {
   std::map<pid_t, pid_t> parent;
   DIR* proc = ::opendir("/proc");
-  if (proc == nullptr) return {};
+  if (proc == nullptr) return parent;
   while (const dirent* entry = ::readdir(proc)) {
     const pid_t pid = static_cast<pid_t>(std::atoi(entry->d_name));
     if (pid <= 0) continue;
@@ -45,14 +46,27 @@ std::vector<pid_t> descendants() {
     parent[pid] = ppid;
   }
   ::closedir(proc);
+  return parent;
+}
+
+// The first of `ancestors` that pid is or descends from, else 0.
+pid_t ancestor_among(pid_t pid, const std::map<pid_t, pid_t>& parent,
+                     const std::vector<pid_t>& ancestors) {
+  for (pid_t up = pid; up > 1;) {
+    if (std::find(ancestors.begin(), ancestors.end(), up) != ancestors.end()) return up;
+    const auto found = parent.find(up);
+    up = found == parent.end() ? 0 : found->second;
+  }
+  return 0;
+}
+
+// Every process below this one (the bridge is their subreaper, so a team's
+// orphaned child is among them too).
+std::vector<pid_t> descendants() {
+  const std::map<pid_t, pid_t> parent = parents_of_all();
   std::vector<pid_t> below;
   for (const auto& [pid, ppid] : parent) {
-    for (pid_t up = ppid; up > 1; up = parent.count(up) ? parent[up] : 0) {
-      if (up == ::getpid()) {
-        below.push_back(pid);
-        break;
-      }
-    }
+    if (pid != ::getpid() && ancestor_among(pid, parent, {::getpid()}) != 0) below.push_back(pid);
   }
   return below;
 }
@@ -161,6 +175,26 @@ bool TeamGroup::run_to(std::int64_t until_ns, const AtQuiescence& at_quiescence,
     if (next <= now) return true;
     advance_to(next);
   }
+}
+
+std::size_t TeamGroup::program_of_port(std::uint16_t port) {
+  if (const auto known = programs_by_port_.find(port); known != programs_by_port_.end()) {
+    return known->second;
+  }
+  std::size_t program = pids_.size();  // not a team program's: after theirs
+  const std::vector<unsigned long> inodes = udp_socket_inodes(port);
+  if (!inodes.empty()) {
+    const std::map<pid_t, pid_t> parent = parents_of_all();
+    for (const auto& [pid, ppid] : parent) {
+      const pid_t root = ancestor_among(pid, parent, pids_);
+      if (root == 0 || !holds_socket(pid, inodes)) continue;
+      program =
+          static_cast<std::size_t>(std::find(pids_.begin(), pids_.end(), root) - pids_.begin());
+      break;
+    }
+  }
+  programs_by_port_[port] = program;
+  return program;
 }
 
 void TeamGroup::report_problems() {

@@ -130,6 +130,9 @@ class SslBridge {
   // A timed team's radio packet (t_sent set): numbered in the team's sequence,
   // with its promises; held until the team registered.
   void publish_timed_radio(Team team, radio_packet_t packet);
+  // Which team program (the order of --team-command) sent from this address;
+  // the number of programs for another sender (held_for_next_frame.hpp).
+  std::size_t program_of(const sockaddr_in& from);
 
  private:
   struct PendingResponse {
@@ -239,11 +242,7 @@ class SslBridge {
   double timed_captured_ = 0;     // s, the latest capture time of the frames heard
   int timed_frames_due_ = 0;      // frames of the latest schedule not heard yet
   // The team programs' simulation control commands since the last frame (apply_timed_controls).
-  struct HeldControl {
-    std::vector<uint8_t> bytes;
-    sockaddr_in from;
-  };
-  HeldForNextFrame<HeldControl> timed_controls_;
+  HeldForNextFrame<std::vector<uint8_t>> timed_controls_;
   // Sim times of the latest states physics published, oldest first.
   std::deque<double> timed_state_times_;
   // s: every referee and feedback message stamped up to it is here

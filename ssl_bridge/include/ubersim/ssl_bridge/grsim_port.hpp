@@ -66,10 +66,12 @@ class GrsimPort {
   // Publishes a timed team's radio packet (the bridge numbers it with the
   // team's promises, and holds it until the team registered).
   using PublishTimed = std::function<void(Team, radio_packet_t)>;
+  // Which team program sent from this address (held_for_next_frame.hpp).
+  using ProgramOf = std::function<std::size_t(const sockaddr_in&)>;
 
   GrsimPort(MessageBus& bus, const ChannelNames& channels, GrsimOptions options);
   // Before start(): these colours are grSim-protocol teams under the time shim.
-  void gate(std::vector<Team> timed_teams, PublishTimed publish);
+  void gate(std::vector<Team> timed_teams, PublishTimed publish, ProgramOf program_of);
   // Watches the port on the bus.
   void start();
   // At a quiescence of the team group at now_ns (sim time): every datagram the
@@ -130,6 +132,7 @@ class GrsimPort {
   // held until the group's sim time reaches it, and whether the group runs.
   std::vector<Team> timed_teams_;
   PublishTimed publish_timed_;
+  ProgramOf program_of_;
   std::vector<std::pair<Team, radio_feedback_t>> held_feedback_;
   bool gated_ = false;
   bool statuses_sent_ = false;                             // during a drain

@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -75,6 +76,10 @@ class TeamGroup {
   std::uint64_t quiescences() const { return quiescences_; }
   std::uint64_t advances() const;
   std::uint64_t turns() const;  // deterministic mode's turns, of every group
+  // Which command's program sent from this local UDP port (the order of the
+  // commands), or the number of commands when none did: what orders their
+  // held commands (held_for_next_frame.hpp). Looked up once per port.
+  std::size_t program_of_port(std::uint16_t port);
 
  private:
   void report_problems();
@@ -87,6 +92,7 @@ class TeamGroup {
   TeamGroupOptions options_;
   std::vector<std::unique_ptr<timeshim::Controller>> controllers_;  // one per command
   std::vector<bool> group_ended_;                                   // per command
+  std::map<std::uint16_t, std::size_t> programs_by_port_;           // program_of_port
   std::vector<pid_t> pids_;
   std::vector<bool> exit_reported_;  // per command: its end was logged
   std::int64_t promised_ns_ = -1;
