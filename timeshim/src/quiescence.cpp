@@ -21,6 +21,9 @@ struct Controller::Scan {
   std::optional<std::pair<pid_t, pid_t>> running;  // pid, tid of a thread seen running
   bool all_waiting = true;
   bool owed_wake = false;  // a shim wait whose deadline passed still sleeps
+  // Every thread read has a slot and sleeps in a shim wait (no kernel wait
+  // the shim does not know): none can run the program's code unannounced.
+  bool only_shim_waits = true;
   std::int64_t next_deadline = kNoDeadline;
   std::map<pid_t, std::uint64_t> run_counts;  // by tid (threads read from /proc)
 };
@@ -264,6 +267,7 @@ std::optional<RunCounts> Controller::look_at_process(pid_t pid, const Slots& slo
     const auto sample = tid == pid ? leader : proc_->sample_thread(pid, tid);
     if (!sample || sample->state == 'Z' || sample->state == 'X') {
       all_sleep = false;  // it ends: its children go to another thread
+      result.only_shim_waits = false;
       continue;
     }
     result.any_process = true;
@@ -285,6 +289,8 @@ void Controller::judge_thread(const ThreadSample& sample, const SlotView* slot, 
   const pid_t pid = sample.pid;
   const pid_t tid = sample.tid;
   const bool sleeps = sample.state == 'S';
+  // Below, only the shim's own waits return early.
+  if (!sleeps || slot == nullptr) result.only_shim_waits = false;
   if (slot != nullptr && slot->state == ThreadState::Helper) {
     if (!sleeps) result.all_waiting = false;  // waking a waiter now
     return;
@@ -314,6 +320,7 @@ void Controller::judge_thread(const ThreadSample& sample, const SlotView* slot, 
   }
   // A wait outside the shim with no time limit (input, a lock, a child)
   // waits for the group or for input: it does not hold time back.
+  result.only_shim_waits = false;
   const auto call = proc_->sample_syscall(pid, tid);
   if (call && classify_wait(*call) == KernelWait::ForOthers) {
     // The token holder's suspicion is give_turn's (turns.cpp).
@@ -340,7 +347,16 @@ bool Controller::still_running(std::optional<std::pair<pid_t, pid_t>>& running) 
 
 // Nobody ran between two looks (same run counts, no shim call): at an instant
 // between them every thread slept.
-bool Controller::quiet_at_one_instant(const Scan& look, std::uint32_t seq) {
+bool Controller::quiet_at_one_instant(const Scan& look, std::uint32_t seq, bool between_turns) {
+  if (between_turns && look.only_shim_waits) {
+    // Deterministic mode, no turn running, every thread in a shim wait: one
+    // look is enough. Without the token nobody runs the program's code, so
+    // nobody wakes anybody; a thread that input (or its process's timer
+    // helper) woke says so in the segment (change_seq) before it runs any,
+    // or the look saw it running. (A thread that still holds the token is
+    // read, never skipped, so that "no holder" is what the look saw.)
+    return header().change_seq.load() == seq && header().token_tid.load() == 0;
+  }
   const Scan second = scan();
   return second.all_waiting && second.run_counts == look.run_counts &&
          header().change_seq.load() == seq;
@@ -378,6 +394,7 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
                        : std::min(backoff_ns * 2, kLongestBackoffNs);
       continue;
     }
+    const bool between_turns = options_.deterministic && segment.token_tid.load() == 0;
     const Scan look = scan();
     running = look.running;
     if (!look.any_process) {
@@ -385,7 +402,7 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
       return Quiescence{GroupState::Exited, kNoDeadline};
     }
     if (look.owed_wake) wake_due();
-    if (look.all_waiting && quiet_at_one_instant(look, seq)) {
+    if (look.all_waiting && quiet_at_one_instant(look, seq, between_turns)) {
       // Deterministic mode: quiescent only when nobody wants to run.
       if (options_.deterministic) {
         if (auto holder = give_turn()) {

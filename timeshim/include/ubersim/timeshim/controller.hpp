@@ -129,7 +129,7 @@ class Controller {
                                                                 std::set<pid_t>& alive);
   void judge_thread(const ThreadSample& sample, const SlotView* slot, std::int64_t now,
                     Scan& result);
-  bool quiet_at_one_instant(const Scan& look, std::uint32_t seq);
+  bool quiet_at_one_instant(const Scan& look, std::uint32_t seq, bool between_turns);
   bool still_running(std::optional<std::pair<pid_t, pid_t>>& running);
   void reap(bool wait_for_end);
   void wake_due();
