@@ -535,14 +535,30 @@ why_failed() {  # why_failed NAME STATUS
   done <<<"$lines"
 }
 
-names=() pids=()
+names=() pids=() groups=()
 start() {  # start NAME COMMAND...
   local name=$1
   shift
   "$@" >"$log_dir/$name.log" 2>&1 &
   names+=("$name")
   pids+=($!)
+  groups+=(0)
   printf '  %-14s pid %-7s log %s\n' "$name" "$!" "$log_dir/$name.log"
+}
+# start_group NAME COMMAND...: as start, in a process group of its own (setsid
+# runs it in place: a background job is no group leader), so that the stop
+# reaches every process the command started, not only its first one.
+start_group() {
+  start "$@"
+  groups[-1]=1
+}
+# signal_entry SIGNAL INDEX: the process of pids[INDEX], or its whole group.
+signal_entry() {
+  if [ "${groups[$2]}" = 1 ]; then
+    kill "-$1" -- "-${pids[$2]}" 2>/dev/null
+  else
+    kill "-$1" "${pids[$2]}" 2>/dev/null
+  fi
 }
 
 mode=$speed
@@ -706,9 +722,9 @@ done
 [ "$ssl_bridge" = 1 ] && start ssl_bridge "$bin_dir/ubersim_ssl_bridge" "${common[@]}" "${bridge_args[@]}" "${seed_args[@]}"
 # Without --sync a team program runs in real time next to the set.
 if [ "$sync" = 0 ]; then
-  [ -z "$team_yellow" ] || start team_yellow sh -c "$(team_program "$team_yellow")"
-  [ -z "$team_blue" ] || start team_blue sh -c "$(team_program "$team_blue")"
-  [ -z "$team_both" ] || start team_both sh -c "$(team_program "$team_both")"
+  [ -z "$team_yellow" ] || start_group team_yellow setsid sh -c "$(team_program "$team_yellow")"
+  [ -z "$team_blue" ] || start_group team_blue setsid sh -c "$(team_program "$team_blue")"
+  [ -z "$team_both" ] || start_group team_both setsid sh -c "$(team_program "$team_both")"
 fi
 [ "$viewer" = 1 ] && start viewer "$bin_dir/ubersim_viewer" "${common[@]}" --port "$viewer_port"
 if [ "$open_viewer" = 1 ]; then
@@ -740,17 +756,17 @@ failed=0
 # Sends SIGTERM to the given indices of pids[], waits up to 2 s, kills what is left.
 stop_indices() {
   local i
-  for i in "$@"; do kill -TERM "${pids[$i]}" 2>/dev/null; done
+  for i in "$@"; do signal_entry TERM "$i"; done
   for _ in $(seq 20); do
     local alive=0
-    for i in "$@"; do kill -0 "${pids[$i]}" 2>/dev/null && alive=1; done
+    for i in "$@"; do signal_entry 0 "$i" && alive=1; done
     [ "$alive" = 0 ] && break
     sleep 0.1
   done
   for i in "$@"; do
-    if kill -0 "${pids[$i]}" 2>/dev/null; then
+    if signal_entry 0 "$i"; then
       echo "launch: ${names[$i]} did not stop within 2 s: killing it" >&2
-      kill -KILL "${pids[$i]}" 2>/dev/null
+      signal_entry KILL "$i"
       failed=1
     fi
   done
@@ -847,8 +863,11 @@ while :; do
   for i in "${!pids[@]}"; do
     [ "${pids[$i]}" = "$finished" ] || continue
     name=${names[$i]}
-    unset 'pids[i]' 'names[i]'
-    pids=("${pids[@]}") names=("${names[@]}")
+    # A group stays listed: what its first process started is stopped with the rest.
+    if [ "${groups[$i]}" = 0 ]; then
+      unset 'pids[i]' 'names[i]' 'groups[i]'
+      pids=("${pids[@]}") names=("${names[@]}") groups=("${groups[@]}")
+    fi
     if [ "$finished" = "$physics_pid" ] && [ "$status" = 0 ] && [ -n "$duration" ]; then
       echo "launch: physics finished its $duration s of sim time: stopping the rest"
     elif [ "$name" = referee ] && [ "$status" = 0 ]; then
