@@ -14,7 +14,8 @@ every wall second while it plays, and asserts:
     counts), and no grSim command was dropped;
   * both teams played: at least 3 robots of each moved 0.5 m or more (in the whole game: in
     its first seconds NeonFC places its robots for the kick-off).
-It prints game seconds per wall second. S is UBERSIM_INTEROP_SECONDS (default 10; 300 by hand).
+It prints game seconds per wall second. S is UBERSIM_INTEROP_SECONDS (default 10; 300 by hand);
+UBERSIM_INTEROP_CHARGE_US sets the charge (default 50; a larger one plays faster and polls less).
 With UBERSIM_INTEROP_RERUN=1 it plays the game twice in deterministic mode (--team-deterministic,
 --seed 3) and also asserts that both recorded the same bytes on every game channel
 (real_program_run.GAME_CHANNELS).
@@ -43,7 +44,8 @@ def team_command(neonfc, config, folder):
 
 
 def play(processes, source_dir, build_dir, neonfc, config_of, seconds, name, log=None):
-    args = ["--referee", "--seed", "3", "--team-charge-us", "50", "--team-yield-after-ms", "10",
+    charge = os.environ.get("UBERSIM_INTEROP_CHARGE_US", "50")
+    args = ["--referee", "--seed", "3", "--team-charge-us", charge, "--team-yield-after-ms", "10",
             "--sync-timeout", "60", *(["--team-deterministic"] if log else [])]
     for colour in COLOURS:
         folder = os.path.join(processes.folder, name, f"neonfc_{colour}")
