@@ -599,6 +599,7 @@ void SslBridge::log_summary() const {
     text += " team group: quiescences=" + std::to_string(teams_->quiescences()) +
             " advances=" + std::to_string(teams_->advances()) +
             " turns=" + std::to_string(teams_->turns()) +
+            " charged pauses=" + std::to_string(teams_->charged_pauses()) +
             " sim time=" + std::to_string(group_time()) + " s";
   }
   const std::uint64_t skipped = vision_out_.loopback_copies_skipped() +

@@ -25,6 +25,10 @@ constexpr std::chrono::milliseconds kLook{200};
 constexpr std::chrono::milliseconds kEndGrace{500};
 // Wall time the group gets, before that, to finish what it does at its sim time.
 constexpr std::chrono::milliseconds kSettle{200};
+// hint_at_polling judges the speed from this much wall time on (the teams'
+// start is slow), and looks again this often.
+constexpr std::chrono::seconds kHintAfter{1};
+constexpr std::chrono::seconds kHintEvery{1};
 
 // The parent of every process of this host (of this pid namespace).
 std::map<pid_t, pid_t> parents_of_all() {
@@ -89,6 +93,8 @@ TeamGroup::~TeamGroup() {
 }
 
 void TeamGroup::start() {
+  started_ = std::chrono::steady_clock::now();
+  next_hint_check_ = started_ + kHintAfter;
   for (std::size_t i = 0; i < options_.commands.size(); ++i) {
     const TeamCommand& command = options_.commands[i];
     const std::string output = options_.output_dir.empty()
@@ -97,6 +103,7 @@ void TeamGroup::start() {
     const pid_t pid = controllers_[i]->spawn({"/bin/sh", "-c", command.command}, output);
     pids_.push_back(pid);
     exit_reported_.push_back(false);
+    polling_hinted_.push_back(false);
     spdlog::info("team {}: started under the time shim (pid {}): {}{}", command.colour(), pid,
                  command.command, output.empty() ? "" : ", output in " + output);
   }
@@ -113,6 +120,12 @@ std::uint64_t TeamGroup::advances() const {
 std::uint64_t TeamGroup::turns() const {
   std::uint64_t sum = 0;
   for (const auto& controller : controllers_) sum += controller->turns();
+  return sum;
+}
+
+std::uint64_t TeamGroup::charged_pauses() const {
+  std::uint64_t sum = 0;
+  for (const auto& controller : controllers_) sum += controller->charged_pauses();
   return sum;
 }
 
@@ -156,6 +169,7 @@ bool TeamGroup::run_to(std::int64_t until_ns, const AtQuiescence& at_quiescence,
     const timeshim::Quiescence q = wait_quiescent(kLook);
     report_problems();
     report_exits("");
+    hint_at_polling();
     if (q.state == timeshim::GroupState::Exited) {
       exited_ = true;
       spdlog::warn("timeshim: every process of the team group has ended");
@@ -217,6 +231,49 @@ void TeamGroup::report_exits(const char* when) {
     spdlog::log(*when == '\0' ? spdlog::level::warn : spdlog::level::info,
                 "team {}: the program exited with status {} at sim time {:.3f} s{}",
                 options_.commands[i].colour(), *status, static_cast<double>(now_ns()) / 1e9, when);
+  }
+}
+
+// A thread that polls pauses once per yield_after of charge: a group that
+// paused at least that often per game second had a thread polling the whole
+// time. When the game then also runs slower than real time, the polling is
+// what the wall time goes to (the default charge of 1 us lets a loop spin a
+// million times per game second), and the user is told which options trade it.
+void TeamGroup::hint_at_polling() {
+  const auto wall_now = std::chrono::steady_clock::now();
+  if (wall_now < next_hint_check_) return;
+  next_hint_check_ = wall_now + kHintEvery;
+  const double game_s = static_cast<double>(now_ns()) / 1e9;
+  const double wall_s = std::chrono::duration<double>(wall_now - started_).count();
+  if (game_s <= 0 || game_s >= wall_s) return;
+  const auto& options = options_.controller;
+  // Only at the defaults: other values are the user's choice already.
+  const timeshim::ControllerOptions defaults;
+  if (options.charge_ns != defaults.charge_ns ||
+      options.yield_after_ns != defaults.yield_after_ns) {
+    return;
+  }
+  const double pauses_per_polling_thread = 1e9 / static_cast<double>(options.yield_after_ns);
+  // A rate of a few pauses says nothing yet.
+  constexpr double kPausesToJudge = 50;
+  if (game_s * pauses_per_polling_thread < kPausesToJudge) return;
+  for (std::size_t i = 0; i < polling_hinted_.size(); ++i) {
+    const double pauses_per_game_s =
+        static_cast<double>(controllers_[i]->charged_pauses()) / game_s;
+    if (polling_hinted_[i] || options.yield_after_ns <= 0 ||
+        pauses_per_game_s < pauses_per_polling_thread) {
+      continue;
+    }
+    polling_hinted_[i] = true;
+    spdlog::warn(
+        "timeshim hint: team {}: threads that poll without blocking paused {:.0f} times per game "
+        "second (about {:.0f} polling the whole time, charged {:g} us a call, pausing every {:g} "
+        "ms of charge) while the game runs at {:.2f} game s per wall s: a larger "
+        "--team-charge-us and --team-yield-after-ms play faster, and the loops then poll less "
+        "often per game second (docs/timeshim.md, \"Team programs that poll\")",
+        options_.commands[i].colour(), pauses_per_game_s,
+        pauses_per_game_s / pauses_per_polling_thread, static_cast<double>(options.charge_ns) / 1e3,
+        static_cast<double>(options.yield_after_ns) / 1e6, game_s / wall_s);
   }
 }
 

@@ -65,8 +65,9 @@ struct GroupRun {
   double wall_s = 0;
   std::int64_t sim_ns = 0;
   std::uint64_t advances = 0;
-  std::uint64_t turns = 0;  // deterministic mode
-  std::uint64_t calls = 0;  // intercepted calls
+  std::uint64_t turns = 0;   // deterministic mode
+  std::uint64_t calls = 0;   // intercepted calls
+  std::uint64_t pauses = 0;  // charged pauses
   std::vector<Problem> problems;
 };
 
@@ -113,6 +114,7 @@ GroupRun run_to_end(Controller& group, pid_t pid, const std::string& output_path
   run.advances = group.advances();
   run.turns = group.turns();
   run.calls = group.intercepted_calls();
+  run.pauses = group.charged_pauses();
   run.output = read_file(output_path);
   run.seen = parse(run.output);
   return run;
@@ -351,6 +353,7 @@ TEST(Timeshim, PollingLoopIsChargedAndEnds) {
   EXPECT_NEAR(value_of(run.seen, "reads"), 1002000, 10);
   EXPECT_NEAR(value_of(run.seen, "end"), 1.0, 1e-5);
   EXPECT_NEAR(static_cast<double>(run.advances), 1000, 2);  // one pause per 1 ms of charge
+  EXPECT_NEAR(static_cast<double>(run.pauses), 1000, 2);    // and the group counted them
 }
 
 TEST(Timeshim, PollingThreadsPauseAtTheSameInstants) {
@@ -364,6 +367,7 @@ TEST(Timeshim, PollingThreadsPauseAtTheSameInstants) {
   // Paused on one grid of 1 ms: about one advance per ms for both (each
   // pausing at its own charge would take about two).
   EXPECT_LT(static_cast<double>(run.advances), 1100);
+  EXPECT_NEAR(static_cast<double>(run.pauses), 2000, 4);  // each thread's own
 }
 
 TEST(Timeshim, UnsupportedBlockingCallIsNamedNotHung) {

@@ -214,6 +214,10 @@ std::uint64_t Controller::intercepted_calls() const {
   return segment_->header().intercepted_calls.load();
 }
 
+std::uint64_t Controller::charged_pauses() const {
+  return segment_->header().charged_pauses.load();
+}
+
 void Controller::advance_to(std::int64_t sim_ns) {
   Header& header = segment_->header();
   if (sim_ns <= header.sim_now_ns.load()) return;

@@ -363,6 +363,7 @@ void charge_call() {
     // of them (not once per thread: each advance costs the controller two
     // looks at every thread).
     const std::int64_t view = view_now();
+    the_segment->charged_pauses.fetch_add(1, std::memory_order_relaxed);
     sleep_until((view + yield_after - 1) / yield_after * yield_after, ShimCall::ChargedYield);
   }
 }

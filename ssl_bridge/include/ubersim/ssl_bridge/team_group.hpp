@@ -76,6 +76,9 @@ class TeamGroup {
   std::uint64_t quiescences() const { return quiescences_; }
   std::uint64_t advances() const;
   std::uint64_t turns() const;  // deterministic mode's turns, of every group
+  // Pauses of threads that polled without blocking, of every group
+  // (timeshim::Controller::charged_pauses).
+  std::uint64_t charged_pauses() const;
   // Which command's program sent from this local UDP port (the order of the
   // commands), or the number of commands when none did: what orders their
   // held commands (held_for_next_frame.hpp). Looked up once per port.
@@ -84,6 +87,9 @@ class TeamGroup {
  private:
   void report_problems();
   void report_exits(const char* when);
+  // Once per command, while the game runs slower than real time because its
+  // threads poll: which options trade that polling for speed.
+  void hint_at_polling();
   // Waits (up to wall_limit) until every group is quiescent; Exited once
   // every group has ended; the earliest next deadline of them all.
   timeshim::Quiescence wait_quiescent(std::chrono::milliseconds wall_limit);
@@ -94,7 +100,10 @@ class TeamGroup {
   std::vector<bool> group_ended_;                                   // per command
   std::map<std::uint16_t, std::size_t> programs_by_port_;           // program_of_port
   std::vector<pid_t> pids_;
-  std::vector<bool> exit_reported_;  // per command: its end was logged
+  std::vector<bool> exit_reported_;   // per command: its end was logged
+  std::vector<bool> polling_hinted_;  // per command: hint_at_polling said it
+  std::chrono::steady_clock::time_point started_;
+  std::chrono::steady_clock::time_point next_hint_check_;
   std::int64_t promised_ns_ = -1;
   bool exited_ = false;
   std::uint64_t quiescences_ = 0;

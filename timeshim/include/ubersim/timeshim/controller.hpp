@@ -115,6 +115,9 @@ class Controller {
   // Exit status of a spawned process once it ended (0..255, 128 + signal).
   std::optional<int> exit_status(pid_t pid) const;
   std::uint64_t intercepted_calls() const;
+  // How often a thread that polled without blocking paused (its charge
+  // reached yield_after_ns): about yield_after_ns apart per such thread.
+  std::uint64_t charged_pauses() const;
   std::uint64_t advances() const { return advances_; }
   // Deterministic mode: turns granted so far.
   std::uint64_t turns() const;

@@ -17,7 +17,7 @@ namespace ubersim::timeshim {
 // The environment variable that names the segment's file.
 inline constexpr const char* kSegmentEnv = "UBERSIM_TIMESHIM_SHM";
 inline constexpr std::uint32_t kMagic = 0x54534d55;  // "UMST"
-inline constexpr std::uint32_t kVersion = 3;
+inline constexpr std::uint32_t kVersion = 4;
 inline constexpr int kMaxThreads = 1024;
 // No deadline: a wait only input can end.
 inline constexpr std::int64_t kNoDeadline = std::numeric_limits<std::int64_t>::max();
@@ -138,6 +138,9 @@ struct Header {
   // the controller sleeps on it.
   std::atomic<std::uint32_t> change_seq{0};
   std::atomic<std::uint64_t> intercepted_calls{0};
+  // Pauses of threads that polled without blocking until their charge
+  // reached yield_after_ns: how much of the group's time goes to polling.
+  std::atomic<std::uint64_t> charged_pauses{0};
   // Deterministic mode: on (1) or off (0), set before any process attaches;
   // the tid of the thread that holds the run token (0: none); the next
   // thread's place in the order (given out by the token holder, so the same
