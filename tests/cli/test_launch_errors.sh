@@ -12,11 +12,8 @@ launch=$source_dir/tools/launch.sh
 work=$(mktemp -d "${TMPDIR:-/tmp}/launch-errors-XXXXXX")
 # In every command line, so that a process it started would be found by it.
 marker="launcherrors$$"
-failures=0
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
+# shellcheck source=../support/script_checks.sh
+source "$source_dir/tests/support/script_checks.sh"
 
 processes_of_this_test() { pgrep -f -- "$marker" || true; }
 
@@ -105,9 +102,4 @@ echo "launch.sh --help without TMPDIR -> exit $status"
 [ "$status" = 0 ] || fail "--help without TMPDIR: exit $status: $(head -c 300 "$work/stderr")"
 grep -q -- "--log-dir DIR" "$work/stdout" || fail "--help without TMPDIR printed no usage"
 
-if [ "$failures" != 0 ]; then
-  echo "$failures failure(s); outputs in $work"
-  exit 1
-fi
-rm -rf "$work"
-echo PASS
+finish "$work"

@@ -9,11 +9,8 @@ source_dir=$1
 launch=$source_dir/tools/launch.sh
 work=$(mktemp -d "${TMPDIR:-/tmp}/launch-team-stop-XXXXXX")
 marker="launchteamstop$$"
-failures=0
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
+# shellcheck source=../support/script_checks.sh
+source "$source_dir/tests/support/script_checks.sh"
 processes_of_this_test() { pgrep -f -- "$marker" || true; }
 # The team: two processes in the background (named after the marker, so that
 # pgrep finds them), and a first process that waits for them.
@@ -53,9 +50,4 @@ left=$(processes_of_this_test)
 [ -z "$left" ] || fail "Ctrl-C: left processes: $(ps -o pid=,args= -p "${left//$'\n'/,}")"
 
 pkill -KILL -f -- "$marker"
-if [ "$failures" != 0 ]; then
-  echo "$failures failure(s); outputs in $work"
-  exit 1
-fi
-rm -rf "$work"
-echo PASS
+finish "$work"

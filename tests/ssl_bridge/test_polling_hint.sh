@@ -13,11 +13,8 @@ if [ ! -x "$python" ]; then
   exit 77
 fi
 work=$(mktemp -d "${TMPDIR:-/tmp}/polling-hint-XXXXXX")
-failures=0
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
+# shellcheck source=../support/script_checks.sh
+source "$source_dir/tests/support/script_checks.sh"
 # Each turn of the loop computes for some microseconds besides its clock read:
 # a million turns per game second are seconds of wall time on any machine.
 cat >"$work/poller.py" <<'PY'
@@ -42,9 +39,4 @@ echo "bridge summary: $pauses"
 # 0.5 s of game at one pause per 1 ms of charge (after the thread's free calls).
 [ "${pauses#*=}" -ge 400 ] 2>/dev/null || fail "the summary counts too few pauses: '$pauses'"
 
-if [ "$failures" != 0 ]; then
-  echo "$failures failure(s); outputs in $work"
-  exit 1
-fi
-rm -rf "$work"
-echo PASS
+finish "$work"

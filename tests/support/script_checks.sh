@@ -1,0 +1,17 @@
+# The checks of a test script, sourced by it: fail WHAT counts a failure and
+# says it; finish WORK ends the test (exit 1 naming WORK, where its outputs
+# stay, after a failure; else WORK removed and PASS).
+failures=0
+fail() {
+  echo "FAIL: $*"
+  failures=$((failures + 1))
+}
+finish() {
+  if [ "$failures" != 0 ]; then
+    echo "$failures failure(s); outputs in $1"
+    exit 1
+  fi
+  rm -rf "$1"
+  echo PASS
+  exit 0
+}
