@@ -799,7 +799,16 @@ stop_all() {
   done
   # What the run lost, said once every process is stopped; the sync verdict last.
   report_losses
+  report_team_cpu
   report_sync_clients
+}
+
+# Team programs under the time shim: the CPU time they and the bridge used
+# per game second (their own computing bounds the game's speed).
+report_team_cpu() {
+  local line
+  line=$(grep -o "team CPU: .*" "$log_dir/ssl_bridge.log" 2>/dev/null | tail -n 1)
+  [ -z "$line" ] || echo "launch: $line"
 }
 
 # The end of a sync run: the radio emulator's verdict on its clients, the

@@ -3,6 +3,7 @@
 #include <dirent.h>
 #include <spdlog/spdlog.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -29,6 +30,24 @@ constexpr std::chrono::milliseconds kSettle{200};
 // start is slow), and looks again this often.
 constexpr std::chrono::seconds kHintAfter{1};
 constexpr std::chrono::seconds kHintEvery{1};
+
+// The CPU time (s) a process used, with its threads and the children it
+// reaped (utime, stime, cutime, cstime of /proc/<pid>/stat); 0 when it is gone.
+double cpu_seconds_of(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  std::getline(stat, line);
+  const auto close = line.rfind(')');
+  if (close == std::string::npos) return 0;
+  // After the comm: state (field 3) ... utime is field 14, cstime field 17.
+  std::istringstream rest(line.substr(close + 1));
+  std::string skipped;
+  for (int field = 3; field < 14; ++field) rest >> skipped;
+  unsigned long long ticks[4] = {};
+  for (auto& value : ticks) rest >> value;
+  return static_cast<double>(ticks[0] + ticks[1] + ticks[2] + ticks[3]) /
+         static_cast<double>(::sysconf(_SC_CLK_TCK));
+}
 
 // The parent of every process of this host (of this pid namespace).
 std::map<pid_t, pid_t> parents_of_all() {
@@ -277,6 +296,33 @@ void TeamGroup::hint_at_polling() {
   }
 }
 
+// What each program cost, from its processes alive now (each with what it
+// reaped): what the game's speed owes to the teams' own computing, beside what
+// the bridge (mostly the time shim's controllers) cost.
+void TeamGroup::report_cpu() const {
+  const double game_s = static_cast<double>(now_ns()) / 1e9;
+  if (game_s <= 0) return;
+  std::vector<double> cpu_s(pids_.size(), 0.0);
+  const std::map<pid_t, pid_t> parent = parents_of_all();
+  for (const auto& [pid, ppid] : parent) {
+    const pid_t root = ancestor_among(pid, parent, pids_);
+    if (root == 0) continue;
+    cpu_s[static_cast<std::size_t>(std::find(pids_.begin(), pids_.end(), root) - pids_.begin())] +=
+        cpu_seconds_of(pid);
+  }
+  rusage own{};
+  ::getrusage(RUSAGE_SELF, &own);
+  const double bridge_s = static_cast<double>(own.ru_utime.tv_sec + own.ru_stime.tv_sec) +
+                          static_cast<double>(own.ru_utime.tv_usec + own.ru_stime.tv_usec) / 1e6;
+  std::string text;
+  for (std::size_t i = 0; i < pids_.size(); ++i) {
+    text += fmt::format("{} {:.1f} s ({:.2f} per game s), ", options_.commands[i].colour(),
+                        cpu_s[i], cpu_s[i] / game_s);
+  }
+  spdlog::info("team CPU: {}the bridge {:.1f} s ({:.2f} per game s), in {:.2f} s of game", text,
+               bridge_s, bridge_s / game_s, game_s);
+}
+
 void TeamGroup::stop() {
   if (exited_) return;
   report_exits("");
@@ -284,6 +330,7 @@ void TeamGroup::stop() {
   // advance woke: let it become quiescent first, so that it ends having done
   // everything up to its sim time (the same output on every run).
   wait_quiescent(kSettle);
+  report_cpu();
   for (pid_t pid : descendants()) ::kill(pid, SIGTERM);
   // Their handlers run in sim time: let it run freely for a moment.
   const auto give_up = std::chrono::steady_clock::now() + kEndGrace;

@@ -3,7 +3,8 @@
 # the default charge (1 us a call, a pause every 1 ms), plays far slower than
 # real time: tools/launch.sh says so on the terminal while the game runs, with
 # the options that trade the polling for speed (docs/timeshim.md, "Team
-# programs that poll"), and the bridge's summary counts the pauses.
+# programs that poll"), the bridge's summary counts the pauses, and at the end
+# launch.sh says how much CPU time the team program used per game second.
 # Usage: test_polling_hint.sh SOURCE_DIR  (UBERSIM_BUILD_DIR: the build)
 set -uo pipefail
 source_dir=$1
@@ -38,5 +39,14 @@ pauses=$(grep -o 'charged pauses=[0-9]*' "$work/logs/ssl_bridge.log" | tail -n 1
 echo "bridge summary: $pauses"
 # 0.5 s of game at one pause per 1 ms of charge (after the thread's free calls).
 [ "${pauses#*=}" -ge 400 ] 2>/dev/null || fail "the summary counts too few pauses: '$pauses'"
+cpu=$(cat "$work/stdout" "$work/stderr" | grep "^launch: team CPU: both " | head -n 1)
+echo "CPU line: $cpu"
+# The loop computes the whole time, and the game ran slower than real time:
+# more than one CPU second per game second.
+if [[ $cpu =~ both\ [0-9.]+\ s\ \(([0-9]+)\.[0-9]+\ per\ game\ s\),\ the\ bridge ]]; then
+  [ "${BASH_REMATCH[1]}" -ge 1 ] || fail "the team used less than 1 CPU s per game s: $cpu"
+else
+  fail "no CPU line for the team and the bridge on the terminal"
+fi
 
 finish "$work"

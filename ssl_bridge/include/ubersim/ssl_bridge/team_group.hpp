@@ -90,6 +90,8 @@ class TeamGroup {
   // Once per command, while the game runs slower than real time because its
   // threads poll: which options trade that polling for speed.
   void hint_at_polling();
+  // The CPU time each command's processes and the bridge used, per game second.
+  void report_cpu() const;
   // Waits (up to wall_limit) until every group is quiescent; Exited once
   // every group has ended; the earliest next deadline of them all.
   timeshim::Quiescence wait_quiescent(std::chrono::milliseconds wall_limit);
