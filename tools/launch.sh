@@ -695,8 +695,7 @@ if [ "$sync" = 1 ] && [ "$radio" = 1 ]; then
   # findings about the team programs (stuck threads, static programs) and
   # its hint when their polling makes the game slow.
   exec {sync_fd}> >(sed -un -e 's/^.*\(sync client \(dropped\|rejoined\): .*\)$/launch: radio: \1/p' \
-    -e 's/^.*\(sync: physics waits .*\)$/launch: physics: \1/p' -e 's/^.*\] \(timeshim: .*\)$/launch: \1/p' \
-    -e 's/^.*\] \(timeshim hint: .*\)$/launch: \1/p' >&2)
+    -e 's/^.*\(sync: physics waits .*\)$/launch: physics: \1/p' -e 's/^.*\] \(timeshim\( hint\)\?: .*\)$/launch: \1/p' >&2)
   sync_filter=$!
   sync_logs=("$log_dir/radio.log" "$log_dir/physics.log")
   [ "$ssl_bridge" = 0 ] || sync_logs+=("$log_dir/ssl_bridge.log")

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <future>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "ubersim/ssl_bridge/socket_owner.hpp"
@@ -31,20 +32,26 @@ constexpr std::chrono::milliseconds kSettle{200};
 constexpr std::chrono::seconds kHintAfter{1};
 constexpr std::chrono::seconds kHintEvery{1};
 
-// The CPU time (s) a process used, with its threads and the children it
-// reaped (utime, stime, cutime, cstime of /proc/<pid>/stat); 0 when it is gone.
-double cpu_seconds_of(pid_t pid) {
+// The fields of /proc/<pid>/stat after the comm (which may hold spaces and
+// parentheses), from the state (field 3) on; nullopt when the process is gone.
+std::optional<std::istringstream> stat_after_comm(pid_t pid) {
   std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
   std::string line;
   std::getline(stat, line);
   const auto close = line.rfind(')');
-  if (close == std::string::npos) return 0;
-  // After the comm: state (field 3) ... utime is field 14, cstime field 17.
-  std::istringstream rest(line.substr(close + 1));
+  if (close == std::string::npos) return std::nullopt;
+  return std::istringstream(line.substr(close + 1));
+}
+
+// The CPU time (s) a process used, with its threads and the children it
+// reaped (utime, stime, cutime, cstime: fields 14 to 17); 0 when it is gone.
+double cpu_seconds_of(pid_t pid) {
+  auto rest = stat_after_comm(pid);
+  if (!rest) return 0;
   std::string skipped;
-  for (int field = 3; field < 14; ++field) rest >> skipped;
+  for (int field = 3; field < 14; ++field) *rest >> skipped;
   unsigned long long ticks[4] = {};
-  for (auto& value : ticks) rest >> value;
+  for (auto& value : ticks) *rest >> value;
   return static_cast<double>(ticks[0] + ticks[1] + ticks[2] + ticks[3]) /
          static_cast<double>(::sysconf(_SC_CLK_TCK));
 }
@@ -57,39 +64,38 @@ std::map<pid_t, pid_t> parents_of_all() {
   while (const dirent* entry = ::readdir(proc)) {
     const pid_t pid = static_cast<pid_t>(std::atoi(entry->d_name));
     if (pid <= 0) continue;
-    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-    std::string line;
-    std::getline(stat, line);
-    const auto close = line.rfind(')');
-    if (close == std::string::npos) continue;
-    std::istringstream rest(line.substr(close + 1));
+    auto rest = stat_after_comm(pid);
+    if (!rest) continue;
     char state = 0;
     pid_t ppid = 0;
-    rest >> state >> ppid;
+    *rest >> state >> ppid;
     parent[pid] = ppid;
   }
   ::closedir(proc);
   return parent;
 }
 
-// The first of `ancestors` that pid is or descends from, else 0.
-pid_t ancestor_among(pid_t pid, const std::map<pid_t, pid_t>& parent,
-                     const std::vector<pid_t>& ancestors) {
+// The index in `ancestors` of the first that pid is or descends from, else
+// ancestors.size().
+std::size_t ancestor_index(pid_t pid, const std::map<pid_t, pid_t>& parent,
+                           const std::vector<pid_t>& ancestors) {
   for (pid_t up = pid; up > 1;) {
-    if (std::find(ancestors.begin(), ancestors.end(), up) != ancestors.end()) return up;
+    const auto at = std::find(ancestors.begin(), ancestors.end(), up);
+    if (at != ancestors.end()) return static_cast<std::size_t>(at - ancestors.begin());
     const auto found = parent.find(up);
     up = found == parent.end() ? 0 : found->second;
   }
-  return 0;
+  return ancestors.size();
 }
 
 // Every process below this one (the bridge is their subreaper, so a team's
 // orphaned child is among them too).
 std::vector<pid_t> descendants() {
   const std::map<pid_t, pid_t> parent = parents_of_all();
+  const std::vector<pid_t> self{::getpid()};
   std::vector<pid_t> below;
   for (const auto& [pid, ppid] : parent) {
-    if (pid != ::getpid() && ancestor_among(pid, parent, {::getpid()}) != 0) below.push_back(pid);
+    if (pid != self[0] && ancestor_index(pid, parent, self) == 0) below.push_back(pid);
   }
   return below;
 }
@@ -219,10 +225,9 @@ std::size_t TeamGroup::program_of_port(std::uint16_t port) {
   if (!inodes.empty()) {
     const std::map<pid_t, pid_t> parent = parents_of_all();
     for (const auto& [pid, ppid] : parent) {
-      const pid_t root = ancestor_among(pid, parent, pids_);
-      if (root == 0 || !holds_socket(pid, inodes)) continue;
-      program =
-          static_cast<std::size_t>(std::find(pids_.begin(), pids_.end(), root) - pids_.begin());
+      const std::size_t owner = ancestor_index(pid, parent, pids_);
+      if (owner == pids_.size() || !holds_socket(pid, inodes)) continue;
+      program = owner;
       break;
     }
   }
@@ -279,10 +284,7 @@ void TeamGroup::hint_at_polling() {
   for (std::size_t i = 0; i < polling_hinted_.size(); ++i) {
     const double pauses_per_game_s =
         static_cast<double>(controllers_[i]->charged_pauses()) / game_s;
-    if (polling_hinted_[i] || options.yield_after_ns <= 0 ||
-        pauses_per_game_s < pauses_per_polling_thread) {
-      continue;
-    }
+    if (polling_hinted_[i] || pauses_per_game_s < pauses_per_polling_thread) continue;
     polling_hinted_[i] = true;
     spdlog::warn(
         "timeshim hint: team {}: threads that poll without blocking paused {:.0f} times per game "
@@ -305,10 +307,8 @@ void TeamGroup::report_cpu() const {
   std::vector<double> cpu_s(pids_.size(), 0.0);
   const std::map<pid_t, pid_t> parent = parents_of_all();
   for (const auto& [pid, ppid] : parent) {
-    const pid_t root = ancestor_among(pid, parent, pids_);
-    if (root == 0) continue;
-    cpu_s[static_cast<std::size_t>(std::find(pids_.begin(), pids_.end(), root) - pids_.begin())] +=
-        cpu_seconds_of(pid);
+    const std::size_t owner = ancestor_index(pid, parent, pids_);
+    if (owner < pids_.size()) cpu_s[owner] += cpu_seconds_of(pid);
   }
   rusage own{};
   ::getrusage(RUSAGE_SELF, &own);
