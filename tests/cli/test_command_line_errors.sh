@@ -9,11 +9,8 @@
 set -uo pipefail
 source_dir=$1
 shift
-failures=0
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
+# shellcheck source=../support/script_checks.sh
+source "$source_dir/tests/support/script_checks.sh"
 
 # A bad command line for each program, and what its error line must hold.
 declare -A bad_args expected
@@ -124,9 +121,4 @@ if [ -n "$physics" ]; then
     fail "physics with GRAVTY: the error names neither the line nor GRAVITY"
 fi
 
-if [ "$failures" != 0 ]; then
-  echo "$failures failure(s); outputs in $out"
-  exit 1
-fi
-rm -rf "$out"
-echo PASS
+finish "$out"

@@ -15,7 +15,6 @@ marker="launcherrors$$"
 # shellcheck source=../support/script_checks.sh
 source "$source_dir/tests/support/script_checks.sh"
 
-processes_of_this_test() { pgrep -f -- "$marker" || true; }
 
 # expect_usage_error WHAT ENV... -- ARGS...: exit 2, one line on stderr holding WHAT,
 # nothing on stdout, no log folder, no process.

@@ -11,7 +11,6 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/launch-team-stop-XXXXXX")
 marker="launchteamstop$$"
 # shellcheck source=../support/script_checks.sh
 source "$source_dir/tests/support/script_checks.sh"
-processes_of_this_test() { pgrep -f -- "$marker" || true; }
 # The team: two processes in the background (named after the marker, so that
 # pgrep finds them), and a first process that waits for them.
 team="bash -c 'exec -a ${marker}-first-child sleep 300' & bash -c 'exec -a ${marker}-second-child sleep 300' & wait"

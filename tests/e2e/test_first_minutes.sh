@@ -15,11 +15,8 @@ source_dir=$1
 work=$(mktemp -d "${TMPDIR:-/tmp}/first-minutes-XXXXXX")
 export TMUX_TMPDIR=$work
 marker="firstminutes$$"
-failures=0
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
+# shellcheck source=../support/script_checks.sh
+source "$source_dir/tests/support/script_checks.sh"
 command -v tmux >/dev/null || { echo "test_first_minutes: tmux is not installed (tools/install-deps.sh installs it)"; exit 1; }
 terminal() { tmux -L "terminals$$" "$@"; }
 # in_terminal NAME COMMAND: runs COMMAND in a terminal of its own, then prints its exit status.
@@ -35,7 +32,6 @@ wait_for() {
   screen_of "$1" | tail -n 30
   return 1
 }
-processes_of_this_test() { pgrep -f -- "$marker" | grep -v "^$$\$" || true; }
 port_in_use() { (exec 3<>"/dev/tcp/127.0.0.1/$1") 2>/dev/null; }
 cleanup() {
   terminal kill-server 2>/dev/null

@@ -22,12 +22,8 @@ port=${url#*://*:}
 port=${port%%\?*}
 other_url=${url/:$port/:$((port + 1))}
 marker="launchssl$$"
-failures=0
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
-processes_of_this_test() { pgrep -f -- "$marker" | grep -v "^$$\$" || true; }
+# shellcheck source=../support/script_checks.sh
+source "$source_dir/tests/support/script_checks.sh"
 launcher=""
 cleanup() {
   [ -z "$launcher" ] || kill -TERM "$launcher" 2>/dev/null
@@ -156,9 +152,4 @@ status=$?
 launcher=""
 [ "$status" = 143 ] || fail "launch.sh --ssl --lan: exit $status after SIGTERM: $(cat "$work/launch3.err")"
 
-if [ "$failures" != 0 ]; then
-  echo "$failures failure(s); outputs in $work"
-  exit 1
-fi
-rm -rf "$work"
-echo PASS
+finish "$work"

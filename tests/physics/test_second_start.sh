@@ -20,11 +20,8 @@ url=${LCM_DEFAULT_URL:?run through tests/run_isolated.sh}
 port=${url#*://*:}
 port=${port%%\?*}
 other_url=${url/:$port/:$((port + 1))}
-failures=0
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
+# shellcheck source=../support/script_checks.sh
+source "$source_dir/tests/support/script_checks.sh"
 started=()
 cleanup() {
   local pid
@@ -159,9 +156,4 @@ for run in a b; do
   [ "$status" = 143 ] || fail "the race's winner: exit $status after SIGTERM, expected 143"
 done
 
-if [ "$failures" != 0 ]; then
-  echo "$failures failure(s); outputs in $work"
-  exit 1
-fi
-rm -rf "$work"
-echo PASS
+finish "$work"

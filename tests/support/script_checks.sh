@@ -1,6 +1,6 @@
 # The checks of a test script, sourced by it: fail WHAT counts a failure and
 # says it; finish WORK ends the test (exit 1 naming WORK, where its outputs
-# stay, after a failure; else WORK removed and PASS).
+# stay, after a failure; else WORK removed and PASS); processes_of_this_test.
 failures=0
 fail() {
   echo "FAIL: $*"
@@ -15,3 +15,6 @@ finish() {
   echo PASS
   exit 0
 }
+# The processes whose command line holds the script's $marker (every process
+# it started has it), but not the script itself.
+processes_of_this_test() { pgrep -f -- "$marker" | grep -v "^$$\$" || true; }
