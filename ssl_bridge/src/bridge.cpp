@@ -600,6 +600,8 @@ void SslBridge::log_summary() const {
             " advances=" + std::to_string(teams_->advances()) +
             " turns=" + std::to_string(teams_->turns()) +
             " charged pauses=" + std::to_string(teams_->charged_pauses()) +
+            " looks full=" + std::to_string(teams_->full_looks()) +
+            " light=" + std::to_string(teams_->light_looks()) +
             " sim time=" + std::to_string(group_time()) + " s";
   }
   const std::uint64_t skipped = vision_out_.loopback_copies_skipped() +

@@ -142,16 +142,27 @@ std::uint64_t TeamGroup::advances() const {
   return controllers_.front()->advances();
 }
 
-std::uint64_t TeamGroup::turns() const {
+std::uint64_t TeamGroup::sum_over_groups(std::uint64_t (timeshim::Controller::*count)()
+                                             const) const {
   std::uint64_t sum = 0;
-  for (const auto& controller : controllers_) sum += controller->turns();
+  for (const auto& controller : controllers_) sum += ((*controller).*count)();
   return sum;
 }
 
+std::uint64_t TeamGroup::turns() const {
+  return sum_over_groups(&timeshim::Controller::turns);
+}
+
 std::uint64_t TeamGroup::charged_pauses() const {
-  std::uint64_t sum = 0;
-  for (const auto& controller : controllers_) sum += controller->charged_pauses();
-  return sum;
+  return sum_over_groups(&timeshim::Controller::charged_pauses);
+}
+
+std::uint64_t TeamGroup::full_looks() const {
+  return sum_over_groups(&timeshim::Controller::full_looks);
+}
+
+std::uint64_t TeamGroup::light_looks() const {
+  return sum_over_groups(&timeshim::Controller::light_looks);
 }
 
 // Side by side: each group's controller looks at its group (and in

@@ -68,6 +68,8 @@ struct GroupRun {
   std::uint64_t turns = 0;   // deterministic mode
   std::uint64_t calls = 0;   // intercepted calls
   std::uint64_t pauses = 0;  // charged pauses
+  std::uint64_t full_looks = 0;
+  std::uint64_t light_looks = 0;  // deterministic mode, after a turn
   std::vector<Problem> problems;
 };
 
@@ -115,6 +117,8 @@ GroupRun run_to_end(Controller& group, pid_t pid, const std::string& output_path
   run.turns = group.turns();
   run.calls = group.intercepted_calls();
   run.pauses = group.charged_pauses();
+  run.full_looks = group.full_looks();
+  run.light_looks = group.light_looks();
   run.output = read_file(output_path);
   run.seen = parse(run.output);
   return run;
@@ -532,6 +536,11 @@ TEST(Timeshim, DeterministicModeRunsThreadsOfProcessesInAFixedOrder) {
   // Not only what it wrote: the same turns, and the same calls in them.
   EXPECT_EQ(first.turns, second.turns);
   EXPECT_EQ(first.calls, second.calls);
+  // Looks after turns were light ones (light_look.cpp), in numbers that
+  // depend on the machine (a thread created anywhere makes the next look a
+  // full one), and the order stayed the same.
+  EXPECT_GT(first.light_looks, 0U);
+  EXPECT_GT(second.light_looks, 0U);
   EXPECT_TRUE(blocking_problems(second).empty()) << all_text(second.problems);
 }
 
@@ -555,6 +564,11 @@ TEST(Timeshim, DeterministicModeRunsPythonThreadsAndAForkedChildInAFixedOrder) {
   EXPECT_EQ(first.output, second.output);
   EXPECT_EQ(first.turns, second.turns);
   EXPECT_EQ(first.calls, second.calls);
+  // Looks after turns were light ones (light_look.cpp), in numbers that
+  // depend on the machine (a thread created anywhere makes the next look a
+  // full one), and the order stayed the same.
+  EXPECT_GT(first.light_looks, 0U);
+  EXPECT_GT(second.light_looks, 0U);
 }
 
 TEST(Timeshim, DeterministicModeGivesPythonTheSameHashesAndRandomBytesOnEveryRun) {

@@ -121,6 +121,18 @@ std::optional<SyscallSample> ProcFiles::sample_syscall(pid_t pid, pid_t tid) {
   return parse_syscall(*text);
 }
 
+std::optional<long> ProcFiles::last_pid() {
+  if (!loadavg_.valid()) loadavg_ = UniqueFd(::open("/proc/loadavg", O_RDONLY | O_CLOEXEC));
+  const auto text = loadavg_.valid() ? read_from_start(loadavg_.get()) : std::nullopt;
+  // "0.20 0.18 0.12 1/80 11206": the last field.
+  const auto space = text ? text->find_last_of(' ') : std::string::npos;
+  if (space == std::string::npos) return std::nullopt;
+  char* end = nullptr;
+  const long pid = std::strtol(text->c_str() + space + 1, &end, 10);
+  if (end == text->c_str() + space + 1) return std::nullopt;
+  return pid;
+}
+
 void ProcFiles::keep_only(const std::set<pid_t>& pids, const std::set<pid_t>& tids) {
   for (auto it = threads_.begin(); it != threads_.end();) {
     const bool kept = pids.count(it->first.first) != 0 && tids.count(it->first.second) != 0;

@@ -62,6 +62,9 @@ class ProcFiles {
   std::optional<SyscallSample> sample_syscall(pid_t pid, pid_t tid);
   // Only the kernel state (R, S, ...) of the thread; nullopt when it is gone.
   std::optional<char> state_of(pid_t pid, pid_t tid);
+  // The pid the kernel gave out last, to a thread or process of any program
+  // (/proc/loadavg): while it stays the same, no thread was created.
+  std::optional<long> last_pid();
   // A new look: threads_of lists each process's threads again (within a look,
   // once: the group's discovery and the look itself both ask).
   void new_look() { listed_.clear(); }
@@ -85,6 +88,7 @@ class ProcFiles {
     std::vector<pid_t> children;
   };
   std::map<pid_t, ChildrenSeen> children_;
+  UniqueFd loadavg_;
 };
 
 }  // namespace ubersim::timeshim

@@ -10,45 +10,13 @@
 #include <set>
 #include <thread>
 
+#include "look.hpp"
 #include "proc_files.hpp"
 #include "proc_scan.hpp"
-#include "ubersim/timeshim/controller.hpp"
 
 namespace ubersim::timeshim {
 
-struct Controller::Scan {
-  bool any_process = false;
-  std::optional<std::pair<pid_t, pid_t>> running;  // pid, tid of a thread seen running
-  bool all_waiting = true;
-  bool owed_wake = false;  // a shim wait whose deadline passed still sleeps
-  // Every thread read has a slot and sleeps in a shim wait (no kernel wait
-  // the shim does not know): none can run the program's code unannounced.
-  bool only_shim_waits = true;
-  std::int64_t next_deadline = kNoDeadline;
-  std::map<pid_t, std::uint64_t> run_counts;  // by tid (threads read from /proc)
-};
-
-struct SlotView {
-  ThreadState state;
-  std::int64_t deadline_ns;
-  ShimCall call;
-};
-
 namespace {
-
-std::map<pid_t, SlotView> slots_by_tid(Header& header) {
-  std::map<pid_t, SlotView> result;
-  for (auto& slot : used_slots(header)) {
-    if (slot.claim.load() == 0 ||
-        slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer)) {
-      continue;
-    }
-    result[slot.tid.load()] =
-        SlotView{static_cast<ThreadState>(slot.state.load()), slot.deadline_ns.load(),
-                 static_cast<ShimCall>(slot.call.load())};
-  }
-  return result;
-}
 
 std::string describe_kernel_wait(pid_t pid, pid_t tid, const std::optional<SyscallSample>& call) {
   std::string text = "is blocked in ";
@@ -80,14 +48,6 @@ std::string describe_state(char state) {
   }
 }
 
-// Deterministic mode's waits that only the controller (a turn) or the token
-// holder (a peer's unlock, signal or post, which says so in the segment) can
-// end: the thread runs nothing of the program until it gets the token, so
-// what the kernel says of it does not matter, and a look need not read it.
-bool ends_only_in_turn(ThreadState state) {
-  return state == ThreadState::WantToken || state == ThreadState::DetBlocked;
-}
-
 void free_dead_slots(Header& header, const std::set<pid_t>& alive) {
   for (auto& slot : used_slots(header)) {
     if (slot.claim.load() == 0) continue;
@@ -107,8 +67,22 @@ void free_dead_slots(Header& header, const std::set<pid_t>& alive) {
   }
 }
 
-// Armed timers of the group's processes: deadlines it can wake at, or, when
-// due and not yet fired, a wake the process's helper still owes.
+}  // namespace
+
+std::map<pid_t, SlotView> slots_by_tid(Header& header) {
+  std::map<pid_t, SlotView> result;
+  for (auto& slot : used_slots(header)) {
+    if (slot.claim.load() == 0 ||
+        slot.state.load() == static_cast<std::uint32_t>(ThreadState::Timer)) {
+      continue;
+    }
+    result[slot.tid.load()] =
+        SlotView{static_cast<ThreadState>(slot.state.load()), slot.deadline_ns.load(),
+                 static_cast<ShimCall>(slot.call.load())};
+  }
+  return result;
+}
+
 void scan_timers(Header& header, const std::set<pid_t>& processes, std::int64_t now,
                  bool* owed_wake, std::int64_t* next_deadline) {
   for (auto& slot : used_slots(header)) {
@@ -125,8 +99,6 @@ void scan_timers(Header& header, const std::set<pid_t>& processes, std::int64_t 
     }
   }
 }
-
-}  // namespace
 
 // Where a walk over the group starts: the processes it started, and every
 // process that holds a slot (a shimmed process its parent left, for one).
@@ -203,6 +175,11 @@ Controller::Scan Controller::scan() {
   reap(false);
   proc_->new_look();
   Header& segment = header();
+  // Before the walk: a thread created during it changes them, and the next
+  // look is full again (light_look.cpp).
+  light_.last_pid = proc_->last_pid();
+  light_.signals_sent = segment.signals_sent.load();
+  light_.full_at = std::chrono::steady_clock::now();
   const Slots slots = slots_by_tid(segment);
   const std::int64_t now = segment.sim_now_ns.load();
   Scan result;
@@ -228,6 +205,7 @@ Controller::Scan Controller::scan() {
   for (auto it = suspects_.begin(); it != suspects_.end();) {
     it = alive.count(it->first) != 0 ? std::next(it) : suspects_.erase(it);
   }
+  remember_full_look(result);
   return result;
 }
 
@@ -254,6 +232,7 @@ std::optional<RunCounts> Controller::look_at_process(pid_t pid, const Slots& slo
       // or from its deadline (a timed lock, condition or semaphore wait).
       result.any_process = true;
       alive.insert(tid);
+      result.threads.emplace_back(pid, tid);
       counts[tid] = kNotRead;
       suspects_.erase(tid);
       if (slot->second.state == ThreadState::WantToken) continue;
@@ -272,6 +251,7 @@ std::optional<RunCounts> Controller::look_at_process(pid_t pid, const Slots& slo
     }
     result.any_process = true;
     alive.insert(tid);
+    result.threads.emplace_back(pid, tid);
     result.run_counts[tid] = sample->run_count;
     counts[tid] = sample->run_count;
     if (sample->state != 'S') all_sleep = false;
@@ -357,6 +337,7 @@ bool Controller::quiet_at_one_instant(const Scan& look, std::uint32_t seq, bool 
     // read, never skipped, so that "no holder" is what the look saw.)
     return header().change_seq.load() == seq && header().token_tid.load() == 0;
   }
+  if (look.light) return false;  // no run counts: full looks decide
   const Scan second = scan();
   return second.all_waiting && second.run_counts == look.run_counts &&
          header().change_seq.load() == seq;
@@ -395,18 +376,23 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
       continue;
     }
     const bool between_turns = options_.deterministic && segment.token_tid.load() == 0;
-    const Scan look = scan();
+    std::optional<Scan> light = between_turns ? light_scan() : std::nullopt;
+    const Scan look = light ? std::move(*light) : scan();
     running = look.running;
     if (!look.any_process) {
       reap(true);  // what is left of the group are zombies
       return Quiescence{GroupState::Exited, kNoDeadline};
     }
     if (look.owed_wake) wake_due();
+    // A thread in a wait the shim does not know: two full looks tell.
+    if (look.light && look.all_waiting && !look.only_shim_waits) continue;
     if (look.all_waiting && quiet_at_one_instant(look, seq, between_turns)) {
       // Deterministic mode: quiescent only when nobody wants to run.
       if (options_.deterministic) {
         if (auto holder = give_turn()) {
           running = holder;  // it runs now: looked at alone until it stops
+          light_.holder = holder;
+          light_.allowed = true;
           backoff_ns = kFirstBackoffNs;
           continue;
         }

@@ -230,6 +230,16 @@ auto handing_over(Call&& call) {
   return result;
 }
 
+// After a kill, killpg, sigqueue or pthread_kill that returned `result`:
+// a signal sent (not the probe signal 0) is counted, and the sender's turn
+// ends.
+int after_signal_sent(int result, int signal_number) {
+  if (result != 0 || signal_number == 0) return result;
+  if (Header* segment = shim::segment(); segment != nullptr) segment->signals_sent.fetch_add(1);
+  handing_over([] { return 0; });
+  return result;
+}
+
 struct ThreadStart {
   void* (*routine)(void*);
   void* argument;
@@ -380,19 +390,30 @@ __attribute__((visibility("default"))) int sigwait(const sigset_t* set, int* sig
 // A signal takes effect at once on another core: the sender gives up its
 // turn, so that by the next turn the signal has been handled, or its target
 // has ended (and what ends with it, a pipe's last writer, shows), as on
-// every run.
+// every run. The segment counts it: the controller's next look reads every
+// thread (a signal may wake one that a light look would not read).
 __attribute__((visibility("default"))) int kill(pid_t pid, int signal_number) noexcept {
   static const auto next = shim::next_symbol<int (*)(pid_t, int)>("kill");
-  const int result = next(pid, signal_number);
-  if (result == 0 && signal_number != 0) handing_over([] { return 0; });
-  return result;
+  return after_signal_sent(next(pid, signal_number), signal_number);
+}
+
+__attribute__((visibility("default"))) int killpg(pid_t group, int signal_number) noexcept {
+  static const auto next = shim::next_symbol<int (*)(pid_t, int)>("killpg");
+  return after_signal_sent(next(group, signal_number), signal_number);
+}
+
+__attribute__((visibility("default"))) int sigqueue(pid_t pid, int signal_number,
+                                                    const sigval value) noexcept {
+  static const auto next = shim::next_symbol<int (*)(pid_t, int, const sigval)>("sigqueue");
+  return after_signal_sent(next(pid, signal_number, value), signal_number);
 }
 
 __attribute__((visibility("default"))) int pthread_kill(pthread_t thread,
                                                         int signal_number) noexcept {
   static const auto next = shim::next_symbol<int (*)(pthread_t, int)>("pthread_kill");
   const int result = next(thread, signal_number);
-  if (result == 0 && signal_number != 0) handing_over([] { return 0; });
+  // pthread_kill returns an error number, 0 when sent.
+  after_signal_sent(result == 0 ? 0 : -1, signal_number);
   return result;
 }
 

@@ -148,6 +148,7 @@ void fire_posix_timer(ThreadSlot& slot, std::uint64_t expirations) {
       info.si_uid = ::getuid();
       info.si_value = value_of(slot);
       ::syscall(SYS_rt_tgsigqueueinfo, ::getpid(), slot.timer_tid.load(), signal_number, &info);
+      shim::segment()->signals_sent.fetch_add(1);  // as sigqueue above counts it (det_sync.cpp)
       break;
     }
     case SIGEV_THREAD: {

@@ -79,12 +79,18 @@ class TeamGroup {
   // Pauses of threads that polled without blocking, of every group
   // (timeshim::Controller::charged_pauses).
   std::uint64_t charged_pauses() const;
+  // The controllers' looks at their groups, full and light, of every group
+  // (timeshim::Controller::full_looks).
+  std::uint64_t full_looks() const;
+  std::uint64_t light_looks() const;
   // Which command's program sent from this local UDP port (the order of the
   // commands), or the number of commands when none did: what orders their
   // held commands (held_for_next_frame.hpp). Looked up once per port.
   std::size_t program_of_port(std::uint16_t port);
 
  private:
+  // The sum of what `count` says of each group's controller.
+  std::uint64_t sum_over_groups(std::uint64_t (timeshim::Controller::*count)() const) const;
   void report_problems();
   void report_exits(const char* when);
   // Once per command, while the game runs slower than real time because its

@@ -121,10 +121,18 @@ class Controller {
   std::uint64_t advances() const { return advances_; }
   // Deterministic mode: turns granted so far.
   std::uint64_t turns() const;
+  // Looks at the group so far: full ones (every thread read) and light ones
+  // (deterministic mode, after a turn: only what the turn can have changed).
+  std::uint64_t full_looks() const { return light_.full_looks; }
+  std::uint64_t light_looks() const { return light_.light_looks; }
 
  private:
   struct Scan;
-  Scan scan();                              // one look at every thread of the group
+  Scan scan();  // one look at every thread of the group
+  // Deterministic mode, after a turn: a light look (light_look.cpp), or
+  // nullopt when what the turn did needs a full one.
+  std::optional<Scan> light_scan();
+  void remember_full_look(const Scan& look);
   using Slots = std::map<pid_t, SlotView>;  // by tid
   std::vector<pid_t> group_roots();
   std::optional<std::map<pid_t, std::uint64_t>> look_at_process(pid_t pid, const Slots& slots,
@@ -165,6 +173,19 @@ class Controller {
   std::map<pid_t, std::chrono::steady_clock::time_point> next_exe_look_;
   std::vector<Problem> problems_;
   std::uint64_t advances_ = 0;
+  // What a light look relies on (light_look.cpp).
+  struct LightLooks {
+    bool allowed = false;  // the next look follows a turn given after a quiet look
+    std::optional<std::pair<pid_t, pid_t>> holder;  // that turn's thread
+    // At the last full look: the group's threads, the host's last pid, the
+    // group's signals sent, and when.
+    std::vector<std::pair<pid_t, pid_t>> threads;
+    std::optional<long> last_pid;
+    std::uint64_t signals_sent = 0;
+    std::chrono::steady_clock::time_point full_at;
+    std::uint64_t full_looks = 0;
+    std::uint64_t light_looks = 0;
+  } light_;
 };
 
 // The shim library next to the running program: <dir of /proc/self/exe>/../lib.

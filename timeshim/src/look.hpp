@@ -1,0 +1,53 @@
+#pragma once
+// What one look at a group finds (quiescence.cpp, light_look.cpp), and the
+// segment's views that both kinds of look use.
+#include <sys/types.h>
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "ubersim/timeshim/controller.hpp"
+
+namespace ubersim::timeshim {
+
+struct Controller::Scan {
+  bool any_process = false;
+  std::optional<std::pair<pid_t, pid_t>> running;  // pid, tid of a thread seen running
+  bool all_waiting = true;
+  bool owed_wake = false;  // a shim wait whose deadline passed still sleeps
+  // Every thread read has a slot and sleeps in a shim wait (no kernel wait
+  // the shim does not know): none can run the program's code unannounced.
+  bool only_shim_waits = true;
+  std::int64_t next_deadline = kNoDeadline;
+  std::map<pid_t, std::uint64_t> run_counts;  // by tid (threads read from /proc)
+  // Every live thread of the group (pid, tid), read or not.
+  std::vector<std::pair<pid_t, pid_t>> threads;
+  bool light = false;  // a light look (light_look.cpp): run_counts is empty
+};
+
+struct SlotView {
+  ThreadState state;
+  std::int64_t deadline_ns;
+  ShimCall call;
+};
+
+// Deterministic mode's waits that only the controller (a turn) or the token
+// holder (a peer's unlock, signal or post, which says so in the segment) can
+// end: the thread runs nothing of the program until it gets the token, so
+// what the kernel says of it does not matter, and a look need not read it.
+inline bool ends_only_in_turn(ThreadState state) {
+  return state == ThreadState::WantToken || state == ThreadState::DetBlocked;
+}
+
+// The claimed thread slots of the segment (not timers), by tid.
+std::map<pid_t, SlotView> slots_by_tid(Header& header);
+// Armed timers of `processes`: deadlines the group can wake at, or, when due
+// and not yet fired, a wake a process's helper still owes.
+void scan_timers(Header& header, const std::set<pid_t>& processes, std::int64_t now,
+                 bool* owed_wake, std::int64_t* next_deadline);
+
+}  // namespace ubersim::timeshim
