@@ -45,6 +45,20 @@ void judge_unread(const SlotView& slot, std::int64_t now, bool* owed_wake,
 
 }  // namespace
 
+bool Controller::turn_goes_on(const std::optional<std::pair<pid_t, pid_t>>& running) {
+  return options_.deterministic && running && header().token_tid.load() == running->second;
+}
+
+bool Controller::turn_ended_settled(const std::optional<std::pair<pid_t, pid_t>>& running) {
+  if (!options_.deterministic || !running || header().token_tid.load() != 0) return false;
+  for (auto& slot : used_slots(header())) {
+    if (slot.claim.load() == 0 || slot.tid.load() != running->second) continue;
+    const auto state = static_cast<ThreadState>(slot.state.load());
+    if (state != ThreadState::Timer) return ends_without_input(state);
+  }
+  return false;
+}
+
 void Controller::remember_full_look(const Scan& look) {
   light_.threads = look.threads;
   ++light_.full_looks;
@@ -66,22 +80,23 @@ std::optional<Controller::Scan> Controller::light_scan() {
   Scan result;
   result.light = true;
   std::set<pid_t> processes;
-  bool holder_read = false;
+  bool holder_known = false;
   for (const auto& [pid, tid] : light_.threads) {
     processes.insert(pid);
     result.threads.emplace_back(pid, tid);
     const auto found = slots.find(tid);
     const SlotView* slot = found != slots.end() ? &found->second : nullptr;
-    if (tid != holder && slot != nullptr && ends_without_input(slot->state)) {
+    holder_known = holder_known || tid == holder;
+    // The turn's thread too: it sleeps, or runs only the shim's code now.
+    if (slot != nullptr && ends_without_input(slot->state)) {
       judge_unread(*slot, now, &result.owed_wake, &result.next_deadline);
       continue;
     }
-    holder_read = holder_read || tid == holder;
     const auto state = proc_->state_of(pid, tid);
     if (!state || *state == 'Z' || *state == 'X') return std::nullopt;  // it ends
     judge_thread(ThreadSample{pid, tid, *state, 0}, slot, now, result);
   }
-  if (!holder_read) return std::nullopt;  // a thread the last full look did not see
+  if (!holder_known) return std::nullopt;  // a thread the last full look did not see
   result.any_process = true;
   scan_timers(segment, processes, now, &result.owed_wake, &result.next_deadline);
   if (result.owed_wake) result.all_waiting = false;

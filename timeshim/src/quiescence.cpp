@@ -362,10 +362,27 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
   const auto give_up = std::chrono::steady_clock::now() + wall_limit;
   constexpr long kFirstBackoffNs = 20000;
   constexpr long kLongestBackoffNs = 5000000;
+  // Deterministic mode: how long the controller first waits for a turn to
+  // end before it reads the thread (its end is said in the segment; the
+  // read is for a thread that blocks or ends holding the token).
+  constexpr long kFirstTurnWaitNs = 500000;
   long backoff_ns = kFirstBackoffNs;
+  long turn_wait_ns = kFirstTurnWaitNs;
   std::optional<std::pair<pid_t, pid_t>> running;
   for (;;) {
     const std::uint32_t seq = segment.change_seq.load();
+    if (turn_goes_on(running)) {
+      if (std::chrono::steady_clock::now() >= give_up)
+        return Quiescence{GroupState::Busy, kNoDeadline};
+      if (futex_wait(segment.change_seq, seq, turn_wait_ns) == 0 ||
+          segment.change_seq.load() != seq) {
+        continue;
+      }
+      turn_wait_ns = std::min(turn_wait_ns * 2, kLongestBackoffNs);
+      if (still_running(running)) continue;
+      // It sleeps holding the token, or ended: a full look (and give_turn) tells.
+    }
+    if (turn_ended_settled(running)) running.reset();
     // A full look at least every kLongestBackoffNs (owed wakes, new threads).
     if (backoff_ns < kLongestBackoffNs && still_running(running)) {
       if (std::chrono::steady_clock::now() >= give_up)
@@ -394,6 +411,7 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
           light_.holder = holder;
           light_.allowed = true;
           backoff_ns = kFirstBackoffNs;
+          turn_wait_ns = kFirstTurnWaitNs;
           continue;
         }
       }

@@ -133,6 +133,11 @@ class Controller {
   // nullopt when what the turn did needs a full one.
   std::optional<Scan> light_scan();
   void remember_full_look(const Scan& look);
+  // Deterministic mode (light_look.cpp): the thread given the turn holds the
+  // token still; or it gave it back and its slot says it waits for its turn,
+  // a peer or sim time (what it still runs is the shim's, not the program's).
+  bool turn_goes_on(const std::optional<std::pair<pid_t, pid_t>>& running);
+  bool turn_ended_settled(const std::optional<std::pair<pid_t, pid_t>>& running);
   using Slots = std::map<pid_t, SlotView>;  // by tid
   std::vector<pid_t> group_roots();
   std::optional<std::map<pid_t, std::uint64_t>> look_at_process(pid_t pid, const Slots& slots,
