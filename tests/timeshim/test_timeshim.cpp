@@ -248,6 +248,20 @@ TEST(Timeshim, PosixTimersAlarmsAndSignalWaitsRunOnSimTime) {
   EXPECT_LT(run.wall_s, 2.5);  // 4.5 s of sim time
 }
 
+TEST(Timeshim, SignalsBetweenProcessesEndSleepsAtTheSimTimeTheyAreSent) {
+  TempDir dir;
+  const GroupRun run = run_probe(dir, "signal_wake");
+  ASSERT_EQ(run.exit_status, 0) << run.output;
+  ASSERT_EQ(run.seen.size(), 4U) << run.output;
+  EXPECT_EQ(run.seen[0].first, "parent_woken");
+  EXPECT_NEAR(run.seen[0].second, 1.0, 1e-3) << run.output;  // not at its 10 s
+  EXPECT_EQ(run.seen[1], (std::pair<std::string, double>{"value", 7.0}));
+  EXPECT_EQ(run.seen[2].first, "child_woken");
+  EXPECT_NEAR(run.seen[2].second, 1.5, 1e-3) << run.output;  // not at its 21 s
+  EXPECT_EQ(run.seen[3].first, "end");
+  EXPECT_NEAR(run.seen[3].second, 1.5, 1e-3) << run.output;
+}
+
 TEST(Timeshim, ThreadsEachWaitTheirOwnSimTime) {
   TempDir dir;
   const GroupRun run = run_probe(dir, "threads");
@@ -603,7 +617,8 @@ TEST(Timeshim, DeterministicModeKeepsTheSimTimesOfEveryWait) {
                                                     {TIMESHIM_PROBE, "cond_waits"},
                                                     {TIMESHIM_PROBE, "forks"},
                                                     {TIMESHIM_PROBE, "socket_send_accept"},
-                                                    {TIMESHIM_PROBE, "signal_timers"}};
+                                                    {TIMESHIM_PROBE, "signal_timers"},
+                                                    {TIMESHIM_PROBE, "signal_wake"}};
   if (have_python()) programs.push_back({"/usr/bin/python3", TIMESHIM_PROBE_PY});
   for (const auto& argv : programs) {
     const GroupRun plain = run_program(dir, argv, options_in(dir));

@@ -397,6 +397,47 @@ int socket_send_accept() {
   return 0;
 }
 
+volatile sig_atomic_t queued_value = 0;
+void on_queued(int /*signal*/, siginfo_t* info, void* /*context*/) {
+  queued_value = info->si_value.sival_int;
+}
+
+// A forked child wakes its parent's sleep with a signal (sigqueue, with a
+// value) at 1 s and sleeps; the parent sends one back (kill) at 1.5 s,
+// which ends the child's sleep then.
+int signal_wake() {
+  struct sigaction action {};
+  action.sa_sigaction = on_queued;
+  action.sa_flags = SA_SIGINFO;  // no SA_RESTART: the sleep returns EINTR
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGUSR1, &action, nullptr);
+  const pid_t parent = getpid();
+  const pid_t child = fork();
+  if (child < 0) return 1;
+  if (child == 0) {
+    const timespec one{1, 0};
+    nanosleep(&one, nullptr);
+    sigval value{};
+    value.sival_int = 7;
+    sigqueue(parent, SIGUSR1, value);
+    const timespec long_sleep{20, 0};
+    const bool woken = nanosleep(&long_sleep, nullptr) != 0 && errno == EINTR;
+    say("child_woken", woken ? monotonic_s() : -1.0);
+    _exit(0);
+  }
+  const timespec ten{10, 0};
+  const bool woken = nanosleep(&ten, nullptr) != 0 && errno == EINTR;
+  say("parent_woken", woken ? monotonic_s() : -1.0);
+  say("value", queued_value);
+  const timespec half{0, 500000000};
+  nanosleep(&half, nullptr);
+  kill(child, SIGUSR1);
+  int status = 0;
+  waitpid(child, &status, 0);
+  say("end", monotonic_s());
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : 1;
+}
+
 std::atomic<int> alarms{0};
 void on_alarm(int /*signal*/) {
   alarms.fetch_add(1);
@@ -592,6 +633,7 @@ int main(int argc, char** argv) {
       {"timed_mutex", timed_mutex},
       {"socket_send_accept", socket_send_accept},
       {"signal_timers", signal_timers},
+      {"signal_wake", signal_wake},
       {"raw_futex_wait", raw_futex_wait},
       {"mutex_cost", mutex_cost}};
   const auto mode = argc == 2 ? modes.find(argv[1]) : modes.end();

@@ -227,7 +227,6 @@ void Controller::advance_to(std::int64_t sim_ns) {
 }
 
 void Controller::wake_due() {
-  light_.allowed = false;  // who it wakes runs: the next look reads every thread
   Header& header = segment_->header();
   const std::int64_t now = header.sim_now_ns.load();
   std::map<pid_t, ThreadSlot*> helpers;  // by process: wakes its condition variable waiters

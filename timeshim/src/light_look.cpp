@@ -7,10 +7,12 @@
 // the shim wakes (and says so in the segment), or a signal, or its process's
 // end. So after a turn that sent no signal, created no thread or process
 // (the host's last pid is unchanged) and did not end, a look need not read
-// those threads, nor list threads and children again: it reads the turn's
-// thread and every thread that waits in the kernel (for input, which anyone
-// may send), and takes the rest from the segment. Anything else, and every
-// kFullLookAtLeastEvery, is a full look (quiescence.cpp).
+// those threads, nor list threads and children again: it reads every thread
+// that waits in the kernel (for input, which anyone may send) and the turn's
+// thread unless its slot says it waits, and takes the rest from the segment.
+// After a signal, a new thread or process or a thread that ended, at any
+// other look, and every kFullLookAtLeastEvery, a look is a full one
+// (quiescence.cpp).
 #include <algorithm>
 #include <chrono>
 #include <set>
@@ -43,6 +45,17 @@ void judge_unread(const SlotView& slot, std::int64_t now, bool* owed_wake,
   }
 }
 
+// The state a turn's thread gave the token back in, when what it does next
+// is not the program's: it waits for its turn, a peer or sim time, or for
+// input (whether any was there it checked holding the token, and nobody but
+// it ran since: only input from outside the group can end that wait now, at
+// a time no look can make the same on every run).
+bool settled_after_turn(const SlotView& slot) {
+  // (sigtimedwait's WaitingFd checks for a pending signal only in the kernel.)
+  return ends_without_input(slot.state) ||
+         (slot.state == ThreadState::WaitingFd && slot.call != ShimCall::SigTimedwait);
+}
+
 }  // namespace
 
 bool Controller::turn_goes_on(const std::optional<std::pair<pid_t, pid_t>>& running) {
@@ -54,41 +67,46 @@ bool Controller::turn_ended_settled(const std::optional<std::pair<pid_t, pid_t>>
   for (auto& slot : used_slots(header())) {
     if (slot.claim.load() == 0 || slot.tid.load() != running->second) continue;
     const auto state = static_cast<ThreadState>(slot.state.load());
-    if (state != ThreadState::Timer) return ends_without_input(state);
+    if (state != ThreadState::Timer) {
+      return settled_after_turn(
+          SlotView{state, slot.deadline_ns.load(), static_cast<ShimCall>(slot.call.load())});
+    }
   }
   return false;
 }
 
 void Controller::remember_full_look(const Scan& look) {
   light_.threads = look.threads;
+  light_.holder.reset();
   ++light_.full_looks;
 }
 
 std::optional<Controller::Scan> Controller::light_scan() {
-  // One light look per turn: after one that was not quiet, looks are full.
-  if (!std::exchange(light_.allowed, false) || !light_.holder) return std::nullopt;
+  // Only the first look after a turn: what the turn did is known then;
+  // after a look that was not quiet, input (at wall times) may have woken
+  // threads, and full looks (slower, as they were measured) decide.
+  const auto holder = std::exchange(light_.holder, std::nullopt);
   Header& segment = header();
-  if (segment.signals_sent.load() != light_.signals_sent ||
+  if (!holder || light_.full_looks == 0 || segment.signals_sent.load() != light_.signals_sent ||
       std::chrono::steady_clock::now() - light_.full_at > kFullLookAtLeastEvery) {
     return std::nullopt;
   }
   const auto last_pid = proc_->last_pid();
   if (!last_pid || last_pid != light_.last_pid) return std::nullopt;
-  const pid_t holder = light_.holder->second;
   const Slots slots = slots_by_tid(segment);
   const std::int64_t now = segment.sim_now_ns.load();
   Scan result;
   result.light = true;
   std::set<pid_t> processes;
-  bool holder_known = false;
   for (const auto& [pid, tid] : light_.threads) {
     processes.insert(pid);
     result.threads.emplace_back(pid, tid);
     const auto found = slots.find(tid);
     const SlotView* slot = found != slots.end() ? &found->second : nullptr;
-    holder_known = holder_known || tid == holder;
-    // The turn's thread too: it sleeps, or runs only the shim's code now.
-    if (slot != nullptr && ends_without_input(slot->state)) {
+    const bool unread =
+        slot != nullptr &&
+        (tid == holder->second ? settled_after_turn(*slot) : ends_without_input(slot->state));
+    if (unread) {
       judge_unread(*slot, now, &result.owed_wake, &result.next_deadline);
       continue;
     }
@@ -96,8 +114,7 @@ std::optional<Controller::Scan> Controller::light_scan() {
     if (!state || *state == 'Z' || *state == 'X') return std::nullopt;  // it ends
     judge_thread(ThreadSample{pid, tid, *state, 0}, slot, now, result);
   }
-  if (!holder_known) return std::nullopt;  // a thread the last full look did not see
-  result.any_process = true;
+  result.any_process = !result.threads.empty();
   scan_timers(segment, processes, now, &result.owed_wake, &result.next_deadline);
   if (result.owed_wake) result.all_waiting = false;
   ++light_.light_looks;

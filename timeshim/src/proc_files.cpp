@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <memory>
 
 namespace ubersim::timeshim {
 namespace {
@@ -131,6 +132,42 @@ std::optional<long> ProcFiles::last_pid() {
   const long pid = std::strtol(text->c_str() + space + 1, &end, 10);
   if (end == text->c_str() + space + 1) return std::nullopt;
   return pid;
+}
+
+namespace {
+
+// The stat files of the kernel's ksoftirqd/N threads (children of kthreadd).
+std::vector<UniqueFd> open_softirq_threads() {
+  std::vector<UniqueFd> found;
+  const std::unique_ptr<DIR, int (*)(DIR*)> proc(::opendir("/proc"), ::closedir);
+  if (!proc) return found;
+  while (const dirent* entry = ::readdir(proc.get())) {
+    const std::string dir = std::string("/proc/") + entry->d_name;
+    if (entry->d_name[0] < '1' || entry->d_name[0] > '9') continue;
+    UniqueFd stat(::open((dir + "/stat").c_str(), O_RDONLY | O_CLOEXEC));
+    const auto text = stat.valid() ? read_from_start(stat.get()) : std::nullopt;
+    // "14 (ksoftirqd/0) S 2 ...": the comm, then state and parent.
+    const auto close = text ? text->rfind(')') : std::string::npos;
+    if (close != std::string::npos && text->find(" (ksoftirqd/") != std::string::npos &&
+        text->compare(close + 3, 3, " 2 ") == 0) {
+      found.push_back(std::move(stat));
+    }
+  }
+  return found;
+}
+
+}  // namespace
+
+bool ProcFiles::softirq_work_pending() {
+  if (!softirq_threads_) softirq_threads_ = open_softirq_threads();
+  for (const UniqueFd& stat : *softirq_threads_) {
+    const auto text = read_from_start(stat.get());
+    const auto close = text ? text->rfind(')') : std::string::npos;
+    if (close != std::string::npos && close + 2 < text->size() && (*text)[close + 2] == 'R') {
+      return true;
+    }
+  }
+  return false;
 }
 
 void ProcFiles::keep_only(const std::set<pid_t>& pids, const std::set<pid_t>& tids) {

@@ -65,6 +65,13 @@ class ProcFiles {
   // The pid the kernel gave out last, to a thread or process of any program
   // (/proc/loadavg): while it stays the same, no thread was created.
   std::optional<long> last_pid();
+  // Whether a kernel softirq thread (ksoftirqd/N) is runnable. A datagram
+  // sent over loopback is put into its receiver's socket, and wakes the
+  // receiver, in the sender's system call, unless the kernel defers that
+  // work to ksoftirqd (under load): then until ksoftirqd has run, the
+  // receiver sleeps with its input on the way. False where the kernel's
+  // threads are not visible (another pid namespace).
+  bool softirq_work_pending();
   // A new look: threads_of lists each process's threads again (within a look,
   // once: the group's discovery and the look itself both ask).
   void new_look() { listed_.clear(); }
@@ -89,6 +96,7 @@ class ProcFiles {
   };
   std::map<pid_t, ChildrenSeen> children_;
   UniqueFd loadavg_;
+  std::optional<std::vector<UniqueFd>> softirq_threads_;  // their stat files, found once
 };
 
 }  // namespace ubersim::timeshim

@@ -393,6 +393,9 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
       continue;
     }
     const bool between_turns = options_.deterministic && segment.token_tid.load() == 0;
+    // Input on its way through the kernel before the look (proc_files.hpp)
+    // wakes its receiver after the look read it: not quiet until it arrived.
+    const bool input_in_flight = proc_->softirq_work_pending();
     std::optional<Scan> light = between_turns ? light_scan() : std::nullopt;
     const Scan look = light ? std::move(*light) : scan();
     running = look.running;
@@ -402,14 +405,13 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
     }
     if (look.owed_wake) wake_due();
     // A thread in a wait the shim does not know: two full looks tell.
-    if (look.light && look.all_waiting && !look.only_shim_waits) continue;
-    if (look.all_waiting && quiet_at_one_instant(look, seq, between_turns)) {
+    if (look.light && look.all_waiting && !look.only_shim_waits) continue;  // full next
+    if (look.all_waiting && !input_in_flight && quiet_at_one_instant(look, seq, between_turns)) {
       // Deterministic mode: quiescent only when nobody wants to run.
       if (options_.deterministic) {
         if (auto holder = give_turn()) {
           running = holder;  // it runs now: looked at alone until it stops
           light_.holder = holder;
-          light_.allowed = true;
           backoff_ns = kFirstBackoffNs;
           turn_wait_ns = kFirstTurnWaitNs;
           continue;

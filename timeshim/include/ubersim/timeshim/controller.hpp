@@ -180,8 +180,8 @@ class Controller {
   std::uint64_t advances_ = 0;
   // What a light look relies on (light_look.cpp).
   struct LightLooks {
-    bool allowed = false;  // the next look follows a turn given after a quiet look
-    std::optional<std::pair<pid_t, pid_t>> holder;  // that turn's thread
+    // The thread of the turn given last, until the look after it.
+    std::optional<std::pair<pid_t, pid_t>> holder;
     // At the last full look: the group's threads, the host's last pid, the
     // group's signals sent, and when.
     std::vector<std::pair<pid_t, pid_t>> threads;
