@@ -252,6 +252,7 @@ void Controller::wake_due() {
       if (helper == helpers.end()) continue;  // not started yet: woken at the next look
       to_wake = helper->second;
     }
+    light_.woken.insert(to_wake->tid.load());  // it runs now: a light look reads it
     if (state == ThreadState::Sleeping || state == ThreadState::WaitingCond ||
         state == ThreadState::Timer) {
       to_wake->wake_seq.fetch_add(1);

@@ -10,8 +10,10 @@
 // those threads, nor list threads and children again: it reads every thread
 // that waits in the kernel (for input, which anyone may send) and the turn's
 // thread unless its slot says it waits, and takes the rest from the segment.
-// After a signal, a new thread or process or a thread that ended, at any
-// other look, and every kFullLookAtLeastEvery, a look is a full one
+// The first look of a call after a quiescent return is light too, reading
+// also the threads the controller woke when it advanced sim time. After a
+// signal, a new thread or process or a thread that ended, at any other
+// look, and every kFullLookAtLeastEvery, a look is a full one
 // (quiescence.cpp).
 #include <algorithm>
 #include <chrono>
@@ -75,19 +77,34 @@ bool Controller::turn_ended_settled(const std::optional<std::pair<pid_t, pid_t>>
   return false;
 }
 
+// Between a quiescent return and the next call nobody ran the program's
+// code (the bridge sent input and advanced time, which woke threads that run
+// only the shim's code until their turn): no thread of the group was
+// created since, whatever threads of other programs (the caller's own) were.
+void Controller::begin_after_quiescence() {
+  light_.call_start = std::exchange(light_.quiescent, false) && options_.deterministic;
+  if (light_.call_start && light_.last_pid) light_.last_pid = proc_->last_pid();
+}
+
 void Controller::remember_full_look(const Scan& look) {
   light_.threads = look.threads;
   light_.holder.reset();
+  light_.call_start = false;
+  light_.woken.clear();
   ++light_.full_looks;
 }
 
 std::optional<Controller::Scan> Controller::light_scan() {
-  // Only the first look after a turn: what the turn did is known then;
-  // after a look that was not quiet, input (at wall times) may have woken
-  // threads, and full looks (slower, as they were measured) decide.
+  // Only the first look after a turn or a quiescent return: what happened
+  // since is known then; after a look that was not quiet, input (at wall
+  // times) may have woken threads, and full looks decide.
   const auto holder = std::exchange(light_.holder, std::nullopt);
+  const bool call_start = std::exchange(light_.call_start, false);
+  std::set<pid_t> woken;
+  woken.swap(light_.woken);
   Header& segment = header();
-  if (!holder || light_.full_looks == 0 || segment.signals_sent.load() != light_.signals_sent ||
+  if ((!holder && !call_start) || light_.full_looks == 0 ||
+      segment.signals_sent.load() != light_.signals_sent ||
       std::chrono::steady_clock::now() - light_.full_at > kFullLookAtLeastEvery) {
     return std::nullopt;
   }
@@ -103,9 +120,9 @@ std::optional<Controller::Scan> Controller::light_scan() {
     result.threads.emplace_back(pid, tid);
     const auto found = slots.find(tid);
     const SlotView* slot = found != slots.end() ? &found->second : nullptr;
-    const bool unread =
-        slot != nullptr &&
-        (tid == holder->second ? settled_after_turn(*slot) : ends_without_input(slot->state));
+    const bool unread = slot != nullptr && woken.count(tid) == 0 &&
+                        (holder && tid == holder->second ? settled_after_turn(*slot)
+                                                         : ends_without_input(slot->state));
     if (unread) {
       judge_unread(*slot, now, &result.owed_wake, &result.next_deadline);
       continue;

@@ -368,6 +368,7 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
   constexpr long kFirstTurnWaitNs = 500000;
   long backoff_ns = kFirstBackoffNs;
   long turn_wait_ns = kFirstTurnWaitNs;
+  begin_after_quiescence();
   std::optional<std::pair<pid_t, pid_t>> running;
   for (;;) {
     const std::uint32_t seq = segment.change_seq.load();
@@ -417,6 +418,7 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
           continue;
         }
       }
+      light_.quiescent = true;
       return Quiescence{GroupState::Quiescent, look.next_deadline};
     }
     if (std::chrono::steady_clock::now() >= give_up)

@@ -133,6 +133,7 @@ class Controller {
   // nullopt when what the turn did needs a full one.
   std::optional<Scan> light_scan();
   void remember_full_look(const Scan& look);
+  void begin_after_quiescence();
   // Deterministic mode (light_look.cpp): the thread given the turn holds the
   // token still; or it gave it back and its slot says it waits for its turn,
   // a peer or sim time (what it still runs is the shim's, not the program's).
@@ -182,6 +183,11 @@ class Controller {
   struct LightLooks {
     // The thread of the turn given last, until the look after it.
     std::optional<std::pair<pid_t, pid_t>> holder;
+    // The group was quiescent when wait_quiescent returned last; its next
+    // call's first look may be light.
+    bool quiescent = false;
+    bool call_start = false;
+    std::set<pid_t> woken;  // threads wake_due woke since the last look
     // At the last full look: the group's threads, the host's last pid, the
     // group's signals sent, and when.
     std::vector<std::pair<pid_t, pid_t>> threads;
