@@ -87,7 +87,7 @@ void Controller::begin_after_quiescence() {
 }
 
 void Controller::remember_full_look(const Scan& look) {
-  light_.threads = look.threads;
+  if (options_.deterministic) light_.threads = look.threads;
   light_.holder.reset();
   light_.call_start = false;
   light_.woken.clear();

@@ -176,10 +176,12 @@ Controller::Scan Controller::scan() {
   proc_->new_look();
   Header& segment = header();
   // Before the walk: a thread created during it changes them, and the next
-  // look is full again (light_look.cpp).
-  light_.last_pid = proc_->last_pid();
-  light_.signals_sent = segment.signals_sent.load();
-  light_.full_at = std::chrono::steady_clock::now();
+  // look is full again (light_look.cpp: deterministic mode only).
+  if (options_.deterministic) {
+    light_.last_pid = proc_->last_pid();
+    light_.signals_sent = segment.signals_sent.load();
+    light_.full_at = std::chrono::steady_clock::now();
+  }
   const Slots slots = slots_by_tid(segment);
   const std::int64_t now = segment.sim_now_ns.load();
   Scan result;
@@ -395,8 +397,10 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
     }
     const bool between_turns = options_.deterministic && segment.token_tid.load() == 0;
     // Input on its way through the kernel before the look (proc_files.hpp)
-    // wakes its receiver after the look read it: not quiet until it arrived.
-    const bool input_in_flight = proc_->softirq_work_pending();
+    // wakes its receiver after the look read it: not quiet until it arrived
+    // (deterministic mode, where the order of turns depends on it; the two
+    // reads would slow the other mode's looks by about a third).
+    const bool input_in_flight = options_.deterministic && proc_->softirq_work_pending();
     std::optional<Scan> light = between_turns ? light_scan() : std::nullopt;
     const Scan look = light ? std::move(*light) : scan();
     running = look.running;
