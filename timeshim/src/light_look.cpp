@@ -124,6 +124,7 @@ std::optional<Controller::Scan> Controller::light_scan() {
                         (holder && tid == holder->second ? settled_after_turn(*slot)
                                                          : ends_without_input(slot->state));
     if (unread) {
+      if (holder && tid == holder->second) result.unread_holder = holder;
       judge_unread(*slot, now, &result.owed_wake, &result.next_deadline);
       continue;
     }

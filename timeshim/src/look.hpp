@@ -27,6 +27,9 @@ struct Controller::Scan {
   // Every live thread of the group (pid, tid), read or not.
   std::vector<std::pair<pid_t, pid_t>> threads;
   bool light = false;  // a light look (light_look.cpp): run_counts is empty
+  // The turn's thread a light look did not read (its slot says it waits):
+  // it may still be on its way into that wait.
+  std::optional<std::pair<pid_t, pid_t>> unread_holder;
 };
 
 struct SlotView {

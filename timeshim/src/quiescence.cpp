@@ -422,8 +422,13 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
           continue;
         }
       }
-      light_.quiescent = true;
-      return Quiescence{GroupState::Quiescent, look.next_deadline};
+      // Quiescent for the caller: every thread sleeps, the turn's thread a
+      // light look did not read too (it may still be on its way into its wait).
+      if (!look.unread_holder ||
+          proc_->state_of(look.unread_holder->first, look.unread_holder->second) == 'S') {
+        light_.quiescent = true;
+        return Quiescence{GroupState::Quiescent, look.next_deadline};
+      }
     }
     if (std::chrono::steady_clock::now() >= give_up)
       return Quiescence{GroupState::Busy, kNoDeadline};
