@@ -561,6 +561,20 @@ signal_entry() {
   fi
 }
 
+# While the set starts, a stop signal ends what has started so far (the full
+# stop, on_signal below, takes over once every process runs): without it a
+# Ctrl-C during the start ended this script and left the rest running.
+stop_while_starting() {
+  local i
+  trap '' INT TERM
+  for i in "${!pids[@]}"; do signal_entry TERM "$i"; done
+  wait "${pids[@]}" 2>/dev/null
+  echo "launch: stopped while starting ($1)" >&2
+  exit "$2"
+}
+trap 'stop_while_starting Ctrl-C 130' INT
+trap 'stop_while_starting SIGTERM 143' TERM
+
 mode=$speed
 [ "$lockstep" = 1 ] && mode=lockstep
 [ "$sync" = 1 ] && mode=sync

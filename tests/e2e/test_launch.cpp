@@ -175,7 +175,9 @@ TEST(Launch, CpuAllLeavesThePlacementToTheKernel) {
   const auto pids = launch.processes();
   ASSERT_TRUE(pids.count("physics")) << launch.output();
   EXPECT_EQ(allowed_cpus(pids.at("physics")), allowed_cpus(::getpid()));
+  // Stopped right after the start (the processes may not all be ready): none is left.
   launch.script().stop(10, SIGINT);
+  for (const auto& [name, pid] : pids) EXPECT_FALSE(process_alive(pid)) << name << " left running";
 }
 
 // ER-Force's realism presets by their short names: both emulators run the
