@@ -36,17 +36,6 @@ bool ends_without_input(ThreadState state) {
   return ends_only_in_turn(state) || state == ThreadState::Sleeping;
 }
 
-// What a full look would take from the slot of such a thread.
-void judge_unread(const SlotView& slot, std::int64_t now, bool* owed_wake,
-                  std::int64_t* next_deadline) {
-  if (slot.state == ThreadState::WantToken) return;
-  if (slot.deadline_ns <= now) {
-    *owed_wake = true;
-  } else {
-    *next_deadline = std::min(*next_deadline, slot.deadline_ns);
-  }
-}
-
 // The state a turn's thread gave the token back in, when what it does next
 // is not the program's: it waits for its turn, a peer or sim time, or for
 // input (whether any was there it checked holding the token, and nobody but

@@ -48,6 +48,10 @@ inline bool ends_only_in_turn(ThreadState state) {
 
 // The claimed thread slots of the segment (not timers), by tid.
 std::map<pid_t, SlotView> slots_by_tid(Header& header);
+// A thread a look does not read (it waits for its turn, a peer or sim
+// time), judged from its slot: the deadline it can wake at, or a wake owed.
+void judge_unread(const SlotView& slot, std::int64_t now, bool* owed_wake,
+                  std::int64_t* next_deadline);
 // Armed timers of `processes`: deadlines the group can wake at, or, when due
 // and not yet fired, a wake a process's helper still owes.
 void scan_timers(Header& header, const std::set<pid_t>& processes, std::int64_t now,

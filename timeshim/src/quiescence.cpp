@@ -83,6 +83,16 @@ std::map<pid_t, SlotView> slots_by_tid(Header& header) {
   return result;
 }
 
+void judge_unread(const SlotView& slot, std::int64_t now, bool* owed_wake,
+                  std::int64_t* next_deadline) {
+  if (slot.state == ThreadState::WantToken) return;
+  if (slot.deadline_ns <= now) {
+    *owed_wake = true;
+  } else {
+    *next_deadline = std::min(*next_deadline, slot.deadline_ns);
+  }
+}
+
 void scan_timers(Header& header, const std::set<pid_t>& processes, std::int64_t now,
                  bool* owed_wake, std::int64_t* next_deadline) {
   for (auto& slot : used_slots(header)) {
@@ -237,12 +247,8 @@ std::optional<RunCounts> Controller::look_at_process(pid_t pid, const Slots& slo
       result.threads.emplace_back(pid, tid);
       counts[tid] = kNotRead;
       suspects_.erase(tid);
-      if (slot->second.state == ThreadState::WantToken) continue;
-      if (slot->second.deadline_ns <= now) {
-        result.owed_wake = true;  // wake_due makes it want the token
-      } else {
-        result.next_deadline = std::min(result.next_deadline, slot->second.deadline_ns);
-      }
+      // A deadline passed: wake_due makes it want the token.
+      judge_unread(slot->second, now, &result.owed_wake, &result.next_deadline);
       continue;
     }
     const auto sample = tid == pid ? leader : proc_->sample_thread(pid, tid);
