@@ -630,6 +630,26 @@ TEST(Timeshim, DeterministicModeKeepsTheSimTimesOfEveryWait) {
   }
 }
 
+// After a turn that output nothing to an fd, a light look does not read the
+// threads that wait for input (light_look.cpp). Each kind of output must
+// still be seen: its reader, woken by it, runs at the sim time of the
+// output, not after the writer's next sleep moved sim time on. Beside a CPU
+// hog the woken reader is slow to get a core, so that a look that skipped it
+// would call the group quiescent with the reader on its way.
+TEST(Timeshim, DeterministicModeSeesEveryOutputThatEndsAWaitForInput) {
+  TempDir dir;
+  const GroupRun run = beside_cpu_hog([&] {
+    return run_program(dir, {TIMESHIM_PROBE, "fd_wakes"}, deterministic_in(dir));
+  });
+  ASSERT_EQ(run.exit_status, 0) << run.output;
+  EXPECT_GT(run.light_looks, 0U);
+  for (const char* kind : {"write", "send", "stdio", "close"}) {
+    const std::string label = std::string(kind) + "_lag_max";
+    EXPECT_LT(value_of(run.seen, label), 0.0005) << label << "\n" << run.output;
+  }
+  EXPECT_TRUE(blocking_problems(run).empty()) << all_text(run.problems);
+}
+
 TEST(Timeshim, DeterministicModeNamesAThreadThatBlocksHoldingTheTokenAndGoesOn) {
   TempDir dir;
   ControllerOptions options = deterministic_in(dir);

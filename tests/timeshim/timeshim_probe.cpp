@@ -17,6 +17,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -606,6 +608,76 @@ int mutex_cost() {
   return 0;
 }
 
+// A thread blocked in a read is woken by another's output of each kind the
+// deterministic mode's light looks must notice (light_look.cpp): a write, a
+// send, libc's own write of a stdio stream, a close (end of file). Each
+// output is followed by a 1 ms sleep: a reader seen late reads the clock
+// after sim time moved on. Prints, per kind, the largest lag between an
+// output and its reader's wake-up, in sim time.
+int fd_wakes() {
+  constexpr int kRounds = 25;
+  std::array<std::atomic<double>, kRounds> sent_at{};
+  const auto reader = [&sent_at](const char* kind, std::vector<int> fds, bool to_end) {
+    // The lowest priority: beside a CPU hog, woken, it waits long for a
+    // core (the test's point: a look must not miss it on its way).
+    const sched_param lowest{0};
+    pthread_setschedparam(pthread_self(), SCHED_IDLE, &lowest);
+    double worst = 0.0;
+    for (int round = 0; round < kRounds; ++round) {
+      char byte = 0;
+      const int fd = fds[to_end ? round : 0];
+      if (read(fd, &byte, 1) != (to_end ? 0 : 1)) std::perror("read");
+      worst = std::max(worst, monotonic_s() - sent_at[round].load());
+    }
+    say((std::string(kind) + "_lag_max").c_str(), worst);
+  };
+  const auto writer = [&sent_at](const std::function<void(int)>& output) {
+    for (int round = 0; round < kRounds; ++round) {
+      sent_at[round].store(monotonic_s());
+      output(round);
+      usleep(1000);
+    }
+  };
+  int piped[2];
+  int paired[2];
+  int streamed[2];
+  if (pipe(piped) != 0 || socketpair(AF_UNIX, SOCK_STREAM, 0, paired) != 0 || pipe(streamed) != 0) {
+    return 1;
+  }
+  std::vector<int> read_ends;
+  std::vector<int> write_ends;
+  for (int round = 0; round < kRounds; ++round) {
+    int ends[2];
+    if (pipe(ends) != 0) return 1;
+    read_ends.push_back(ends[0]);
+    write_ends.push_back(ends[1]);
+  }
+  FILE* stream = fdopen(streamed[1], "w");
+  if (stream == nullptr) return 1;
+  const char byte = 'x';
+  std::thread woken(reader, "write", std::vector<int>{piped[0]}, false);
+  writer([&](int) {
+    if (write(piped[1], &byte, 1) != 1) std::perror("write");
+  });
+  woken.join();
+  woken = std::thread(reader, "send", std::vector<int>{paired[1]}, false);
+  writer([&](int) {
+    if (send(paired[0], &byte, 1, 0) != 1) std::perror("send");
+  });
+  woken.join();
+  woken = std::thread(reader, "stdio", std::vector<int>{streamed[0]}, false);
+  writer([&](int) {
+    std::fputc(byte, stream);
+    std::fflush(stream);
+  });
+  woken.join();
+  woken = std::thread(reader, "close", read_ends, true);
+  writer([&](int round) { close(write_ends[round]); });
+  woken.join();
+  std::fclose(stream);
+  return 0;
+}
+
 // For the benchmark: 1000 sleeps of 1 ms, each a trip through the controller.
 int sleep_cost() {
   for (int i = 0; i < 1000; ++i) usleep(1000);
@@ -637,7 +709,8 @@ int main(int argc, char** argv) {
       {"signal_timers", signal_timers},
       {"signal_wake", signal_wake},
       {"raw_futex_wait", raw_futex_wait},
-      {"mutex_cost", mutex_cost}};
+      {"mutex_cost", mutex_cost},
+      {"fd_wakes", fd_wakes}};
   const auto mode = argc == 2 ? modes.find(argv[1]) : modes.end();
   if (mode == modes.end()) {
     std::fprintf(stderr, "usage: timeshim_probe MODE, one of:");

@@ -36,6 +36,11 @@ bool ends_without_input(ThreadState state) {
   return ends_only_in_turn(state) || state == ThreadState::Sleeping;
 }
 
+// A wait for fds that input ends (not sigtimedwait's, a wait for a signal).
+bool waits_for_input(const SlotView& slot) {
+  return slot.state == ThreadState::WaitingFd && slot.call != ShimCall::SigTimedwait;
+}
+
 // The state a turn's thread gave the token back in, when what it does next
 // is not the program's: it waits for its turn, a peer or sim time, or for
 // input (whether any was there it checked holding the token, and nobody but
@@ -43,8 +48,7 @@ bool ends_without_input(ThreadState state) {
 // a time no look can make the same on every run).
 bool settled_after_turn(const SlotView& slot) {
   // (sigtimedwait's WaitingFd checks for a pending signal only in the kernel.)
-  return ends_without_input(slot.state) ||
-         (slot.state == ThreadState::WaitingFd && slot.call != ShimCall::SigTimedwait);
+  return ends_without_input(slot.state) || waits_for_input(slot);
 }
 
 }  // namespace
@@ -76,14 +80,37 @@ void Controller::begin_after_quiescence() {
 }
 
 void Controller::remember_full_look(const Scan& look) {
-  if (options_.deterministic) light_.threads = look.threads;
+  if (options_.deterministic) {
+    light_.threads = look.threads;
+    std::set<pid_t> alive;
+    for (const auto& thread : look.threads) alive.insert(thread.second);
+    for (auto it = light_.writes.begin(); it != light_.writes.end();) {
+      it = alive.count(it->first) != 0 ? std::next(it) : light_.writes.erase(it);
+    }
+    for (auto it = light_.fd_asleep.begin(); it != light_.fd_asleep.end();) {
+      it = alive.count(*it) != 0 ? std::next(it) : light_.fd_asleep.erase(it);
+    }
+  }
   light_.holder.reset();
   light_.call_start = false;
   light_.woken.clear();
   ++light_.full_looks;
 }
 
-std::optional<Controller::Scan> Controller::light_scan() {
+bool Controller::turn_made_no_fd_output() {
+  if (!light_.holder) return false;
+  const std::uint64_t outputs = header().fd_outputs.load();
+  const bool no_output = std::exchange(light_.fd_outputs, outputs) == outputs;
+  const auto [pid, tid] = *light_.holder;
+  const auto writes = proc_->writes_of(pid, tid);
+  if (!writes) return false;
+  const auto before = light_.writes.find(tid);
+  const bool no_write = before != light_.writes.end() && before->second == *writes;
+  light_.writes[tid] = *writes;
+  return no_output && no_write;
+}
+
+std::optional<Controller::Scan> Controller::light_scan(bool quiet_turn) {
   // Only the first look after a turn or a quiescent return: what happened
   // since is known then; after a look that was not quiet, input (at wall
   // times) may have woken threads, and full looks decide.
@@ -109,11 +136,20 @@ std::optional<Controller::Scan> Controller::light_scan() {
     result.threads.emplace_back(pid, tid);
     const auto found = slots.find(tid);
     const SlotView* slot = found != slots.end() ? &found->second : nullptr;
-    const bool unread = slot != nullptr && woken.count(tid) == 0 &&
-                        (holder && tid == holder->second ? settled_after_turn(*slot)
-                                                         : ends_without_input(slot->state));
+    const bool is_holder = holder && tid == holder->second;
+    // A thread that waits for input and slept with none at the last look
+    // sleeps still when the turn sent nothing (quiet_turn) and nobody else ran.
+    const bool unread =
+        slot != nullptr && woken.count(tid) == 0 &&
+        (is_holder ? settled_after_turn(*slot)
+                   : ends_without_input(slot->state) || (quiet_turn && waits_for_input(*slot) &&
+                                                         light_.fd_asleep.count(tid) != 0));
     if (unread) {
-      if (holder && tid == holder->second) result.unread_holder = holder;
+      if (is_holder) {
+        result.unread_holder = holder;
+        // It checked its fds holding the token: nothing to read then.
+        if (waits_for_input(*slot)) light_.fd_asleep.insert(tid);
+      }
       judge_unread(*slot, now, &result.owed_wake, &result.next_deadline);
       continue;
     }

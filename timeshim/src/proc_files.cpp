@@ -6,21 +6,31 @@
 
 #include <cstdlib>
 #include <memory>
+#include <string>
 
 namespace ubersim::timeshim {
 namespace {
 
-constexpr const char* kFileNames[] = {"stat", "schedstat", "syscall", "children"};
+constexpr const char* kFileNames[] = {"stat", "schedstat", "syscall", "children", "io"};
 
-// The whole file, from its start: /proc regenerates it for a read at offset 0.
+// A read that leaves this much of the buffer unused got the whole file: a
+// /proc file is a seq_file, whose read stops short only at its end or where
+// its next record (a line, a pid of "children": far shorter than this) would
+// not fit its own page-sized buffer.
+constexpr ssize_t kRoomForARecord = 512;
+
+// The whole file, from its start: /proc regenerates it for a read at offset
+// 0. Read until a short read, not until a read of 0: a read past the start
+// regenerates the whole file again (seq_file's traverse) to find nothing, and
+// would double what a look costs.
 std::optional<std::string> read_from_start(int fd) {
   std::string text;
   char buffer[4096];
   for (off_t offset = 0;;) {
     const ssize_t got = ::pread(fd, buffer, sizeof(buffer), offset);
     if (got < 0) return std::nullopt;  // ESRCH: the thread is gone
-    if (got == 0) return text;
     text.append(buffer, static_cast<std::size_t>(got));
+    if (got + kRoomForARecord <= static_cast<ssize_t>(sizeof(buffer))) return text;
     offset += got;
   }
 }
@@ -114,6 +124,18 @@ std::optional<char> ProcFiles::state_of(pid_t pid, pid_t tid) {
   const auto sample = parse_thread_sample(pid, tid, *stat, "");
   if (!sample) return std::nullopt;
   return sample->state;
+}
+
+std::optional<std::uint64_t> ProcFiles::writes_of(pid_t pid, pid_t tid) {
+  const auto text = read(pid, tid, kIo);
+  constexpr const char* kField = "syscw: ";
+  const auto field = text ? text->find(kField) : std::string::npos;
+  if (field == std::string::npos) return std::nullopt;
+  const char* digits = text->c_str() + field + std::char_traits<char>::length(kField);
+  char* end = nullptr;
+  const unsigned long long count = std::strtoull(digits, &end, 10);
+  if (end == digits) return std::nullopt;
+  return count;
 }
 
 std::optional<SyscallSample> ProcFiles::sample_syscall(pid_t pid, pid_t tid) {

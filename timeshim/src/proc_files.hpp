@@ -62,6 +62,10 @@ class ProcFiles {
   std::optional<SyscallSample> sample_syscall(pid_t pid, pid_t tid);
   // Only the kernel state (R, S, ...) of the thread; nullopt when it is gone.
   std::optional<char> state_of(pid_t pid, pid_t tid);
+  // The write calls the kernel counted for the thread (/proc/.../io's syscw:
+  // write, writev, pwrite and the like, libc's own included); nullopt when
+  // it is gone or the file cannot be read.
+  std::optional<std::uint64_t> writes_of(pid_t pid, pid_t tid);
   // The pid the kernel gave out last, to a thread or process of any program
   // (/proc/loadavg): while it stays the same, no thread was created.
   std::optional<long> last_pid();
@@ -79,7 +83,7 @@ class ProcFiles {
   void keep_only(const std::set<pid_t>& pids, const std::set<pid_t>& tids);
 
  private:
-  enum File { kStat, kSchedstat, kSyscall, kChildren, kFiles };
+  enum File { kStat, kSchedstat, kSyscall, kChildren, kIo, kFiles };
   // The text of `file` of thread tid of pid, read now; nullopt when it is gone.
   std::optional<std::string> read(pid_t pid, pid_t tid, File file);
 

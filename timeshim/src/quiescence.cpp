@@ -190,6 +190,7 @@ Controller::Scan Controller::scan() {
   if (options_.deterministic) {
     light_.last_pid = proc_->last_pid();
     light_.signals_sent = segment.signals_sent.load();
+    light_.fd_outputs = segment.fd_outputs.load();
     light_.full_at = std::chrono::steady_clock::now();
   }
   const Slots slots = slots_by_tid(segment);
@@ -277,6 +278,14 @@ void Controller::judge_thread(const ThreadSample& sample, const SlotView* slot, 
   const pid_t pid = sample.pid;
   const pid_t tid = sample.tid;
   const bool sleeps = sample.state == 'S';
+  if (options_.deterministic) {
+    // For the light looks after quiet turns (light_look.cpp).
+    if (sleeps && slot != nullptr && slot->state == ThreadState::WaitingFd) {
+      light_.fd_asleep.insert(tid);
+    } else {
+      light_.fd_asleep.erase(tid);
+    }
+  }
   // Below, only the shim's own waits return early.
   if (!sleeps || slot == nullptr) result.only_shim_waits = false;
   if (slot != nullptr && slot->state == ThreadState::Helper) {
@@ -406,8 +415,13 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
     // wakes its receiver after the look read it: not quiet until it arrived
     // (deterministic mode, where the order of turns depends on it; the two
     // reads would slow the other mode's looks by about a third).
-    const bool input_in_flight = options_.deterministic && proc_->softirq_work_pending();
-    std::optional<Scan> light = between_turns ? light_scan() : std::nullopt;
+    // After a turn that sent nothing nothing of the group's is on its way
+    // (the looks before checked), and the threads that wait for input need
+    // not be read (light_look.cpp).
+    const bool quiet_turn = between_turns && turn_made_no_fd_output();
+    const bool input_in_flight =
+        options_.deterministic && !quiet_turn && proc_->softirq_work_pending();
+    std::optional<Scan> light = between_turns ? light_scan(quiet_turn) : std::nullopt;
     const Scan look = light ? std::move(*light) : scan();
     running = look.running;
     if (!look.any_process) {

@@ -292,6 +292,10 @@ bool deterministic() {
   return the_segment != nullptr && the_segment->deterministic != 0;
 }
 
+void note_fd_output() {
+  if (deterministic()) the_segment->fd_outputs.fetch_add(1, std::memory_order_relaxed);
+}
+
 void set_own_order(std::uint32_t order_id) {
   this_thread.order_id = order_id;
   this_thread.has_order = true;

@@ -58,6 +58,11 @@ void after_block(std::int64_t view_at_start, std::int64_t reached_ns, ShimCall c
 // Deterministic mode (docs/timeshim.md): the group's threads run one at a
 // time, each in its turn, which the controller grants in a fixed order.
 bool deterministic();
+// Deterministic mode: this thread is about to make a call that can end
+// another thread's wait for an fd, one the kernel does not count among its
+// writes (/proc/<tid>/io's syscw): a send, connect, shutdown or close
+// (Header::fd_outputs).
+void note_fd_output();
 // This thread's place in the order, given by its creator before its slot.
 void set_own_order(std::uint32_t order_id);
 // Gives up the run token (before a thread blocks); no-op when not held or

@@ -192,6 +192,8 @@ __attribute__((visibility("default"))) int accept(int fd, sockaddr* address, soc
 __attribute__((visibility("default"))) ssize_t send(int fd, const void* buffer, size_t size,
                                                     int flags) {
   static const auto next = shim::next_symbol<ssize_t (*)(int, const void*, size_t, int)>("send");
+  shim::note_fd_output();
+
   const std::int64_t timeout = timeout_in(send_timeout_ns, fd);
   if (timeout == 0 || !blocking(fd, flags)) return next(fd, buffer, size, flags);
   return receive_until(
@@ -205,6 +207,7 @@ __attribute__((visibility("default"))) ssize_t sendto(int fd, const void* buffer
   static const auto next =
       shim::next_symbol<ssize_t (*)(int, const void*, size_t, int, const sockaddr*, socklen_t)>(
           "sendto");
+  shim::note_fd_output();
   const std::int64_t timeout = timeout_in(send_timeout_ns, fd);
   if (timeout == 0 || !blocking(fd, flags)) return next(fd, buffer, size, flags, to, to_length);
   return receive_until(
@@ -214,6 +217,7 @@ __attribute__((visibility("default"))) ssize_t sendto(int fd, const void* buffer
 
 __attribute__((visibility("default"))) ssize_t sendmsg(int fd, const msghdr* message, int flags) {
   static const auto next = shim::next_symbol<ssize_t (*)(int, const msghdr*, int)>("sendmsg");
+  shim::note_fd_output();
   const std::int64_t timeout = timeout_in(send_timeout_ns, fd);
   if (timeout == 0 || !blocking(fd, flags)) return next(fd, message, flags);
   return receive_until(
@@ -234,6 +238,7 @@ __attribute__((visibility("default"))) ssize_t write(int fd, const void* buffer,
 
 __attribute__((visibility("default"))) int close(int fd) {
   static const auto next = shim::next_symbol<int (*)(int)>("close");
+  shim::note_fd_output();
   if (fd >= 0 && fd < kMaxFd) {
     receive_timeout_ns[fd].store(0, std::memory_order_relaxed);
     send_timeout_ns[fd].store(0, std::memory_order_relaxed);

@@ -131,7 +131,12 @@ class Controller {
   Scan scan();  // one look at every thread of the group
   // Deterministic mode, after a turn: a light look (light_look.cpp), or
   // nullopt when what the turn did needs a full one.
-  std::optional<Scan> light_scan();
+  std::optional<Scan> light_scan(bool quiet_turn);
+  // Deterministic mode, before the look after a turn (light_look.cpp):
+  // whether the turn made no call that can end another thread's wait for an
+  // fd (no write the kernel counted for its thread, no send, connect,
+  // shutdown or close the shim counted) since the last look.
+  bool turn_made_no_fd_output();
   void remember_full_look(const Scan& look);
   void begin_after_quiescence();
   // Deterministic mode (light_look.cpp): the thread given the turn holds the
@@ -196,6 +201,12 @@ class Controller {
     std::chrono::steady_clock::time_point full_at;
     std::uint64_t full_looks = 0;
     std::uint64_t light_looks = 0;
+    // Threads that wait for fds and were, when last read or at the end of
+    // their turn, asleep with nothing to read: until a turn outputs to an fd
+    // (or input comes from outside the group), they still sleep.
+    std::set<pid_t> fd_asleep;
+    std::uint64_t fd_outputs = 0;           // the group's counted fd outputs at the last look
+    std::map<pid_t, std::uint64_t> writes;  // by tid: its write calls after its last turn
   } light_;
 };
 

@@ -17,7 +17,7 @@ namespace ubersim::timeshim {
 // The environment variable that names the segment's file.
 inline constexpr const char* kSegmentEnv = "UBERSIM_TIMESHIM_SHM";
 inline constexpr std::uint32_t kMagic = 0x54534d55;  // "UMST"
-inline constexpr std::uint32_t kVersion = 5;
+inline constexpr std::uint32_t kVersion = 6;
 inline constexpr int kMaxThreads = 1024;
 // No deadline: a wait only input can end.
 inline constexpr std::int64_t kNoDeadline = std::numeric_limits<std::int64_t>::max();
@@ -145,6 +145,11 @@ struct Header {
   // a signal can wake a thread that a light look (deterministic mode) does
   // not read, so the look after one reads every thread.
   std::atomic<std::uint64_t> signals_sent{0};
+  // Deterministic mode: calls of the group's threads that can end another
+  // thread's wait for an fd (a write, send, connect, shutdown or close; the
+  // shim's interposers count them): a light look after a turn that made
+  // none need not read the threads that wait for fds (light_look.cpp).
+  std::atomic<std::uint64_t> fd_outputs{0};
   // Deterministic mode: on (1) or off (0), set before any process attaches;
   // the tid of the thread that holds the run token (0: none); the next
   // thread's place in the order (given out by the token holder, so the same
