@@ -10,11 +10,14 @@
 // those threads, nor list threads and children again: it reads every thread
 // that waits in the kernel (for input, which anyone may send) and the turn's
 // thread unless its slot says it waits, and takes the rest from the segment.
-// The first look of a call after a quiescent return is light too, reading
-// also the threads the controller woke when it advanced sim time. After a
-// signal, a new thread or process or a thread that ended, at any other
-// look, and every kFullLookAtLeastEvery, a look is a full one
-// (quiescence.cpp).
+// After a turn that output nothing to an fd it need not read the threads
+// that wait for input either. The looks of a call after a quiescent return
+// are light too, reading also the threads the controller woke when it
+// advanced sim time. So are the looks after a light one that was not
+// quiescent, until the next turn: nobody ran the program's code since. After
+// a signal, a new thread or process or a thread that ended, when a thread
+// waits in a call the shim does not know, and every kFullLookAtLeastEvery, a
+// look is a full one (quiescence.cpp).
 #include <algorithm>
 #include <chrono>
 #include <set>
@@ -98,7 +101,12 @@ void Controller::remember_full_look(const Scan& look) {
 }
 
 bool Controller::turn_made_no_fd_output() {
-  if (!light_.holder) return false;
+  // Only at the first look after a turn: a later one follows a look that
+  // was not quiescent, perhaps with input on its way, and reads every
+  // waiter. (At a call's start the caller sent input: every waiter is read.)
+  if (!light_.holder || light_.call_start || std::exchange(light_.outputs_checked, true)) {
+    return false;
+  }
   const std::uint64_t outputs = header().fd_outputs.load();
   const bool no_output = std::exchange(light_.fd_outputs, outputs) == outputs;
   const auto [pid, tid] = *light_.holder;
@@ -110,14 +118,26 @@ bool Controller::turn_made_no_fd_output() {
   return no_output && no_write;
 }
 
+void Controller::after_turn_given(std::pair<pid_t, pid_t> holder) {
+  light_.holder = holder;
+  light_.call_start = false;
+  light_.outputs_checked = false;
+  light_.woken.clear();  // the look that gave the turn read them settled
+}
+
+void Controller::want_full_look() {
+  light_.holder.reset();
+  light_.call_start = false;
+  light_.woken.clear();  // read, and settled or read again by the full look
+}
+
 std::optional<Controller::Scan> Controller::light_scan(bool quiet_turn) {
-  // Only the first look after a turn or a quiescent return: what happened
-  // since is known then; after a look that was not quiet, input (at wall
-  // times) may have woken threads, and full looks decide.
-  const auto holder = std::exchange(light_.holder, std::nullopt);
-  const bool call_start = std::exchange(light_.call_start, false);
-  std::set<pid_t> woken;
-  woken.swap(light_.woken);
+  // Every look after a turn or a quiescent return, until the next turn:
+  // meanwhile nobody runs the program's code (a thread that woke runs the
+  // shim's until it wants its turn), so what can have changed is known.
+  const auto holder = light_.holder;
+  const bool call_start = light_.call_start;
+  const std::set<pid_t>& woken = light_.woken;
   Header& segment = header();
   if ((!holder && !call_start) || light_.full_looks == 0 ||
       segment.signals_sent.load() != light_.signals_sent ||

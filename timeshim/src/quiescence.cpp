@@ -430,13 +430,16 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
     }
     if (look.owed_wake) wake_due();
     // A thread in a wait the shim does not know: two full looks tell.
-    if (look.light && look.all_waiting && !look.only_shim_waits) continue;  // full next
+    if (look.light && look.all_waiting && !look.only_shim_waits) {
+      want_full_look();
+      continue;
+    }
     if (look.all_waiting && !input_in_flight && quiet_at_one_instant(look, seq, between_turns)) {
       // Deterministic mode: quiescent only when nobody wants to run.
       if (options_.deterministic) {
         if (auto holder = give_turn()) {
           running = holder;  // it runs now: looked at alone until it stops
-          light_.holder = holder;
+          after_turn_given(*holder);
           backoff_ns = kFirstBackoffNs;
           turn_wait_ns = kFirstTurnWaitNs;
           continue;
@@ -447,6 +450,7 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
       if (!look.unread_holder ||
           proc_->state_of(look.unread_holder->first, look.unread_holder->second) == 'S') {
         light_.quiescent = true;
+        want_full_look();  // until the next call: begin_after_quiescence
         return Quiescence{GroupState::Quiescent, look.next_deadline};
       }
     }

@@ -137,6 +137,10 @@ class Controller {
   // fd (no write the kernel counted for its thread, no send, connect,
   // shutdown or close the shim counted) since the last look.
   bool turn_made_no_fd_output();
+  // What the light looks start from: a turn given to `holder`; or nothing
+  // (the next look is a full one, unless a call starts after a quiescent return).
+  void after_turn_given(std::pair<pid_t, pid_t> holder);
+  void want_full_look();
   void remember_full_look(const Scan& look);
   void begin_after_quiescence();
   // Deterministic mode (light_look.cpp): the thread given the turn holds the
@@ -206,6 +210,7 @@ class Controller {
     // (or input comes from outside the group), they still sleep.
     std::set<pid_t> fd_asleep;
     std::uint64_t fd_outputs = 0;           // the group's counted fd outputs at the last look
+    bool outputs_checked = false;           // the look after the turn asked whether it output
     std::map<pid_t, std::uint64_t> writes;  // by tid: its write calls after its last turn
   } light_;
 };
