@@ -561,19 +561,120 @@ signal_entry() {
   fi
 }
 
-# While the set starts, a stop signal ends what has started so far (the full
-# stop, on_signal below, takes over once every process runs): without it a
-# Ctrl-C during the start ended this script and left the rest running.
-stop_while_starting() {
+sync_watch="" sync_filter=""  # the sync mode's log watch (below), once started
+failed=0
+# Sends SIGTERM to the given indices of pids[], waits up to 2 s, kills what is left.
+stop_indices() {
   local i
+  for i in "$@"; do signal_entry TERM "$i"; done
+  for _ in $(seq 20); do
+    local alive=0
+    for i in "$@"; do signal_entry 0 "$i" && alive=1; done
+    [ "$alive" = 0 ] && break
+    sleep 0.1
+  done
+  for i in "$@"; do
+    if signal_entry 0 "$i"; then
+      echo "launch: ${names[$i]} did not stop within 2 s: killing it" >&2
+      signal_entry KILL "$i"
+      failed=1
+    fi
+  done
+}
+stop_all() {
+  # The logger stops last, once every producer has exited, so that the log
+  # holds every message anyone could have received during the run.
+  local i producers=() loggers=()
+  for i in "${!pids[@]}"; do
+    if [ "${names[$i]}" = logger ]; then loggers+=("$i"); else producers+=("$i"); fi
+  done
+  [ "${#producers[@]}" = 0 ] || stop_indices "${producers[@]}"
+  if [ "${#loggers[@]}" != 0 ]; then
+    sleep 0.2  # let the logger drain what is still in its socket buffer
+    stop_indices "${loggers[@]}"
+  fi
+  for i in "${!pids[@]}"; do
+    wait "${pids[$i]}" 2>/dev/null
+    local status=$?
+    # 0, or killed by the signal we sent (128+15) / Ctrl-C (128+2): a clean stop.
+    # 127 and -1: bash has no status left for it. That happens when Ctrl-C
+    # reached the process from the terminal and it exited while the trap was
+    # starting; a process that failed on its own was reported by the main loop.
+    case $status in
+      0|130|143|127|-1) ;;
+      *) echo "launch: ${names[$i]} exited with status $status" >&2; why_failed "${names[$i]}" "$status"; failed=1 ;;
+    esac
+  done
+  # What the run lost, said once every process is stopped; the sync verdict last.
+  report_losses
+  report_team_cpu
+  report_sync_clients
+}
+
+# Team programs under the time shim: the CPU time they and the bridge used
+# per game second (their own computing bounds the game's speed).
+report_team_cpu() {
+  local line
+  line=$(grep -o "team CPU: .*" "$log_dir/ssl_bridge.log" 2>/dev/null | tail -n 1)
+  [ -z "$line" ] || echo "launch: $line"
+}
+
+# The end of a sync run: the radio emulator's verdict on its clients, the
+# last line of its log that says one (docs/sync.md, "A dropped client").
+report_sync_clients() {
+  [ -n "$sync_watch" ] || return 0
+  kill "$sync_watch" 2>/dev/null
+  wait "$sync_watch" 2>/dev/null
+  exec {sync_fd}>&-
+  wait "$sync_filter" 2>/dev/null
+  sync_watch=""
+  local log="$log_dir/radio.log" summary drops
+  summary=$(grep -o 'sync: degraded run: .*' "$log" | tail -n 1)
+  drops=$(grep -c 'sync client dropped: ' "$log")
+  if [ -n "$summary" ]; then
+    echo "launch: $summary" >&2
+  elif [ "$drops" != 0 ]; then
+    echo "launch: sync: degraded run: $drops sync client drop(s), no summary from the radio emulator (see $log)" >&2
+  else
+    echo "launch: sync: no client was dropped"
+  fi
+}
+
+# A loss is said where the user looks: frames the vision emulator lost
+# (from its exit summary) are named on the terminal.
+report_losses() {
+  local lost line
+  # Commands beyond a robot type's limits were applied at the limit: say how many.
+  line=$(grep -o "commands: .*" "$log_dir/physics.log" 2>/dev/null | tail -n 1)
+  if [ -n "$line" ] && [[ $line != *" 0 of them at a robot type's limit"* ]]; then
+    echo "launch: physics $line (see $log_dir/physics.log)" >&2
+  fi
+  # grSim commands that a newer one for the same robot replaced before they went out.
+  line=$(grep -o "grSim summary:.*" "$log_dir/ssl_bridge.log" 2>/dev/null | tail -n 1)
+  if [[ $line =~ superseded\ yellow=([0-9]+).*superseded\ blue=([0-9]+) ]] &&
+    [ "${BASH_REMATCH[1]}${BASH_REMATCH[2]}" != 00 ]; then
+    echo "launch: grSim commands superseded by newer ones before they went out: yellow ${BASH_REMATCH[1]}, blue ${BASH_REMATCH[2]} (see $log_dir/ssl_bridge.log)" >&2
+  fi
+  lost=$(grep -o 'summary: frames lost [0-9]*' "$log_dir/vision.log" 2>/dev/null | tail -n 1)
+  lost=${lost##* }
+  if [ -n "$lost" ] && [ "$lost" != 0 ]; then
+    echo "launch: vision lost $lost frames: no ground truth reached it for their capture instants (see $log_dir/vision.log)" >&2
+  fi
+}
+
+# on_signal NAME STATUS: the user stopped the set. Exit STATUS (128 + the
+# signal, as a shell does) unless a process had failed on its own. Installed
+# before the first process starts: a Ctrl-C during the start stops what has
+# started so far (before, it ended this script and left the rest running).
+on_signal() {
   trap '' INT TERM
-  for i in "${!pids[@]}"; do signal_entry TERM "$i"; done
-  wait "${pids[@]}" 2>/dev/null
-  echo "launch: stopped while starting ($1)" >&2
+  stop_all
+  echo "launch: stopped ($1)"
+  [ "$failed" = 0 ] || exit 1
   exit "$2"
 }
-trap 'stop_while_starting Ctrl-C 130' INT
-trap 'stop_while_starting SIGTERM 143' TERM
+trap 'on_signal Ctrl-C 130' INT
+trap 'on_signal SIGTERM 143' TERM
 
 mode=$speed
 [ "$lockstep" = 1 ] && mode=lockstep
@@ -703,7 +804,6 @@ wait_for_bus_claim "${pids[-1]}"
 # each drop and rejoin on one line (docs/sync.md, "A dropped client"): shown
 # here as it happens, by a tail of its log (--pid: it ends with this script)
 # through a filter (ended and waited for before the summary at the end).
-sync_watch="" sync_filter=""
 if [ "$sync" = 1 ] && [ "$radio" = 1 ]; then
   # Also what physics waits for, once a wait passes 2 s, and the time shim's
   # findings about the team programs (stuck threads, static programs) and
@@ -766,118 +866,6 @@ echo "watch:    tools/lcm-spy.sh -l '$lcm_url'      control: build/bin/ubersim_r
 [ "$vision" = 0 ] && echo "vision:   not started: a real vision server must publish ${prefix}VISION"
 [ "$radio" = 0 ] && echo "radio:    not started: a real radio server must listen on ${prefix}RADIO_YELLOW / ${prefix}RADIO_BLUE"
 echo "Ctrl-C stops everything."
-
-failed=0
-# Sends SIGTERM to the given indices of pids[], waits up to 2 s, kills what is left.
-stop_indices() {
-  local i
-  for i in "$@"; do signal_entry TERM "$i"; done
-  for _ in $(seq 20); do
-    local alive=0
-    for i in "$@"; do signal_entry 0 "$i" && alive=1; done
-    [ "$alive" = 0 ] && break
-    sleep 0.1
-  done
-  for i in "$@"; do
-    if signal_entry 0 "$i"; then
-      echo "launch: ${names[$i]} did not stop within 2 s: killing it" >&2
-      signal_entry KILL "$i"
-      failed=1
-    fi
-  done
-}
-stop_all() {
-  # The logger stops last, once every producer has exited, so that the log
-  # holds every message anyone could have received during the run.
-  local i producers=() loggers=()
-  for i in "${!pids[@]}"; do
-    if [ "${names[$i]}" = logger ]; then loggers+=("$i"); else producers+=("$i"); fi
-  done
-  [ "${#producers[@]}" = 0 ] || stop_indices "${producers[@]}"
-  if [ "${#loggers[@]}" != 0 ]; then
-    sleep 0.2  # let the logger drain what is still in its socket buffer
-    stop_indices "${loggers[@]}"
-  fi
-  for i in "${!pids[@]}"; do
-    wait "${pids[$i]}" 2>/dev/null
-    local status=$?
-    # 0, or killed by the signal we sent (128+15) / Ctrl-C (128+2): a clean stop.
-    # 127 and -1: bash has no status left for it. That happens when Ctrl-C
-    # reached the process from the terminal and it exited while the trap was
-    # starting; a process that failed on its own was reported by the main loop.
-    case $status in
-      0|130|143|127|-1) ;;
-      *) echo "launch: ${names[$i]} exited with status $status" >&2; why_failed "${names[$i]}" "$status"; failed=1 ;;
-    esac
-  done
-  # What the run lost, said once every process is stopped; the sync verdict last.
-  report_losses
-  report_team_cpu
-  report_sync_clients
-}
-
-# Team programs under the time shim: the CPU time they and the bridge used
-# per game second (their own computing bounds the game's speed).
-report_team_cpu() {
-  local line
-  line=$(grep -o "team CPU: .*" "$log_dir/ssl_bridge.log" 2>/dev/null | tail -n 1)
-  [ -z "$line" ] || echo "launch: $line"
-}
-
-# The end of a sync run: the radio emulator's verdict on its clients, the
-# last line of its log that says one (docs/sync.md, "A dropped client").
-report_sync_clients() {
-  [ -n "$sync_watch" ] || return 0
-  kill "$sync_watch" 2>/dev/null
-  wait "$sync_watch" 2>/dev/null
-  exec {sync_fd}>&-
-  wait "$sync_filter" 2>/dev/null
-  sync_watch=""
-  local log="$log_dir/radio.log" summary drops
-  summary=$(grep -o 'sync: degraded run: .*' "$log" | tail -n 1)
-  drops=$(grep -c 'sync client dropped: ' "$log")
-  if [ -n "$summary" ]; then
-    echo "launch: $summary" >&2
-  elif [ "$drops" != 0 ]; then
-    echo "launch: sync: degraded run: $drops sync client drop(s), no summary from the radio emulator (see $log)" >&2
-  else
-    echo "launch: sync: no client was dropped"
-  fi
-}
-
-# A loss is said where the user looks: frames the vision emulator lost
-# (from its exit summary) are named on the terminal.
-report_losses() {
-  local lost line
-  # Commands beyond a robot type's limits were applied at the limit: say how many.
-  line=$(grep -o "commands: .*" "$log_dir/physics.log" 2>/dev/null | tail -n 1)
-  if [ -n "$line" ] && [[ $line != *" 0 of them at a robot type's limit"* ]]; then
-    echo "launch: physics $line (see $log_dir/physics.log)" >&2
-  fi
-  # grSim commands that a newer one for the same robot replaced before they went out.
-  line=$(grep -o "grSim summary:.*" "$log_dir/ssl_bridge.log" 2>/dev/null | tail -n 1)
-  if [[ $line =~ superseded\ yellow=([0-9]+).*superseded\ blue=([0-9]+) ]] &&
-    [ "${BASH_REMATCH[1]}${BASH_REMATCH[2]}" != 00 ]; then
-    echo "launch: grSim commands superseded by newer ones before they went out: yellow ${BASH_REMATCH[1]}, blue ${BASH_REMATCH[2]} (see $log_dir/ssl_bridge.log)" >&2
-  fi
-  lost=$(grep -o 'summary: frames lost [0-9]*' "$log_dir/vision.log" 2>/dev/null | tail -n 1)
-  lost=${lost##* }
-  if [ -n "$lost" ] && [ "$lost" != 0 ]; then
-    echo "launch: vision lost $lost frames: no ground truth reached it for their capture instants (see $log_dir/vision.log)" >&2
-  fi
-}
-
-# on_signal NAME STATUS: the user stopped the set. Exit STATUS (128 + the
-# signal, as a shell does) unless a process had failed on its own.
-on_signal() {
-  trap '' INT TERM
-  stop_all
-  echo "launch: stopped ($1)"
-  [ "$failed" = 0 ] || exit 1
-  exit "$2"
-}
-trap 'on_signal Ctrl-C 130' INT
-trap 'on_signal SIGTERM 143' TERM
 
 while :; do
   finished=""
