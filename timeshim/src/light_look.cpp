@@ -82,17 +82,11 @@ void Controller::begin_after_quiescence() {
   if (light_.call_start && light_.last_pid) light_.last_pid = proc_->last_pid();
 }
 
-void Controller::remember_full_look(const Scan& look) {
+void Controller::remember_full_look(const Scan& look, const std::set<pid_t>& alive) {
   if (options_.deterministic) {
     light_.threads = look.threads;
-    std::set<pid_t> alive;
-    for (const auto& thread : look.threads) alive.insert(thread.second);
-    for (auto it = light_.writes.begin(); it != light_.writes.end();) {
-      it = alive.count(it->first) != 0 ? std::next(it) : light_.writes.erase(it);
-    }
-    for (auto it = light_.fd_asleep.begin(); it != light_.fd_asleep.end();) {
-      it = alive.count(*it) != 0 ? std::next(it) : light_.fd_asleep.erase(it);
-    }
+    keep_only_alive(light_.writes, alive);
+    keep_only_alive(light_.fd_asleep, alive);
   }
   light_.holder.reset();
   light_.call_start = false;
@@ -112,9 +106,8 @@ bool Controller::turn_made_no_fd_output() {
   const auto [pid, tid] = *light_.holder;
   const auto writes = proc_->writes_of(pid, tid);
   if (!writes) return false;
-  const auto before = light_.writes.find(tid);
-  const bool no_write = before != light_.writes.end() && before->second == *writes;
-  light_.writes[tid] = *writes;
+  const auto [last, first_turn] = light_.writes.try_emplace(tid, *writes);
+  const bool no_write = !first_turn && std::exchange(last->second, *writes) == *writes;
   return no_output && no_write;
 }
 

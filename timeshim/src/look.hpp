@@ -4,6 +4,7 @@
 #include <sys/types.h>
 
 #include <cstdint>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
@@ -44,6 +45,22 @@ struct SlotView {
 // what the kernel says of it does not matter, and a look need not read it.
 inline bool ends_only_in_turn(ThreadState state) {
   return state == ThreadState::WantToken || state == ThreadState::DetBlocked;
+}
+
+// What the controller keeps by tid (a set of tids, or a map by tid), without
+// the threads a full look did not find alive.
+inline pid_t tid_of(pid_t tid) {
+  return tid;
+}
+template <typename Value>
+pid_t tid_of(const std::pair<const pid_t, Value>& entry) {
+  return entry.first;
+}
+template <typename ByTid>
+void keep_only_alive(ByTid& by_tid, const std::set<pid_t>& alive) {
+  for (auto it = by_tid.begin(); it != by_tid.end();) {
+    it = alive.count(tid_of(*it)) != 0 ? std::next(it) : by_tid.erase(it);
+  }
 }
 
 // The claimed thread slots of the segment (not timers), by tid.

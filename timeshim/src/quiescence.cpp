@@ -215,10 +215,8 @@ Controller::Scan Controller::scan() {
   if (result.owed_wake) result.all_waiting = false;
   free_dead_slots(segment, alive);
   proc_->keep_only(processes, alive);
-  for (auto it = suspects_.begin(); it != suspects_.end();) {
-    it = alive.count(it->first) != 0 ? std::next(it) : suspects_.erase(it);
-  }
-  remember_full_look(result);
+  keep_only_alive(suspects_, alive);
+  remember_full_look(result, alive);
   return result;
 }
 

@@ -193,7 +193,6 @@ __attribute__((visibility("default"))) ssize_t send(int fd, const void* buffer, 
                                                     int flags) {
   static const auto next = shim::next_symbol<ssize_t (*)(int, const void*, size_t, int)>("send");
   shim::note_fd_output();
-
   const std::int64_t timeout = timeout_in(send_timeout_ns, fd);
   if (timeout == 0 || !blocking(fd, flags)) return next(fd, buffer, size, flags);
   return receive_until(

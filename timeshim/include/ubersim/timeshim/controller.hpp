@@ -141,7 +141,8 @@ class Controller {
   // (the next look is a full one, unless a call starts after a quiescent return).
   void after_turn_given(std::pair<pid_t, pid_t> holder);
   void want_full_look();
-  void remember_full_look(const Scan& look);
+  // `alive`: the tids of the look's threads (Scan::threads), as the look collected them.
+  void remember_full_look(const Scan& look, const std::set<pid_t>& alive);
   void begin_after_quiescence();
   // Deterministic mode (light_look.cpp): the thread given the turn holds the
   // token still; or it gave it back and its slot says it waits for its turn,
