@@ -16,9 +16,11 @@ source "$source_dir/tests/support/script_checks.sh"
 team="bash -c 'exec -a ${marker}-first-child sleep 300' & bash -c 'exec -a ${marker}-second-child sleep 300' & wait"
 
 # children_started: true once both of the team's children run (at most 20 s).
+# Anchored at the start of the command line: launch.sh, timeout and the team's
+# shell hold the marker too, in the team command they were given.
 children_started() {
   for _ in $(seq 200); do
-    [ "$(pgrep -fc -- "${marker}-.*-child")" = 2 ] && return 0
+    [ "$(pgrep -fc -- "^${marker}-(first|second)-child")" = 2 ] && return 0
     sleep 0.1
   done
   return 1
