@@ -1,11 +1,11 @@
 #pragma once
 // What the fuzz targets (and their seed writer) share.
-#include <spdlog/spdlog.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <string>
+
+#include "ubersim/spdlog.hpp"
 
 namespace ubersim::fuzz {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 
 namespace ubersim {
 

@@ -1,12 +1,11 @@
 #include "ubersim/process_main.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <cstdio>
 #include <exception>
 
 #include "ubersim/cli.hpp"
 #include "ubersim/config.hpp"
+#include "ubersim/spdlog.hpp"
 
 namespace ubersim {
 

@@ -1,7 +1,5 @@
 #include "dds_bridge_shell.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <chrono>
 
 #include "ubersim/config.hpp"
@@ -11,6 +9,7 @@
 #include "ubersim/logging.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/radio/radio_profile.hpp"
+#include "ubersim/spdlog.hpp"
 #include "ubersim/topics.hpp"
 
 namespace ubersim::dds {

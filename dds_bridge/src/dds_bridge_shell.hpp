@@ -4,7 +4,7 @@
 // options.
 #include <string>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 
 namespace ubersim::dds {
 

@@ -1,9 +1,9 @@
 #include "ubersim/dds_bridge/dds_entity.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <cstdlib>
 #include <string_view>
+
+#include "ubersim/spdlog.hpp"
 
 namespace ubersim::dds {
 

@@ -1,7 +1,5 @@
 #include "gc_link_shell.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <chrono>
 #include <exception>
 #include <iostream>
@@ -17,6 +15,7 @@
 #include "ubersim/referee/event_log.hpp"
 #include "ubersim/referee/robot_radii.hpp"
 #include "ubersim/referee/sim_link.hpp"
+#include "ubersim/spdlog.hpp"
 #include "ubersim/topics.hpp"
 
 namespace ubersim::gc_link {

@@ -4,7 +4,7 @@
 // command line (main.cpp) fills the options.
 #include <string>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 
 namespace ubersim::gc_link {
 

@@ -6,7 +6,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -20,6 +19,7 @@
 #include "ubersim/config_paths.hpp"
 #include "ubersim/field_side.hpp"
 #include "ubersim/robot_config.hpp"
+#include "ubersim/spdlog.hpp"
 #include "vector_sim.hpp"
 
 namespace ubersim::python {

@@ -1,11 +1,11 @@
 #include "ubersim/radio/radio_emulator.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <ubersim/team_t.hpp>
+
+#include "ubersim/spdlog.hpp"
 
 namespace ubersim::radio {
 namespace {

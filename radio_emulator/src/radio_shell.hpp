@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/radio/sync_driver.hpp"
 
 namespace ubersim::radio {

@@ -1,11 +1,12 @@
 #include "ubersim/radio/sync_driver.hpp"
 
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <limits>
 #include <optional>
+
+#include "ubersim/spdlog.hpp"
 
 namespace ubersim::radio {
 

@@ -2,12 +2,11 @@
 // "Integration with sync mode"): the bridge is the teams' clock. What it sends
 // them waits for the sim time it stands for (a detection packet: its frame's
 // publication), and what they send is stamped with the sim time they sent it.
-#include <spdlog/spdlog.h>
-
 #include <algorithm>
 #include <cmath>
 #include <ubersim/team_t.hpp>
 
+#include "ubersim/spdlog.hpp"
 #include "ubersim/ssl_bridge/bridge.hpp"
 #include "ubersim/ssl_bridge/timed_inputs.hpp"
 #include "ubersim/topics.hpp"

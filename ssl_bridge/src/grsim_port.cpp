@@ -1,7 +1,6 @@
 #include "ubersim/ssl_bridge/grsim_port.hpp"
 
 #include <arpa/inet.h>
-#include <spdlog/spdlog.h>
 #include <sys/socket.h>
 
 #include <algorithm>
@@ -10,6 +9,7 @@
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/delay_line.hpp"
+#include "ubersim/spdlog.hpp"
 #include "ubersim/ssl_bridge/datagram_decoding.hpp"
 #include "ubersim/ssl_bridge/timed_inputs.hpp"
 #include "ubersim/topics.hpp"

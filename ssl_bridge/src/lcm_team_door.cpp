@@ -1,13 +1,12 @@
 #include "ubersim/ssl_bridge/lcm_team_door.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <algorithm>
 #include <cmath>
 #include <regex>
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/delay_line.hpp"
+#include "ubersim/spdlog.hpp"
 #include "ubersim/ssl_bridge/timed_inputs.hpp"
 #include "ubersim/topics.hpp"
 

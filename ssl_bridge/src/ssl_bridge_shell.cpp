@@ -1,7 +1,5 @@
 #include "ssl_bridge_shell.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <chrono>
 #include <optional>
 
@@ -9,6 +7,7 @@
 #include "ubersim/config_paths.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/robot_config.hpp"
+#include "ubersim/spdlog.hpp"
 
 namespace ubersim::ssl {
 namespace {

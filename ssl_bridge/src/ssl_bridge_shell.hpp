@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/ssl_bridge/bridge.hpp"
 #include "ubersim/ssl_bridge/grsim_port.hpp"
 

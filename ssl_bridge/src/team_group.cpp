@@ -1,7 +1,6 @@
 #include "ubersim/ssl_bridge/team_group.hpp"
 
 #include <dirent.h>
-#include <spdlog/spdlog.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -15,6 +14,7 @@
 #include <optional>
 #include <sstream>
 
+#include "ubersim/spdlog.hpp"
 #include "ubersim/ssl_bridge/socket_owner.hpp"
 
 namespace ubersim::ssl {

@@ -14,7 +14,7 @@
 #include "child_process.hpp"
 #include "dds_test_support.hpp"
 #include "sample_messages.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/dds_bridge/convert.hpp"
 #include "ubersim/dds_bridge/echo_filter.hpp"
 #include "ubersim/message_bus.hpp"

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 
 namespace e2e {
 

@@ -14,7 +14,7 @@
 #include <ubersim/team_t.hpp>
 
 #include "ubersim/bounded_decode.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 
 namespace e2e {
 namespace {

@@ -20,7 +20,7 @@
 #include <ubersim/sim_state_t.hpp>
 
 #include "e2e_support.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 
 using namespace e2e;
 using ubersim::test::process_alive;

@@ -16,7 +16,7 @@
 #include "allowed_cpus.hpp"
 #include "e2e_support.hpp"
 #include "lockstep_replay.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 
 using namespace e2e;
 using ubersim::test::allowed_cpus;

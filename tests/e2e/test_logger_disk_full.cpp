@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "e2e_support.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 
 namespace {
 

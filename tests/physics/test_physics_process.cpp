@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "child_process.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/topics.hpp"
 

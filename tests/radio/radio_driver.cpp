@@ -3,7 +3,7 @@
 #include <chrono>
 
 #include "radio_test_util.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/topics.hpp"
 
 namespace radio_test {

@@ -20,7 +20,7 @@
 
 #include "child_process.hpp"  // tests/support
 #include "radio_test_util.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/message_bus.hpp"
 #include "ubersim/topics.hpp"
 

@@ -24,7 +24,7 @@
 
 #include "child_process.hpp"
 #include "ssl_client.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/message_bus.hpp"
 
 namespace {

@@ -23,7 +23,7 @@
 #include <ubersim/vision_geometry_t.hpp>
 
 #include "child_process.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/message_bus.hpp"
 
 namespace {

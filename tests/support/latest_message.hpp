@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/message_bus.hpp"
 
 namespace ubersim::test {

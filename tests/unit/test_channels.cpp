@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "ubersim/channels.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/field_side.hpp"
 #include "ubersim/topics.hpp"
 

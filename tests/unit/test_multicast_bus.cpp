@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <ubersim/vision_frame_t.hpp>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/message_bus.hpp"
 
 namespace {

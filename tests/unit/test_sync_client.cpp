@@ -11,7 +11,7 @@
 #include <ubersim/team_t.hpp>
 #include <vector>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/sync_client.hpp"
 #include "ubersim/topics.hpp"

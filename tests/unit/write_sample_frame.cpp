@@ -8,7 +8,7 @@
 #include <ubersim/vision_frame_t.hpp>
 #include <vector>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/message_bus.hpp"
 
 int main(int argc, char** argv) {

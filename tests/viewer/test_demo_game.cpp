@@ -25,7 +25,7 @@
 #include "e2e_support.hpp"
 #include "latest_message.hpp"
 #include "read_file.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/message_bus.hpp"
 
 namespace {

@@ -18,7 +18,7 @@
 #include "cdp_client.hpp"
 #include "e2e_support.hpp"
 #include "latest_message.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/message_bus.hpp"
 
 namespace {

@@ -17,7 +17,7 @@
 
 #include "child_process.hpp"
 #include "process_memory.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/message_bus.hpp"
 
 namespace {

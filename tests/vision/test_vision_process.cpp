@@ -18,7 +18,7 @@
 #include <ubersim/vision_schedule_t.hpp>
 
 #include "ubersim/angles.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/robot_config.hpp"
 #include "ubersim/topics.hpp"

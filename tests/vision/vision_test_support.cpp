@@ -18,7 +18,7 @@
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/team_t.hpp>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/topics.hpp"
 
 extern char** environ;

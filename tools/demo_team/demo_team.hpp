@@ -13,7 +13,7 @@
 #include "behaviour.hpp"
 #include "referee_rules.hpp"
 #include "ubersim/channels.hpp"
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/message_bus.hpp"
 
 namespace demo {

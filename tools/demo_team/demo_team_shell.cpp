@@ -1,12 +1,11 @@
 #include "demo_team_shell.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <chrono>
 #include <optional>
 #include <string>
 
 #include "ubersim/process_host.hpp"
+#include "ubersim/spdlog.hpp"
 #include "ubersim/sync_client.hpp"
 #include "ubersim/topics.hpp"
 

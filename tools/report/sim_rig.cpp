@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <ubersim/team_t.hpp>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/config.hpp"
 #include "ubersim/config_paths.hpp"
 #include "ubersim/topics.hpp"

@@ -1,7 +1,5 @@
 #include "viewer_shell.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <chrono>
 #include <cstdio>
 #include <deque>
@@ -20,6 +18,7 @@
 #include "ubersim/logging.hpp"
 #include "ubersim/process_host.hpp"
 #include "ubersim/sim_control_requests.hpp"
+#include "ubersim/spdlog.hpp"
 #include "ubersim/topics.hpp"
 #include "ubersim/viewer/json_encoding.hpp"
 #include "ubersim/viewer/viewer_model.hpp"

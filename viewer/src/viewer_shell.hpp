@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/viewer/web_server.hpp"
 
 #ifndef UBERSIM_VIEWER_WEB_DIR

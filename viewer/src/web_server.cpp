@@ -1,13 +1,12 @@
 #include "ubersim/viewer/web_server.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <mutex>
 #include <stdexcept>
 #include <thread>
 #include <websocketpp/config/asio_no_tls.hpp>
 #include <websocketpp/server.hpp>
 
+#include "ubersim/spdlog.hpp"
 #include "ubersim/viewer/server_handlers.hpp"
 
 namespace ubersim::viewer {

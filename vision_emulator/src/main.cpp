@@ -1,6 +1,4 @@
 // ubersim_vision: the overhead-camera vision server, emulated (see vision_shell.hpp).
-#include <spdlog/spdlog.h>
-
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <cstdio>
@@ -9,6 +7,7 @@
 #include "ubersim/cli.hpp"
 #include "ubersim/logging.hpp"
 #include "ubersim/process_main.hpp"
+#include "ubersim/spdlog.hpp"
 #include "ubersim/vision/vision_shell.hpp"
 
 namespace {

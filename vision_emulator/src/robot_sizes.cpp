@@ -1,10 +1,9 @@
 #include "ubersim/vision/robot_sizes.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <exception>
 
 #include "ubersim/robot_config.hpp"
+#include "ubersim/spdlog.hpp"
 
 namespace ubersim::vision {
 

@@ -1,12 +1,11 @@
 #include "ubersim/vision/vision_emulator.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "ubersim/spdlog.hpp"
 #include "ubersim/vision/sim_state_check.hpp"
 
 namespace ubersim::vision {

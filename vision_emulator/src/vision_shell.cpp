@@ -1,7 +1,5 @@
 #include "ubersim/vision/vision_shell.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <chrono>
 #include <limits>
 #include <ubersim/sim_control_t.hpp>
@@ -12,6 +10,7 @@
 #include "ubersim/process_host.hpp"
 #include "ubersim/robot_type_definition.hpp"
 #include "ubersim/sim_control_requests.hpp"
+#include "ubersim/spdlog.hpp"
 #include "ubersim/topics.hpp"
 #include "ubersim/vision/vision_emulator.hpp"
 #include "ubersim/vision_backpressure.hpp"

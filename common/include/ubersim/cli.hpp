@@ -1,34 +1,14 @@
 #pragma once
-// Command-line options every ubersim process shares (CLI11), so that every
-// process takes an LCM URL, a channel prefix, channel overrides, a config
-// folder and -v/-q the same way.
+// Command-line parsing every ubersim process shares (CLI11): the options of
+// ubersim/common_options.hpp taken the same way by every process, range checks
+// that name their range, and one readable line for a bad command line.
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
-#include <vector>
 
-#include "ubersim/channels.hpp"
+#include "ubersim/common_options.hpp"
 
 namespace ubersim {
-
-// LCM_DEFAULT_URL if set, else LCM's own default (ttl=0: nothing leaves the host).
-std::string default_lcm_url();
-// Adds recv_buf_size to a udpm:// URL that has none: LCM 1.3.1 leaves Linux at
-// the ~208 KB kernel default, which drops bursts of SIM_STATE.
-std::string with_receive_buffer(const std::string& url);
-
-struct CommonOptions {
-  std::string lcm_url = default_lcm_url();
-  std::string channel_prefix;
-  std::vector<std::string> channel_overrides;  // "BASE=NAME"
-  std::string config_dir;
-  int verbose = 0;
-  int quiet = 0;
-
-  int verbosity() const { return verbose - quiet; }
-  ChannelNames channels() const;    // throws std::invalid_argument on a bad override
-  std::string config_root() const;  // config_dir or the built-in default
-};
 
 void add_common_options(CLI::App& app, CommonOptions& options);
 

@@ -1,11 +1,11 @@
 #pragma once
 // Logging goes through spdlog. Verbosity follows the usual convention:
 // default info, -v debug, -vv trace, -q warnings only, -qq errors only.
-#include <spdlog/spdlog.h>
-
 #include <chrono>
 #include <map>
 #include <string>
+
+#include "ubersim/spdlog.hpp"
 
 namespace ubersim {
 

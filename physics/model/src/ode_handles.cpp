@@ -1,10 +1,10 @@
 #include "ubersim/physics/ode_handles.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <cstdarg>
 #include <cstdio>
 #include <mutex>
+
+#include "ubersim/spdlog.hpp"
 
 namespace ubersim::physics {
 namespace {

@@ -7,7 +7,7 @@
 // returns when the game is over (or on SIGINT/SIGTERM).
 #include <string>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 #include "ubersim/referee/autoref.hpp"
 
 namespace ubersim::referee {

@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "ubersim/cli.hpp"
+#include "ubersim/common_options.hpp"
 
 namespace ubersim::vision {
 
