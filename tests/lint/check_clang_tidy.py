@@ -37,7 +37,7 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
 SKIP = 77
-BATCH_SIZE = 12
+BATCH_SIZE = 30
 # Not checked unless named: clang-tidy costs 2-30 s of CPU per translation unit, and
 # tests, fuzz targets and benchmarks would more than double the test's time.
 NOT_CHECKED_BY_DEFAULT = re.compile(r"^(tests|fuzz)/|(^|/)bench/")
