@@ -88,9 +88,7 @@ void Controller::remember_full_look(const Scan& look, const std::set<pid_t>& ali
     keep_only_alive(light_.writes, alive);
     keep_only_alive(light_.fd_asleep, alive);
   }
-  light_.holder.reset();
-  light_.call_start = false;
-  light_.woken.clear();
+  want_full_look();  // the next light look starts from this one: a turn or a call's start
   ++light_.full_looks;
 }
 
