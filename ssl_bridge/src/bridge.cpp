@@ -599,6 +599,7 @@ void SslBridge::log_summary() const {
     text += " team group: quiescences=" + std::to_string(teams_->quiescences()) +
             " advances=" + std::to_string(teams_->advances()) +
             " turns=" + std::to_string(teams_->turns()) +
+            " (handed over=" + std::to_string(teams_->handoffs()) + ")" +
             " charged pauses=" + std::to_string(teams_->charged_pauses()) +
             " looks full=" + std::to_string(teams_->full_looks()) +
             " light=" + std::to_string(teams_->light_looks()) +

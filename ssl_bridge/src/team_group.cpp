@@ -153,6 +153,10 @@ std::uint64_t TeamGroup::turns() const {
   return sum_over_groups(&timeshim::Controller::turns);
 }
 
+std::uint64_t TeamGroup::handoffs() const {
+  return sum_over_groups(&timeshim::Controller::handoffs);
+}
+
 std::uint64_t TeamGroup::charged_pauses() const {
   return sum_over_groups(&timeshim::Controller::charged_pauses);
 }

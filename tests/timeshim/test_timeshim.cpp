@@ -65,9 +65,10 @@ struct GroupRun {
   double wall_s = 0;
   std::int64_t sim_ns = 0;
   std::uint64_t advances = 0;
-  std::uint64_t turns = 0;   // deterministic mode
-  std::uint64_t calls = 0;   // intercepted calls
-  std::uint64_t pauses = 0;  // charged pauses
+  std::uint64_t turns = 0;     // deterministic mode
+  std::uint64_t handoffs = 0;  // of those, handed over by the shim (shim/handoff.cpp)
+  std::uint64_t calls = 0;     // intercepted calls
+  std::uint64_t pauses = 0;    // charged pauses
   std::uint64_t full_looks = 0;
   std::uint64_t light_looks = 0;  // deterministic mode, after a turn
   std::vector<Problem> problems;
@@ -115,6 +116,7 @@ GroupRun run_to_end(Controller& group, pid_t pid, const std::string& output_path
   run.sim_ns = group.now_ns();
   run.advances = group.advances();
   run.turns = group.turns();
+  run.handoffs = group.handoffs();
   run.calls = group.intercepted_calls();
   run.pauses = group.charged_pauses();
   run.full_looks = group.full_looks();
@@ -583,6 +585,36 @@ TEST(Timeshim, DeterministicModeRunsPythonThreadsAndAForkedChildInAFixedOrder) {
   // full one), and the order stayed the same.
   EXPECT_GT(first.light_looks, 0U);
   EXPECT_GT(second.light_looks, 0U);
+}
+
+// A turn that changed nothing a look relies on is handed to the next thread
+// by the shim (shim/handoff.cpp): the same interleaving as with a look after
+// every turn, also beside a CPU hog. Four threads pass a baton through a
+// condition variable, each broadcast waking all (who woke in which order is
+// hashed), and CPython's threads hand the GIL on.
+TEST(Timeshim, DeterministicModeHandsQuietTurnsOverInTheSameOrderAsItsLooks) {
+  TempDir dir;
+  std::vector<std::vector<std::string>> programs = {{TIMESHIM_PROBE, "baton"}};
+  if (have_python()) programs.push_back({"/usr/bin/python3", TIMESHIM_DET_PY});
+  for (const auto& argv : programs) {
+    ControllerOptions looks = deterministic_in(dir);
+    looks.shim_handoffs = false;
+    const GroupRun looked = run_program(dir, argv, looks);
+    ASSERT_EQ(looked.exit_status, 0) << looked.output;
+    EXPECT_EQ(looked.handoffs, 0U);
+    const GroupRun handed = run_program(dir, argv, deterministic_in(dir));
+    EXPECT_EQ(handed.output, looked.output) << argv.back();
+    EXPECT_EQ(handed.turns, looked.turns) << argv.back();
+    EXPECT_EQ(handed.calls, looked.calls) << argv.back();
+    // How many depends on the machine (a thread created anywhere makes the
+    // next look a full one, and a turn after it goes through the controller).
+    EXPECT_GT(handed.handoffs, 0U) << argv.back();
+    const GroupRun beside_hog =
+        beside_cpu_hog([&] { return run_program(dir, argv, deterministic_in(dir)); });
+    EXPECT_EQ(beside_hog.output, looked.output) << argv.back();
+    EXPECT_EQ(beside_hog.turns, looked.turns) << argv.back();
+    EXPECT_TRUE(blocking_problems(beside_hog).empty()) << all_text(beside_hog.problems);
+  }
 }
 
 TEST(Timeshim, DeterministicModeGivesPythonTheSameHashesAndRandomBytesOnEveryRun) {

@@ -8,7 +8,10 @@
 //    real time;
 //  * the deterministic mode: the wall time of the same sleeps, and of five
 //    threads of two processes that compute and sleep (timeshim_probe
-//    interleave), in turns against the same under the shim without turns.
+//    interleave), in turns against the same under the shim without turns;
+//    and four threads passing a baton through a condition variable (probe
+//    baton), with the shim handing quiet turns over against a look after
+//    every turn.
 // Usage: ubersim_timeshim_bench (run from the build tree).
 #include <sys/wait.h>
 #include <unistd.h>
@@ -56,13 +59,15 @@ std::string run_plain(const ubersim::test::TempFolder& dir, const char* mode) {
 
 // Runs the probe mode under the shim; returns its output file and the wall seconds.
 std::string run_shimmed(const ubersim::test::TempFolder& dir, const char* mode, double* wall_s,
-                        bool deterministic = false) {
+                        bool deterministic = false, bool handoffs = true) {
   ControllerOptions options;
   options.segment_dir = dir.root().string();
   options.yield_after_ns = 0;  // the cost of the call itself, no pauses
   options.deterministic = deterministic;
+  options.shim_handoffs = handoffs;
   Controller group(options);
-  const std::string output = dir.path(std::string(mode) + (deterministic ? ".turns" : ".shim"));
+  const std::string output = dir.path(std::string(mode) + (deterministic ? ".turns" : ".shim") +
+                                      (handoffs ? "" : ".looks"));
   const auto start = std::chrono::steady_clock::now();
   group.spawn({TIMESHIM_PROBE, mode}, output);
   while (group.run_until(kNoDeadline, std::chrono::seconds(5)).state != GroupState::Exited) {
@@ -101,6 +106,13 @@ int main() {
       "5 threads of 2 processes computing and sleeping (probe interleave) in deterministic mode: "
       "%.2fx the wall time\n",
       turns_wall_s / wall_s);
+  double looks_wall_s = 0;
+  run_shimmed(dir, "baton", &looks_wall_s, true, false);
+  run_shimmed(dir, "baton", &turns_wall_s, true);
+  std::printf(
+      "4 threads passing a baton through a condition variable (probe baton) in deterministic "
+      "mode, quiet turns handed over by the shim: %.2fx the wall time of a look after every turn\n",
+      turns_wall_s / looks_wall_s);
   dir.succeeded();
   return 0;
 }

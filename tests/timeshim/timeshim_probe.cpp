@@ -608,6 +608,54 @@ int mutex_cost() {
   return 0;
 }
 
+// Four threads pass a baton through one mutex and condition variable: each
+// wakes all of them (broadcast), and the baton goes to the thread a counter
+// names; the others see it is not theirs and wait again. Nothing is written
+// until the end, so in deterministic mode every turn but the last is quiet
+// (the shim hands them over itself, shim/handoff.cpp). Prints how many
+// wake-ups there were and a hash of who woke in which order (the same on
+// every run in deterministic mode). The main thread waits on the same
+// condition until they are done.
+int baton() {
+  constexpr int kThreads = 4;
+  constexpr int kPasses = 2000;
+  std::mutex mutex;
+  std::condition_variable changed;
+  int pass = 0;
+  int finished = 0;
+  std::uint64_t wakes = 0;
+  std::uint64_t order_hash = 1469598103934665603ULL;  // FNV-1a
+  const auto holder_of = [](int at) { return (at * 7 + at / 3) % kThreads; };
+  const auto run = [&](int self) {
+    std::unique_lock<std::mutex> lock(mutex);
+    while (pass < kPasses) {
+      if (holder_of(pass) == self) {
+        ++pass;
+        changed.notify_all();
+      } else {
+        changed.wait(lock);
+        ++wakes;
+        order_hash = (order_hash ^ static_cast<std::uint64_t>(self + 1)) * 1099511628211ULL;
+      }
+    }
+    ++finished;
+    changed.notify_all();
+  };
+  std::vector<std::thread> threads;
+  threads.reserve(kThreads);
+  for (int i = 0; i < kThreads; ++i) threads.emplace_back(run, i);
+  {
+    // Waits in the condition, not in a join (a kernel wait that needs the
+    // controller's looks), until they are done.
+    std::unique_lock<std::mutex> lock(mutex);
+    while (finished < kThreads) changed.wait(lock);
+  }
+  for (auto& thread : threads) thread.join();
+  say("wakes", static_cast<double>(wakes));
+  std::printf("order %016llx\n", static_cast<unsigned long long>(order_hash));
+  return 0;
+}
+
 // A thread blocked in a read is woken by another's output of each kind the
 // deterministic mode's light looks must notice (light_look.cpp): a write, a
 // send, libc's own write of a stdio stream, a close (end of file). Each
@@ -710,6 +758,7 @@ int main(int argc, char** argv) {
       {"signal_wake", signal_wake},
       {"raw_futex_wait", raw_futex_wait},
       {"mutex_cost", mutex_cost},
+      {"baton", baton},
       {"fd_wakes", fd_wakes}};
   const auto mode = argc == 2 ? modes.find(argv[1]) : modes.end();
   if (mode == modes.end()) {

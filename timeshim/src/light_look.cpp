@@ -116,6 +116,23 @@ void Controller::after_turn_given(std::pair<pid_t, pid_t> holder) {
   light_.woken.clear();  // the look that gave the turn read them settled
 }
 
+void Controller::allow_handoffs(const Scan& look) {
+  Header& segment = header();
+  // Every thread read sleeps in a shim wait (and every other was judged from
+  // its slot): the shim can see from the slots what a look would find, as
+  // long as its turns change nothing that makes the next look a full one.
+  const bool allowed =
+      options_.shim_handoffs && look.only_shim_waits && light_.full_looks > 0 && light_.last_pid;
+  if (allowed) {
+    segment.handoff_last_pid.store(*light_.last_pid);
+    segment.handoff_signals_sent.store(light_.signals_sent);
+    segment.handoff_until_ns.store(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                       (light_.full_at + kFullLookAtLeastEvery).time_since_epoch())
+                                       .count());
+  }
+  segment.handoff_allowed.store(allowed ? 1 : 0);
+}
+
 void Controller::want_full_look() {
   light_.holder.reset();
   light_.call_start = false;

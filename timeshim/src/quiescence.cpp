@@ -387,6 +387,7 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
   std::optional<std::pair<pid_t, pid_t>> running;
   for (;;) {
     const std::uint32_t seq = segment.change_seq.load();
+    adopt_handed_over_turn(running);
     if (turn_goes_on(running)) {
       if (std::chrono::steady_clock::now() >= give_up)
         return Quiescence{GroupState::Busy, kNoDeadline};
@@ -394,6 +395,8 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
           segment.change_seq.load() != seq) {
         continue;
       }
+      // The shim handed the turn on (and does not wake the controller for it).
+      if (segment.handoffs.load() != light_.handoffs_seen) continue;
       turn_wait_ns = std::min(turn_wait_ns * 2, kLongestBackoffNs);
       if (still_running(running)) continue;
       // It sleeps holding the token, or ended: a full look (and give_turn) tells.
@@ -435,6 +438,7 @@ Quiescence Controller::wait_quiescent(std::chrono::milliseconds wall_limit) {
     if (look.all_waiting && !input_in_flight && quiet_at_one_instant(look, seq, between_turns)) {
       // Deterministic mode: quiescent only when nobody wants to run.
       if (options_.deterministic) {
+        allow_handoffs(look);
         if (auto holder = give_turn()) {
           running = holder;  // it runs now: looked at alone until it stops
           after_turn_given(*holder);

@@ -84,11 +84,13 @@ int run(Controller& group, pid_t command, const RunOptions& options) {
   }
   if (options.verbose) {
     std::fprintf(stderr,
-                 "timeshim: sim time %.6f s, %llu advances, %llu intercepted calls, %llu turns\n",
+                 "timeshim: sim time %.6f s, %llu advances, %llu intercepted calls, %llu turns "
+                 "(%llu handed over by the shim)\n",
                  static_cast<double>(group.now_ns()) * 1e-9,
                  static_cast<unsigned long long>(group.advances()),
                  static_cast<unsigned long long>(group.intercepted_calls()),
-                 static_cast<unsigned long long>(group.turns()));
+                 static_cast<unsigned long long>(group.turns()),
+                 static_cast<unsigned long long>(group.handoffs()));
   }
   return group.exit_status(command).value_or(1);
 }
@@ -118,6 +120,9 @@ int main(int argc, char** argv) {
   app.add_flag("--deterministic", options.controller.deterministic,
                "run the group's threads one at a time in a fixed order (reproducible "
                "interleaving; slower)");
+  app.add_flag("!--look-every-turn", options.controller.shim_handoffs,
+               "deterministic mode: a look after every turn, none handed over by the shim (the "
+               "same interleaving, slower; for comparison)");
   app.add_flag("-v,--verbose", options.verbose, "print sim time and counts at the end");
   app.add_option("command", options.command, "the command and its arguments (after --)")
       ->required();

@@ -43,6 +43,31 @@ std::uint64_t Controller::turns() const {
   return const_cast<Controller*>(this)->header().turns.load();
 }
 
+std::uint64_t Controller::handoffs() const {
+  return const_cast<Controller*>(this)->header().handoffs.load();
+}
+
+bool Controller::adopt_handed_over_turn(std::optional<std::pair<pid_t, pid_t>>& running) {
+  Header& segment = header();
+  const std::uint64_t handoffs = segment.handoffs.load();
+  if (!options_.deterministic || handoffs == light_.handoffs_seen) return false;
+  light_.handoffs_seen = handoffs;
+  const pid_t tid = segment.handoff_tid.load();
+  for (auto& slot : used_slots(segment)) {
+    if (slot.claim.load() == 0 || slot.tid.load() != tid) continue;
+    const pid_t pid = slot.pid.load();
+    // As after give_turn: each turn in between left what a look relies on
+    // as it was (the shim checked), so the light looks go on from this one.
+    proc_->forget_children(pid);
+    running = std::make_pair(pid, tid);
+    after_turn_given(*running);
+    return true;
+  }
+  running.reset();  // gone already: a full look tells what is left
+  want_full_look();
+  return true;
+}
+
 std::optional<std::pair<pid_t, pid_t>> Controller::give_turn() {
   Header& segment = header();
   std::vector<ThreadSlot*> wanting;
@@ -94,6 +119,8 @@ std::optional<std::pair<pid_t, pid_t>> Controller::give_turn() {
     // A thread whose process ended keeps its slot until it is gone: no turn
     // for it (whether it is still there depends on the kernel's timing).
     if (ending((*first)->pid.load(), (*first)->tid.load(), *proc_)) {
+      // Unnumbered, so that the shim never hands it a turn (shim/handoff.cpp).
+      (*first)->ready_seq.store(0);
       wanting.erase(first);
       if (wanting.empty()) return std::nullopt;
     } else {

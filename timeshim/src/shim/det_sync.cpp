@@ -87,21 +87,39 @@ void make_ready(ThreadSlot& slot, Header& segment) {
 void yield_to_woken() {
   if (!woke_someone || !shim::holds_token()) return;
   woke_someone = false;
-  shim::release_token();
-  shim::acquire_token(shim::own_slot(), ShimCall::BlockingCall);
-  shim::set_state(shim::own_slot(), ThreadState::Running, ShimCall::None, kNoDeadline);
+  const int saved = errno;
+  ThreadSlot& slot = shim::own_slot();
+  shim::end_turn(slot, ThreadState::WantToken, ShimCall::BlockingCall, kNoDeadline);
+  shim::acquire_token(slot, ShimCall::BlockingCall);
+  shim::set_state(slot, ThreadState::Running, ShimCall::None, kNoDeadline);
+  errno = saved;
 }
 
+// getpid(), not the slot's pid: a vfork or posix_spawn child runs no fork
+// handler and still has its parent's slot. Asked only when a waiter on the
+// same address is found: glibc's getpid is a system call, and CPython's GIL
+// unlocks often.
+class OwnPid {
+ public:
+  pid_t get() {
+    if (pid_ == 0) pid_ = ::getpid();
+    return pid_;
+  }
+
+ private:
+  pid_t pid_ = 0;
+};
+
 bool waits_for(const ThreadSlot& slot, DetObject object, const void* address, bool shared,
-               pid_t pid) {
+               OwnPid& pid) {
   if (slot.claim.load() == 0 ||
       slot.state.load() != static_cast<std::uint32_t>(ThreadState::DetBlocked) ||
       slot.det_object.load() != static_cast<std::uint32_t>(object)) {
     return false;
   }
   if (shared && slot.det_shared.load() != 0) return true;
-  return slot.pid.load() == pid &&
-         slot.cond_addr.load() == reinterpret_cast<std::uint64_t>(address);
+  return slot.cond_addr.load() == reinterpret_cast<std::uint64_t>(address) &&
+         slot.pid.load() == pid.get();
 }
 
 }  // namespace
@@ -119,9 +137,8 @@ bool det_block(DetObject object, const void* address, bool shared, std::int64_t 
   slot.det_signaled.store(0);
   slot.det_wait_seq.store(segment.det_wait_counter.fetch_add(1));
   segment.det_blocked.fetch_add(1);
-  set_state(slot, ThreadState::DetBlocked, call, deadline);
   woke_someone = false;  // those it woke run before it anyway
-  release_token();
+  end_turn(slot, ThreadState::DetBlocked, call, deadline);
   wait_for_turn(slot);
   segment.det_blocked.fetch_sub(1);
   const bool signaled = slot.det_signaled.load() != 0;
@@ -134,19 +151,20 @@ bool det_block(DetObject object, const void* address, bool shared, std::int64_t 
 void det_wake(DetObject object, const void* address, bool shared, bool only_first) {
   Header& segment = *shim::segment();
   if (segment.det_blocked.load() == 0) return;
-  // getpid(), not the slot's pid: a vfork or posix_spawn child runs no fork
-  // handler and still has its parent's slot.
-  const pid_t pid = ::getpid();
-  ThreadSlot* first = nullptr;
-  for (auto& slot : used_slots(segment)) {
-    if (!waits_for(slot, object, address, shared, pid)) continue;
-    if (!only_first) {
-      make_ready(slot, segment);
-    } else if (first == nullptr || slot.det_wait_seq.load() < first->det_wait_seq.load()) {
-      first = &slot;
+  OwnPid pid;
+  // Longest waiter first: their places in the queue follow the order they
+  // began to wait in (given out in turns), not the slots' order, which is
+  // the order new threads happened to claim them in.
+  for (;;) {
+    ThreadSlot* first = nullptr;
+    for (auto& slot : used_slots(segment)) {
+      if (!waits_for(slot, object, address, shared, pid)) continue;
+      if (first == nullptr || slot.det_wait_seq.load() < first->det_wait_seq.load()) first = &slot;
     }
+    if (first == nullptr) return;
+    make_ready(*first, segment);  // no longer DetBlocked: not found again
+    if (only_first) return;
   }
-  if (first != nullptr) make_ready(*first, segment);
 }
 
 int det_mutex_lock(pthread_mutex_t* mutex, std::int64_t deadline) {

@@ -15,6 +15,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "handoff.hpp"
+
 namespace ubersim::timeshim::shim {
 namespace {
 
@@ -44,9 +46,16 @@ constexpr std::int64_t kFreeCalls = 2000;
 Header* the_segment = nullptr;
 pthread_key_t slot_key;
 
+bool thread_holds_token() {
+  return this_thread.slot != nullptr && the_segment->token_tid.load() == this_thread.tid;
+}
+
+// The token holder's changes need no wake-up: the controller waits for the
+// turn's end, which release_token says (or for the holder's hand-over,
+// handoff.cpp), and a wake-up in each turn would cost it a core.
 void notify_controller() {
   the_segment->change_seq.fetch_add(1);
-  futex_wake_all(the_segment->change_seq);
+  if (!thread_holds_token()) futex_wake_all(the_segment->change_seq);
 }
 
 // The order id of a forked child, given out by the parent (which holds the
@@ -301,21 +310,44 @@ void set_own_order(std::uint32_t order_id) {
   this_thread.has_order = true;
 }
 
-void release_token() {
+namespace {
+
+void give_token_back() {
   this_thread.had_token = false;
   if (!deterministic() || this_thread.slot == nullptr) return;
   std::int32_t tid = this_thread.tid;
   if (the_segment->token_tid.compare_exchange_strong(tid, 0)) notify_controller();
 }
 
+}  // namespace
+
+void release_token() {
+  forget_turn_writes();
+  give_token_back();
+}
+
+void end_turn(ThreadSlot& slot, ThreadState state, ShimCall call, std::int64_t deadline_ns) {
+  set_state(slot, state, call, deadline_ns);
+  if (!deterministic() || !holds_token()) {
+    release_token();
+  } else if (hand_off_turn(*the_segment, slot, this_thread.tid)) {
+    this_thread.had_token = false;
+  } else {
+    give_token_back();
+  }
+}
+
 bool holds_token() {
-  return this_thread.slot != nullptr && the_segment->token_tid.load() == this_thread.tid;
+  return thread_holds_token();
 }
 
 void wait_for_turn(ThreadSlot& slot) {
   for (;;) {
     const std::uint32_t seq = slot.wake_seq.load();
-    if (the_segment->token_tid.load() == this_thread.tid) return;
+    if (the_segment->token_tid.load() == this_thread.tid) {
+      note_turn_start(*the_segment);
+      return;
+    }
     const long waited = futex_wait(slot.wake_seq, seq, to_ns(kLivenessCheck));
     if (waited != 0 && errno == ETIMEDOUT) exit_if_controller_gone();
   }
@@ -325,7 +357,10 @@ void acquire_token(ThreadSlot& slot, ShimCall call) {
   if (!deterministic()) return;
   if (!holds_token()) {
     const int saved = errno;
-    set_state(slot, ThreadState::WantToken, call, kNoDeadline);
+    // (Already said when its turn ended wanting the next: end_turn.)
+    if (slot.state.load() != static_cast<std::uint32_t>(ThreadState::WantToken)) {
+      set_state(slot, ThreadState::WantToken, call, kNoDeadline);
+    }
     wait_for_turn(slot);
     errno = saved;
   }
@@ -381,8 +416,7 @@ std::int64_t read_clock() {
 int sleep_until(std::int64_t deadline_ns, ShimCall call) {
   const std::int64_t view_at_start = view_now();
   ThreadSlot& slot = own_slot();
-  set_state(slot, ThreadState::Sleeping, call, deadline_ns);
-  release_token();
+  end_turn(slot, ThreadState::Sleeping, call, deadline_ns);
   int result = 0;
   for (;;) {
     const std::uint32_t seq = slot.wake_seq.load();
@@ -412,8 +446,7 @@ WaitScope::WaitScope(std::int64_t deadline_ns, ShimCall call, ThreadState state,
   sigdelset(&mask_, the_segment->wake_signal);
   wake_arrived = 0;
   call_ = call;
-  set_state(slot, state, call, deadline_ns);
-  release_token();
+  end_turn(slot, state, call, deadline_ns);
 }
 
 WaitScope::~WaitScope() {

@@ -69,6 +69,10 @@ void set_own_order(std::uint32_t order_id);
 // not in deterministic mode.
 void release_token();
 bool holds_token();
+// Says what this thread waits for now (as set_state) and ends its turn if it
+// holds the token: hands it to the next thread itself when the turn changed
+// nothing a look relies on (handoff.cpp), else gives it back to the controller.
+void end_turn(ThreadSlot& slot, ThreadState state, ShimCall call, std::int64_t deadline_ns);
 // Waits for this thread's turn (after a block, before the program's code
 // runs again); says so in the slot (WantToken). Keeps errno.
 void acquire_token(ThreadSlot& slot, ShimCall call);

@@ -75,7 +75,8 @@ class TeamGroup {
   void stop();
   std::uint64_t quiescences() const { return quiescences_; }
   std::uint64_t advances() const;
-  std::uint64_t turns() const;  // deterministic mode's turns, of every group
+  std::uint64_t turns() const;     // deterministic mode's turns, of every group
+  std::uint64_t handoffs() const;  // of those, the ones the shim handed over itself
   // Pauses of threads that polled without blocking, of every group
   // (timeshim::Controller::charged_pauses).
   std::uint64_t charged_pauses() const;

@@ -56,6 +56,11 @@ struct ControllerOptions {
   // time, each until it blocks, in a fixed order, so that what they do
   // interleaves alike on every run.
   bool deterministic = false;
+  // Deterministic mode: the shim hands a turn that changed nothing a look
+  // relies on to the next thread itself (docs/timeshim.md, "Turns without a
+  // look"). Off: a look after every turn, the same interleaving (for tests
+  // and the benchmark).
+  bool shim_handoffs = true;
 };
 
 // Something the controller found that keeps the shim from working: named,
@@ -121,6 +126,9 @@ class Controller {
   std::uint64_t advances() const { return advances_; }
   // Deterministic mode: turns granted so far.
   std::uint64_t turns() const;
+  // Of those, the turns the shim handed from one thread to the next itself
+  // (shim/handoff.cpp), with no look between them.
+  std::uint64_t handoffs() const;
   // Looks at the group so far: full ones (every thread read) and light ones
   // (deterministic mode, after a turn: only what the turn can have changed).
   std::uint64_t full_looks() const { return light_.full_looks; }
@@ -149,6 +157,13 @@ class Controller {
   // a peer or sim time (what it still runs is the shim's, not the program's).
   bool turn_goes_on(const std::optional<std::pair<pid_t, pid_t>>& running);
   bool turn_ended_settled(const std::optional<std::pair<pid_t, pid_t>>& running);
+  // Deterministic mode (light_look.cpp, turns.cpp): before a turn is given after `look`,
+  // whether the shim may hand the turns after it over itself, and what they
+  // must leave as it is; after, takes up the turns the shim handed over
+  // since (the thread holding the token now, or the last to get it), as if
+  // given here. Returns whether there were any.
+  void allow_handoffs(const Scan& look);
+  bool adopt_handed_over_turn(std::optional<std::pair<pid_t, pid_t>>& running);
   using Slots = std::map<pid_t, SlotView>;  // by tid
   std::vector<pid_t> group_roots();
   std::optional<std::map<pid_t, std::uint64_t>> look_at_process(pid_t pid, const Slots& slots,
@@ -213,6 +228,7 @@ class Controller {
     std::uint64_t fd_outputs = 0;           // the group's counted fd outputs at the last look
     bool outputs_checked = false;           // the look after the turn asked whether it output
     std::map<pid_t, std::uint64_t> writes;  // by tid: its write calls after its last turn
+    std::uint64_t handoffs_seen = 0;        // the shim's hand-overs taken up so far
   } light_;
 };
 

@@ -17,7 +17,7 @@ namespace ubersim::timeshim {
 // The environment variable that names the segment's file.
 inline constexpr const char* kSegmentEnv = "UBERSIM_TIMESHIM_SHM";
 inline constexpr std::uint32_t kMagic = 0x54534d55;  // "UMST"
-inline constexpr std::uint32_t kVersion = 6;
+inline constexpr std::uint32_t kVersion = 7;
 inline constexpr int kMaxThreads = 1024;
 // No deadline: a wait only input can end.
 inline constexpr std::int64_t kNoDeadline = std::numeric_limits<std::int64_t>::max();
@@ -163,6 +163,19 @@ struct Header {
   std::atomic<std::uint64_t> det_wait_counter{0};
   std::atomic<std::uint64_t> ready_counter{0};
   std::atomic<std::uint64_t> turns{0};
+  // Deterministic mode, turns handed over by the shim (shim/handoff.cpp):
+  // the controller allows them (1) when the look that gave the last turn
+  // found every thread of the group in a shim wait, and says what a turn
+  // must leave as it is for the next one to need no look: the host's last
+  // pid and the group's signals sent as at its last full look, and until
+  // when (CLOCK_MONOTONIC, ns) that look is recent enough. The shim counts
+  // the turns it handed over and names the thread it handed the last to.
+  std::atomic<std::uint32_t> handoff_allowed{0};
+  std::atomic<std::int64_t> handoff_last_pid{0};
+  std::atomic<std::uint64_t> handoff_signals_sent{0};
+  std::atomic<std::int64_t> handoff_until_ns{0};
+  std::atomic<std::uint64_t> handoffs{0};
+  std::atomic<std::int32_t> handoff_tid{0};
   // One past the highest slot ever claimed: the slots after it were never
   // used, so loops over the group's threads stop there (every unlock in
   // deterministic mode loops over them).
