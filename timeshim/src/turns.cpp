@@ -47,10 +47,10 @@ std::uint64_t Controller::handoffs() const {
   return const_cast<Controller*>(this)->header().handoffs.load();
 }
 
-bool Controller::adopt_handed_over_turn(std::optional<std::pair<pid_t, pid_t>>& running) {
+void Controller::adopt_handed_over_turn(std::optional<std::pair<pid_t, pid_t>>& running) {
   Header& segment = header();
   const std::uint64_t handoffs = segment.handoffs.load();
-  if (!options_.deterministic || handoffs == light_.handoffs_seen) return false;
+  if (!options_.deterministic || handoffs == light_.handoffs_seen) return;
   light_.handoffs_seen = handoffs;
   const pid_t tid = segment.handoff_tid.load();
   for (auto& slot : used_slots(segment)) {
@@ -61,11 +61,10 @@ bool Controller::adopt_handed_over_turn(std::optional<std::pair<pid_t, pid_t>>& 
     proc_->forget_children(pid);
     running = std::make_pair(pid, tid);
     after_turn_given(*running);
-    return true;
+    return;
   }
   running.reset();  // gone already: a full look tells what is left
   want_full_look();
-  return true;
 }
 
 std::optional<std::pair<pid_t, pid_t>> Controller::give_turn() {
@@ -109,7 +108,7 @@ std::optional<std::pair<pid_t, pid_t>> Controller::give_turn() {
   std::sort(arrived.begin(), arrived.end(), [](const ThreadSlot* a, const ThreadSlot* b) {
     return a->order_id.load() < b->order_id.load();
   });
-  for (ThreadSlot* slot : arrived) slot->ready_seq.store(segment.ready_counter.fetch_add(1) + 1);
+  for (ThreadSlot* slot : arrived) slot->ready_seq.store(next_ready_place(segment));
   ThreadSlot* next = nullptr;
   while (next == nullptr) {
     const auto first = std::min_element(wanting.begin(), wanting.end(),

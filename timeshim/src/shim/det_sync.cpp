@@ -72,7 +72,7 @@ __attribute__((tls_model("initial-exec"))) thread_local bool woke_someone = fals
 // later (the waker, when it yields).
 void make_ready(ThreadSlot& slot, Header& segment) {
   slot.det_signaled.store(1);
-  slot.ready_seq.store(segment.ready_counter.fetch_add(1) + 1);
+  slot.ready_seq.store(next_ready_place(segment));
   auto blocked = static_cast<std::uint32_t>(ThreadState::DetBlocked);
   if (slot.state.compare_exchange_strong(blocked,
                                          static_cast<std::uint32_t>(ThreadState::WantToken))) {

@@ -11,7 +11,6 @@
 
 #include <fcntl.h>
 #include <sys/syscall.h>
-#include <time.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -72,13 +71,6 @@ std::optional<std::uint64_t> host_last_pid() {
   if (!read_proc_file("/proc/loadavg", loadavg)) return std::nullopt;
   const char* space = std::strrchr(loadavg.text, ' ');
   return number_at(space == nullptr ? nullptr : space + 1);
-}
-
-std::int64_t wall_monotonic_ns() {
-  static const auto real_clock = next_symbol<int (*)(clockid_t, timespec*)>("clock_gettime");
-  timespec now{};
-  real_clock(CLOCK_MONOTONIC, &now);
-  return to_ns(now);
 }
 
 bool waits_past(const ThreadSlot& slot, std::int64_t now) {
@@ -174,7 +166,7 @@ bool hand_off_turn(Header& segment, ThreadSlot& own, pid_t own_tid) {
   if (next == nullptr) return false;
   // The look would number this thread now, the only one new to the queue.
   if (own.state.load() == static_cast<std::uint32_t>(ThreadState::WantToken)) {
-    own.ready_seq.store(segment.ready_counter.fetch_add(1) + 1);
+    own.ready_seq.store(next_ready_place(segment));
   }
   const std::uint64_t place = next->ready_seq.load();
   const pid_t next_tid = next->tid.load();

@@ -49,11 +49,7 @@ bool take_contended(pthread_mutex_t* mutex) {
 // a signal.
 int wait_once(pthread_mutex_t* mutex, const sigset_t* mask) {
   if ((mutex->__data.__kind & 0x7f) != kPlainMutex) {
-    static const auto real_clock =
-        shim::next_symbol<int (*)(clockid_t, timespec*)>("clock_gettime");
-    timespec now{};
-    real_clock(CLOCK_MONOTONIC, &now);
-    const timespec slice_end = shim::to_timespec(shim::to_ns(now) + shim::to_ns(kSlice));
+    const timespec slice_end = shim::to_timespec(shim::wall_monotonic_ns() + shim::to_ns(kSlice));
     return real_clocklock(mutex, CLOCK_MONOTONIC, &slice_end) == 0 ? 1 : 0;
   }
   if (take_contended(mutex)) return 1;

@@ -46,16 +46,12 @@ constexpr std::int64_t kFreeCalls = 2000;
 Header* the_segment = nullptr;
 pthread_key_t slot_key;
 
-bool thread_holds_token() {
-  return this_thread.slot != nullptr && the_segment->token_tid.load() == this_thread.tid;
-}
-
 // The token holder's changes need no wake-up: the controller waits for the
 // turn's end, which release_token says (or for the holder's hand-over,
 // handoff.cpp), and a wake-up in each turn would cost it a core.
 void notify_controller() {
   the_segment->change_seq.fetch_add(1);
-  if (!thread_holds_token()) futex_wake_all(the_segment->change_seq);
+  if (!holds_token()) futex_wake_all(the_segment->change_seq);
 }
 
 // The order id of a forked child, given out by the parent (which holds the
@@ -285,11 +281,15 @@ void exit_if_controller_gone() {
   errno = saved;
 }
 
-timespec wall_liveness_deadline() {
+std::int64_t wall_monotonic_ns() {
   static const auto real_clock = next_symbol<int (*)(clockid_t, timespec*)>("clock_gettime");
   timespec now{};
   real_clock(CLOCK_MONOTONIC, &now);
-  return to_timespec(to_ns(now) + to_ns(kLivenessCheck));
+  return to_ns(now);
+}
+
+timespec wall_liveness_deadline() {
+  return to_timespec(wall_monotonic_ns() + to_ns(kLivenessCheck));
 }
 
 Header* segment() {
@@ -338,7 +338,7 @@ void end_turn(ThreadSlot& slot, ThreadState state, ShimCall call, std::int64_t d
 }
 
 bool holds_token() {
-  return thread_holds_token();
+  return this_thread.slot != nullptr && the_segment->token_tid.load() == this_thread.tid;
 }
 
 void wait_for_turn(ThreadSlot& slot) {

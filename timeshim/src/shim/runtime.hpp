@@ -106,6 +106,8 @@ void exit_if_controller_gone();
 // kLivenessCheck from now on the kernel's CLOCK_MONOTONIC (for the waits
 // that take an absolute time).
 timespec wall_liveness_deadline();
+// The kernel's CLOCK_MONOTONIC (wall time, not sim time), in ns.
+std::int64_t wall_monotonic_ns();
 
 // Parts of wait_until that need no template.
 struct WaitScope {

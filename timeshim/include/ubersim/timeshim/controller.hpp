@@ -161,9 +161,9 @@ class Controller {
   // whether the shim may hand the turns after it over itself, and what they
   // must leave as it is; after, takes up the turns the shim handed over
   // since (the thread holding the token now, or the last to get it), as if
-  // given here. Returns whether there were any.
+  // given here.
   void allow_handoffs(const Scan& look);
-  bool adopt_handed_over_turn(std::optional<std::pair<pid_t, pid_t>>& running);
+  void adopt_handed_over_turn(std::optional<std::pair<pid_t, pid_t>>& running);
   using Slots = std::map<pid_t, SlotView>;  // by tid
   std::vector<pid_t> group_roots();
   std::optional<std::map<pid_t, std::uint64_t>> look_at_process(pid_t pid, const Slots& slots,

@@ -200,6 +200,12 @@ static_assert(std::atomic<std::int64_t>::is_always_lock_free);
 static_assert(std::atomic<std::uint32_t>::is_always_lock_free);
 static_assert(sizeof(std::atomic<std::uint32_t>) == sizeof(std::uint32_t));  // futex words
 
+// Deterministic mode: the next place in the queue for the token (1, 2, ...;
+// 0 in a slot means none yet).
+inline std::uint64_t next_ready_place(Header& header) {
+  return header.ready_counter.fetch_add(1) + 1;
+}
+
 // Blocking states: the thread waits in the shim (and, once the kernel says it
 // sleeps, counts as waiting for the controller).
 inline bool is_shim_wait(ThreadState state) {
