@@ -183,7 +183,7 @@ void SslBridge::on_vision(const vision_frame_t& frame) {
     send_vision(detection_packet(frame));
   }
   if (lcm_door_ && !teams_->exited() && forwardable(frame)) lcm_door_->hold(frame);
-  if (last_of_step) deliver_timed();
+  if (last_of_step) deliver_timed(StateKind::WithFrames);
   if (!forwardable(frame)) return;
   // Owed before the team can answer: the answer comes back through our own poll loop.
   if (options_.sync) {

@@ -48,16 +48,24 @@ void SslBridge::on_schedule(const vision_schedule_t& schedule) {
   timed_publication_ = schedule.t_state;
   timed_next_input_ = schedule.next_publication;
   timed_frames_due_ = std::max(0, schedule.num_frames);
-  if (timed_frames_due_ == 0) deliver_timed();
+  if (timed_frames_due_ == 0) deliver_timed(StateKind::WithoutFrames);
 }
 
 // Every frame of the step is here: the group catches up to their publication,
 // gets them (with the geometry, referee messages and tracked frames of that
 // time), answers, and runs ahead to the next frame.
-void SslBridge::deliver_timed() {
+//
+// Held simulation control commands go out only with frames: physics waits at
+// a state with frames (the group promised nothing past their publication), so
+// they apply there on every run. A state without frames (a capture instant,
+// or one the radio's feedback links asked for) lies before the group's
+// promise, and physics runs on from it while the commands travel: released
+// there, a command applied at whichever step physics had reached (Utama-Core's
+// start-up placements landed at steps 9 to 15 from run to run).
+void SslBridge::deliver_timed(StateKind kind) {
   if (teams_->exited()) return;
   run_teams_to(timed_publication_);
-  apply_timed_controls();
+  if (kind == StateKind::WithFrames) apply_timed_controls();
   timed_settled_ = std::max(timed_settled_, latest_before(timed_state_times_, timed_publication_));
   if (lcm_door_) lcm_door_->deliver(timed_publication_, timed_settled_);
   send_timed_geometry();

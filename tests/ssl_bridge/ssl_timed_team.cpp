@@ -11,9 +11,11 @@
 // --protocol grsim it speaks grSim's protocol instead, as grSim clients do:
 // one grSim_Packet per loop to grSim's command port (robot-local velocities),
 // and no answer to read. The yellow team of the SSL protocol also teleports
-// the ball once, at its loop 40 (0.8 s), on the simulation control port, as
+// the ball once, at its loop 41 (0.82 s), on the simulation control port, as
 // team software does (Utama-Core places the ball): physics must apply it at
-// the same sim time on every run.
+// the state of the next frame on every run. 0.82 s lies between two frames'
+// states with a capture instant's state (no frame) between it and the next
+// frame: a command released there applied at whichever step physics had reached.
 //   ssl_timed_team --team yellow|blue [--vision-port 10020] [--port 10301|10302|20011]
 //                  [--protocol ssl|grsim]
 #include <grSim_Packet.pb.h>
@@ -161,7 +163,7 @@ int main(int argc, char** argv) {
   ssl_test::VisionReceiver vision("224.5.23.2", vision_port);
   ssl_test::UdpClient robots(port);
   constexpr int kControlPort = 10300;  // the SSL simulation protocol's control port
-  constexpr long kTeleportLoop = 40;
+  constexpr long kTeleportLoop = 41;
   ssl_test::UdpClient control(kControlPort);
   const bool teleports = yellow && !arguments->grsim;
   World world;

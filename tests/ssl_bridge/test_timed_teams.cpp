@@ -11,10 +11,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <regex>
 #include <ubersim/radio_packet_t.hpp>
+#include <ubersim/sim_control_ack_t.hpp>
 #include <ubersim/sim_control_t.hpp>
 #include <ubersim/sim_state_t.hpp>
+#include <ubersim/vision_schedule_t.hpp>
 
 #include "timed_game.hpp"
 
@@ -81,18 +84,42 @@ void check_team(const TimedGame& game, const std::string& channel, const std::st
   EXPECT_GT(with_commands, min_loops);
 }
 
-// The C++ yellow team teleported the ball once during the game (its loop 40):
-// the bridge passed it on to physics.
+// The step of the first state at or after sim time t with vision frames (the
+// vision emulator's schedule lists them), -1 if none.
+std::int64_t first_frame_step_from(const TimedGame& game, double t) {
+  for (const auto& schedule :
+       decode_all<ubersim::vision_schedule_t>(game.log.at("SIM_VISION_SCHEDULE"))) {
+    if (schedule.num_frames > 0 && schedule.t_state >= t - 1e-9) return schedule.step;
+  }
+  return -1;
+}
+
+// The C++ yellow team teleported the ball once during the game (its loop 41,
+// 0.82 s): the bridge passed it on to physics, which applied it at the state
+// of the next frame (where physics waits), not at the capture instant's state
+// without a frame in between (which physics runs past while the command
+// travels).
 void expect_teleport(const TimedGame& game) {
   ASSERT_TRUE(game.log.count("SIM_CONTROL"));
-  int teleports = 0;
+  ASSERT_TRUE(game.log.count("SIM_CONTROL_ACK"));
+  std::vector<std::int64_t> teleports;
   for (const auto& request : decode_all<ubersim::sim_control_t>(game.log.at("SIM_CONTROL"))) {
     if (request.sender == "ubersim_ssl_bridge" && request.has_ball &&
         std::fabs(request.ball.position[0] - 0.5) < 1e-6) {
-      ++teleports;
+      teleports.push_back(request.request_id);
     }
   }
-  EXPECT_EQ(teleports, 1) << game.bridge_log;
+  ASSERT_EQ(teleports.size(), 1U) << game.bridge_log;
+  constexpr double kSent = 0.82;  // loop 41 of the 50 Hz loop
+  const std::int64_t frame_step = first_frame_step_from(game, kSent);
+  int acknowledged = 0;
+  for (const auto& ack : decode_all<ubersim::sim_control_ack_t>(game.log.at("SIM_CONTROL_ACK"))) {
+    if (ack.sender != "ubersim_ssl_bridge" || ack.request_id != teleports.front()) continue;
+    ++acknowledged;
+    EXPECT_TRUE(ack.ok) << ack.message;
+    EXPECT_EQ(ack.step, frame_step) << "applied at sim time " << ack.sim_time;
+  }
+  EXPECT_EQ(acknowledged, 1);
 }
 
 void expect_no_drop(const TimedGame& game) {

@@ -170,7 +170,10 @@ class SslBridge {
   bool timed(Team team) const;
   bool timed_mode() const { return teams_ != nullptr; }
   void on_schedule(const vision_schedule_t& schedule);
-  void deliver_timed();
+  // A state physics published with vision frames, or without (one that a
+  // truth demand asked for).
+  enum class StateKind { WithFrames, WithoutFrames };
+  void deliver_timed(StateKind kind);
   void register_timed_teams();
   void send_timed_geometry();
   void remember_state_time(double sim_time);
