@@ -44,14 +44,12 @@ bool waits_for_input(const SlotView& slot) {
   return slot.state == ThreadState::WaitingFd && slot.call != ShimCall::SigTimedwait;
 }
 
-// The state a turn's thread gave the token back in, when what it does next
-// is not the program's: it waits for its turn, a peer or sim time, or for
-// input (whether any was there it checked holding the token, and nobody but
-// it ran since: only input from outside the group can end that wait now, at
-// a time no look can make the same on every run).
+// The state a turn's thread gave the token back in (shared_state.hpp). For
+// input it waits for, whether any was there it checked holding the token,
+// and nobody but it ran since: only input from outside the group can end that
+// wait now, at a time no look can make the same on every run.
 bool settled_after_turn(const SlotView& slot) {
-  // (sigtimedwait's WaitingFd checks for a pending signal only in the kernel.)
-  return ends_without_input(slot.state) || waits_for_input(slot);
+  return ubersim::timeshim::settled_after_turn(slot.state, slot.call);
 }
 
 }  // namespace

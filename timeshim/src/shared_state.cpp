@@ -80,4 +80,10 @@ void futex_wake_all(std::atomic<std::uint32_t>& word) {
             nullptr, 0);
 }
 
+void start_turn(Header& segment, ThreadSlot& holder) {
+  segment.turns.fetch_add(1);
+  holder.wake_seq.fetch_add(1);
+  futex_wake_all(holder.wake_seq);
+}
+
 }  // namespace ubersim::timeshim

@@ -133,9 +133,7 @@ std::optional<std::pair<pid_t, pid_t>> Controller::give_turn() {
   // No longer wanting: a look before it runs must not give a second turn.
   next->state.store(static_cast<std::uint32_t>(ThreadState::Running));
   segment.token_tid.store(next->tid.load());
-  segment.turns.fetch_add(1);
-  next->wake_seq.fetch_add(1);
-  futex_wake_all(next->wake_seq);
+  start_turn(segment, *next);
   return std::make_pair(static_cast<pid_t>(next->pid.load()), static_cast<pid_t>(next->tid.load()));
 }
 

@@ -78,21 +78,15 @@ bool waits_past(const ThreadSlot& slot, std::int64_t now) {
 }
 
 // The state the turn's thread ended in, as the look after it would judge it
-// without reading the thread (light_look.cpp): waiting for its turn, a peer,
-// sim time not yet reached, or input that was not there when it looked.
+// without reading the thread (settled_after_turn, shared_state.hpp): waiting
+// for its turn, a peer, sim time or input that was not there when it looked.
+// The hand-over also needs what the look finds out itself: a thread that
+// wants the token has no place in the queue yet (the look would number it),
+// and a deadline is not yet reached.
 bool settled(const ThreadSlot& own, std::int64_t now) {
-  switch (static_cast<ThreadState>(own.state.load())) {
-    case ThreadState::WantToken:
-      return own.ready_seq.load() == 0;
-    case ThreadState::DetBlocked:
-    case ThreadState::Sleeping:
-      return waits_past(own, now);
-    case ThreadState::WaitingFd:
-      return static_cast<ShimCall>(own.call.load()) != ShimCall::SigTimedwait &&
-             waits_past(own, now);
-    default:
-      return false;
-  }
+  const auto state = static_cast<ThreadState>(own.state.load());
+  if (!settled_after_turn(state, static_cast<ShimCall>(own.call.load()))) return false;
+  return state == ThreadState::WantToken ? own.ready_seq.load() == 0 : waits_past(own, now);
 }
 
 // The thread the controller's look would give the turn to: the one that
@@ -185,10 +179,8 @@ bool hand_off_turn(Header& segment, ThreadSlot& own, pid_t own_tid) {
     next->ready_seq.store(place);
     return false;
   }
-  segment.turns.fetch_add(1);
   segment.handoffs.fetch_add(1);
-  next->wake_seq.fetch_add(1);
-  futex_wake_all(next->wake_seq);
+  start_turn(segment, *next);
   return true;
 }
 

@@ -80,6 +80,24 @@ enum class ShimCall : std::uint32_t {
 
 const char* shim_call_name(ShimCall call);
 
+// Deterministic mode: a state a turn's thread gives the token back in when
+// what it does next is not the program's: it waits for its turn, a peer, sim
+// time, or input (not sigtimedwait's wait for a signal, which checks for a
+// pending signal only in the kernel). The controller's light look and the
+// shim's hand-over both judge the end of a turn by it.
+inline bool settled_after_turn(ThreadState state, ShimCall call) {
+  switch (state) {
+    case ThreadState::WantToken:
+    case ThreadState::DetBlocked:
+    case ThreadState::Sleeping:
+      return true;
+    case ThreadState::WaitingFd:
+      return call != ShimCall::SigTimedwait;
+    default:
+      return false;
+  }
+}
+
 struct alignas(64) ThreadSlot {
   std::atomic<std::uint32_t> state{0};     // ThreadState
   std::atomic<std::uint32_t> wake_seq{0};  // futex: the controller bumps it to wake a sleeper
@@ -218,5 +236,11 @@ inline bool is_shim_wait(ThreadState state) {
 // timeout_ns < 0: no timeout. Returns the syscall's result (errno set).
 long futex_wait(std::atomic<std::uint32_t>& word, std::uint32_t expected, long timeout_ns);
 void futex_wake_all(std::atomic<std::uint32_t>& word);
+
+// Deterministic mode: the thread that now holds the run token (Running, and
+// in token_tid) starts its turn: the turn is counted and the thread woken
+// from its wait for the token. The controller's give_turn and the shim's
+// hand-over both end so.
+void start_turn(Header& segment, ThreadSlot& holder);
 
 }  // namespace ubersim::timeshim
