@@ -34,24 +34,6 @@ namespace {
 // from outside the group) is seen within it.
 constexpr auto kFullLookAtLeastEvery = std::chrono::milliseconds(20);
 
-// A wait only the controller, the token holder or a signal can end.
-bool ends_without_input(ThreadState state) {
-  return ends_only_in_turn(state) || state == ThreadState::Sleeping;
-}
-
-// A wait for fds that input ends (not sigtimedwait's, a wait for a signal).
-bool waits_for_input(const SlotView& slot) {
-  return slot.state == ThreadState::WaitingFd && slot.call != ShimCall::SigTimedwait;
-}
-
-// The state a turn's thread gave the token back in (shared_state.hpp). For
-// input it waits for, whether any was there it checked holding the token,
-// and nobody but it ran since: only input from outside the group can end that
-// wait now, at a time no look can make the same on every run.
-bool settled_after_turn(const SlotView& slot) {
-  return ubersim::timeshim::settled_after_turn(slot.state, slot.call);
-}
-
 }  // namespace
 
 bool Controller::turn_goes_on(const std::optional<std::pair<pid_t, pid_t>>& running) {
@@ -64,8 +46,7 @@ bool Controller::turn_ended_settled(const std::optional<std::pair<pid_t, pid_t>>
     if (slot.claim.load() == 0 || slot.tid.load() != running->second) continue;
     const auto state = static_cast<ThreadState>(slot.state.load());
     if (state != ThreadState::Timer) {
-      return settled_after_turn(
-          SlotView{state, slot.deadline_ns.load(), static_cast<ShimCall>(slot.call.load())});
+      return settled_after_turn(state, static_cast<ShimCall>(slot.call.load()));
     }
   }
   return false;
@@ -165,16 +146,16 @@ std::optional<Controller::Scan> Controller::light_scan(bool quiet_turn) {
     const bool is_holder = holder && tid == holder->second;
     // A thread that waits for input and slept with none at the last look
     // sleeps still when the turn sent nothing (quiet_turn) and nobody else ran.
-    const bool unread =
-        slot != nullptr && woken.count(tid) == 0 &&
-        (is_holder ? settled_after_turn(*slot)
-                   : ends_without_input(slot->state) || (quiet_turn && waits_for_input(*slot) &&
-                                                         light_.fd_asleep.count(tid) != 0));
+    const bool unread = slot != nullptr && woken.count(tid) == 0 &&
+                        (is_holder ? settled_after_turn(slot->state, slot->call)
+                                   : ends_without_input(slot->state) ||
+                                         (quiet_turn && waits_for_input(slot->state, slot->call) &&
+                                          light_.fd_asleep.count(tid) != 0));
     if (unread) {
       if (is_holder) {
         result.unread_holder = holder;
         // It checked its fds holding the token: nothing to read then.
-        if (waits_for_input(*slot)) light_.fd_asleep.insert(tid);
+        if (waits_for_input(slot->state, slot->call)) light_.fd_asleep.insert(tid);
       }
       judge_unread(*slot, now, &result.owed_wake, &result.next_deadline);
       continue;

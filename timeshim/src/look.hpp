@@ -39,14 +39,6 @@ struct SlotView {
   ShimCall call;
 };
 
-// Deterministic mode's waits that only the controller (a turn) or the token
-// holder (a peer's unlock, signal or post, which says so in the segment) can
-// end: the thread runs nothing of the program until it gets the token, so
-// what the kernel says of it does not matter, and a look need not read it.
-inline bool ends_only_in_turn(ThreadState state) {
-  return state == ThreadState::WantToken || state == ThreadState::DetBlocked;
-}
-
 // What the controller keeps by tid (a set of tids, or a map by tid), without
 // the threads a full look did not find alive.
 inline pid_t tid_of(pid_t tid) {

@@ -80,22 +80,34 @@ enum class ShimCall : std::uint32_t {
 
 const char* shim_call_name(ShimCall call);
 
+// Deterministic mode's waits that only the controller (a turn) or the token
+// holder (a peer's unlock, signal or post, which says so in the segment) can
+// end: the thread runs nothing of the program until it gets the token, so
+// what the kernel says of it does not matter, and a look need not read it.
+inline bool ends_only_in_turn(ThreadState state) {
+  return state == ThreadState::WantToken || state == ThreadState::DetBlocked;
+}
+
+// A wait only the controller, the token holder or a signal can end.
+inline bool ends_without_input(ThreadState state) {
+  return ends_only_in_turn(state) || state == ThreadState::Sleeping;
+}
+
+// A wait for fds that input ends (not sigtimedwait's, a wait for a signal,
+// which checks for a pending signal only in the kernel).
+inline bool waits_for_input(ThreadState state, ShimCall call) {
+  return state == ThreadState::WaitingFd && call != ShimCall::SigTimedwait;
+}
+
 // Deterministic mode: a state a turn's thread gives the token back in when
 // what it does next is not the program's: it waits for its turn, a peer, sim
-// time, or input (not sigtimedwait's wait for a signal, which checks for a
-// pending signal only in the kernel). The controller's light look and the
-// shim's hand-over both judge the end of a turn by it.
+// time, or input. For input, whether any was there it checked holding the
+// token, and nobody but it ran since: only input from outside the group can
+// end that wait now, at a time no look can make the same on every run. The
+// controller's light look and the shim's hand-over both judge the end of a
+// turn by it.
 inline bool settled_after_turn(ThreadState state, ShimCall call) {
-  switch (state) {
-    case ThreadState::WantToken:
-    case ThreadState::DetBlocked:
-    case ThreadState::Sleeping:
-      return true;
-    case ThreadState::WaitingFd:
-      return call != ShimCall::SigTimedwait;
-    default:
-      return false;
-  }
+  return ends_without_input(state) || waits_for_input(state, call);
 }
 
 struct alignas(64) ThreadSlot {
